@@ -1,0 +1,195 @@
+//! `hemicontact`: the command-line program over the hemicontact library.
+//!
+//! Commands: `check FILE`, `solve FILE [--out DIR]`, `paper [--n N] [--out DIR]`,
+//! `bench [--n LIST]`. Exit codes: 0 success, 1 invalid input or failed solve, 2 usage
+//! error, 3 solve did not converge (results are still written, marked as not converged).
+
+mod bench;
+
+use anyhow::{Context, Result};
+use clap::{Parser, Subcommand};
+use hemicontact::io::atomic::prepare_dir;
+use hemicontact::io::summary::{write_results, Summary};
+use hemicontact::problem::Problem;
+use hemicontact::scenario::{builtin, Scenario};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Finite element solver for contact of elastic locking materials with nonmonotone friction.
+#[derive(Parser, Debug)]
+#[command(name = "hemicontact", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Validate a scenario file and print its sizes, material constants and boundary parts.
+    Check {
+        /// Scenario file (TOML).
+        file: PathBuf,
+    },
+    /// Solve a scenario and write solution.vtu and summary.json.
+    Solve {
+        /// Scenario file (TOML).
+        file: PathBuf,
+        /// Output folder (default: the scenario's output.dir, else out/<file stem>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Solve the paper's example (SPEC §5) on an n × n mesh.
+    Paper {
+        /// Squares per side (even).
+        #[arg(long, default_value_t = 128)]
+        n: usize,
+        /// Output folder.
+        #[arg(long, default_value = "out/paper")]
+        out: PathBuf,
+    },
+    /// Time the phases of a linear solve of the paper's square (pattern, assembly,
+    /// ordering + symbolic analysis, numeric factorization, triangular solve).
+    Bench {
+        /// Comma-separated mesh sizes n (squares per side).
+        #[arg(long, value_delimiter = ',', default_values_t = vec![128usize, 512])]
+        n: Vec<usize>,
+        /// Repetitions of the numeric phases (the median is reported).
+        #[arg(long, default_value_t = 3)]
+        repeat: usize,
+    },
+}
+
+/// Outcome of a command that solved something.
+enum Outcome {
+    Done,
+    NotConverged,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { file } => check(&file).map(|_| Outcome::Done),
+        Command::Solve { file, out } => solve(&file, out.as_deref()),
+        Command::Paper { n, out } => paper(n, &out),
+        Command::Bench { n, repeat } => bench::run(&n, repeat).map(|_| Outcome::Done),
+    };
+    match result {
+        Ok(Outcome::Done) => ExitCode::SUCCESS,
+        Ok(Outcome::NotConverged) => ExitCode::from(3),
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn check(file: &Path) -> Result<()> {
+    let scenario = Scenario::from_file(file)?;
+    let problem = scenario.into_problem()?;
+    print_problem(&problem, &scenario.source);
+    println!("ok: {} is valid", file.display());
+    Ok(())
+}
+
+fn print_problem(problem: &Problem, source: &str) {
+    let mesh = &problem.mesh;
+    let dofs = problem.dof_map();
+    println!("scenario   {source}");
+    println!("dimension  {}", mesh.dim());
+    println!("nodes      {}", mesh.n_nodes());
+    println!("cells      {}", mesh.n_cells());
+    println!(
+        "DOFs       {} ({} free, {} prescribed)",
+        dofs.n_dofs(),
+        dofs.n_free(),
+        dofs.n_dofs() - dofs.n_free()
+    );
+    let h = &problem.material.elasticity;
+    println!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+    println!("boundary parts:");
+    for (p, name) in mesh.part_names().iter().enumerate() {
+        let facets = mesh.part_facets(p).count();
+        let nodes = mesh.part_nodes(p).len();
+        let mut roles = Vec::new();
+        if problem.dirichlet.iter().any(|b| b.part == p) {
+            roles.push("Dirichlet");
+        }
+        if problem.tractions.iter().any(|t| t.part == p) {
+            roles.push("Neumann");
+        }
+        let role = if roles.is_empty() {
+            "free".to_string()
+        } else {
+            roles.join(" + ")
+        };
+        println!("  {name:<10} {facets:>6} facets {nodes:>6} nodes  {role}");
+    }
+}
+
+fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
+    let scenario = Scenario::from_file(file)?;
+    let problem = scenario.into_problem()?;
+    let settings = scenario.output();
+    let dir = match (out, &settings.dir) {
+        (Some(d), _) => d.to_path_buf(),
+        (None, Some(d)) => d.clone(),
+        (None, None) => {
+            let stem = file
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("scenario");
+            Path::new("out").join(stem)
+        }
+    };
+    run_and_write(&problem, &scenario, &dir, settings.vtu, settings.summary)
+}
+
+fn run_and_write(
+    problem: &Problem,
+    scenario: &Scenario,
+    dir: &Path,
+    vtu: bool,
+    json: bool,
+) -> Result<Outcome> {
+    // Fail before the solve if the results could not be written.
+    prepare_dir(dir)?;
+    let solution = hemicontact::solver::solve(problem).context("solve failed")?;
+    let summary = Summary::new(
+        problem,
+        &solution,
+        scenario.file.title.clone(),
+        &scenario.source,
+    );
+    let written = write_results(dir, problem, &solution, &summary, vtu, json)?;
+    let r = &solution.report;
+    println!(
+        "{:>9} DOFs  {:>3} Newton steps  residual {:.3e}  energy {:.6e} J  max |u| {:.6e} m  {:.3} s",
+        r.n_dofs,
+        r.newton.len(),
+        r.residual,
+        solution.energy,
+        summary.max_displacement,
+        r.timings.total
+    );
+    for p in &written {
+        println!("wrote {}", p.display());
+    }
+    if r.converged {
+        Ok(Outcome::Done)
+    } else {
+        eprintln!(
+            "warning: {}; the last iterate was written and is marked converged = false",
+            r.message
+        );
+        Ok(Outcome::NotConverged)
+    }
+}
+
+fn paper(n: usize, out: &Path) -> Result<Outcome> {
+    let scenario = Scenario::from_str(&builtin::paper_elastic(n), "<built-in paper (elastic)>")?;
+    let problem = scenario.into_problem()?;
+    println!(
+        "paper example (plain elasticity; contact, friction and locking not yet modelled), n = {n}"
+    );
+    run_and_write(&problem, &scenario, out, true, true)
+}

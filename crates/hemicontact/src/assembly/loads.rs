@@ -1,0 +1,36 @@
+//! Consistent nodal loads for constant data (exact integration of P1 hat functions).
+//!
+//! A constant body force `f_0` on a cell T gives `f_0 |T| / (d+1)` to each vertex; a constant
+//! traction `f_N` on a boundary facet F gives `f_N |F| / d` to each of its vertices (since
+//! `∫_T φ_a = |T|/(d+1)` and `∫_F φ_a = |F|/d`).
+
+use crate::mesh::Mesh;
+
+/// Adds the consistent load of a constant body force `f0` (N/m³; length ≥ d) to `f`
+/// (length `d · n_nodes`, DOF order).
+pub fn add_body_force(mesh: &Mesh, f0: &[f64], f: &mut [f64]) {
+    let d = mesh.dim();
+    for c in 0..mesh.n_cells() {
+        let w = crate::fem::simplex::signed_measure(d, &mesh.cell_coords(c)) / (d + 1) as f64;
+        for &v in mesh.cell(c) {
+            for i in 0..d {
+                f[d * v as usize + i] += w * f0[i];
+            }
+        }
+    }
+}
+
+/// Adds the consistent load of a constant traction `t` (N/m²; length ≥ d) on the facets of
+/// boundary part `part` to `f` (length `d · n_nodes`, DOF order).
+pub fn add_traction(mesh: &Mesh, part: usize, t: &[f64], f: &mut [f64]) {
+    let d = mesh.dim();
+    for facet in mesh.part_facets(part) {
+        let (measure, _) = mesh.facet_measure_normal(facet);
+        let w = measure / d as f64;
+        for &v in mesh.facet(facet) {
+            for i in 0..d {
+                f[d * v as usize + i] += w * t[i];
+            }
+        }
+    }
+}

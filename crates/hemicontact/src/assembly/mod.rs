@@ -1,0 +1,14 @@
+//! Global assembly: the bulk energy of a displacement field, its gradient and its
+//! (generalized) Hessian on a fixed sparsity pattern.
+//!
+//! The local/global split follows the classical design: [`element`] computes per-cell
+//! quantities into small fixed-size arrays, [`pattern`] owns the global indexing (built
+//! once per mesh and DOF map), and [`global`] loops over cells and scatters.
+
+pub mod element;
+pub mod global;
+pub mod loads;
+pub mod pattern;
+
+pub use global::BulkAssembler;
+pub use pattern::SystemPattern;

@@ -1,0 +1,71 @@
+//! The library's error type.
+//!
+//! Every failure that depends on user input is an [`Error`] carrying enough data to tell the
+//! user what to fix: the file, the field, the value, and what is allowed. Non-convergence of
+//! a solve is *not* an error: it is a field of the solve report, so the last iterate is kept.
+
+use std::path::PathBuf;
+
+/// Result alias used throughout the crate.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong in hemicontact.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A scenario value is invalid.
+    #[error("{file}: field `{field}` = {value}: {allowed}")]
+    Scenario {
+        /// The scenario file (or `<built-in>`).
+        file: String,
+        /// Dotted path of the offending field, e.g. `material.poisson`.
+        field: String,
+        /// The value found, as written.
+        value: String,
+        /// What is allowed instead.
+        allowed: String,
+    },
+    /// The scenario file could not be parsed (syntax error, unknown field, wrong type).
+    #[error("{file}: {message}")]
+    Parse {
+        /// The scenario file.
+        file: String,
+        /// The parser's message, including line and column.
+        message: String,
+    },
+    /// The mesh is invalid (degenerate or inverted cell, untagged boundary facet, …).
+    #[error("invalid mesh: {0}")]
+    Mesh(String),
+    /// The linear system is not positive definite (the problem is singular or unstable).
+    #[error(
+        "the stiffness matrix is not positive definite ({context}); \
+         is every rigid motion blocked by a Dirichlet part?"
+    )]
+    NotPositiveDefinite {
+        /// Where it happened.
+        context: String,
+    },
+    /// A numerical breakdown (NaN or infinity) during a solve.
+    #[error("numerical breakdown: {0}")]
+    Breakdown(String),
+    /// Not enough memory for a requested allocation.
+    #[error("out of memory: {0}")]
+    OutOfMemory(String),
+    /// An input/output error on a file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder concerned.
+        path: PathBuf,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Shorthand for [`Error::Io`].
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}

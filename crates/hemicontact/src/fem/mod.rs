@@ -1,0 +1,4 @@
+//! P1 finite element space: simplex geometry and degree-of-freedom numbering.
+
+pub mod dofs;
+pub mod simplex;

@@ -1,0 +1,429 @@
+//! Simplicial meshes with named boundary parts.
+//!
+//! A [`Mesh`] holds triangles (d = 2) or tetrahedra (d = 3) in flat arrays:
+//!
+//! | array | shape | content |
+//! |-------|-------|---------|
+//! | `coords` | `n_nodes × d` | node coordinates, node-major |
+//! | `cells` | `n_cells × (d+1)` | vertex indices, positively oriented |
+//! | `facets` | `n_facets × d` | vertex indices of tagged boundary facets |
+//! | `facet_part` | `n_facets` | index into `part_names` |
+//! | `facet_cell` | `n_facets` | the cell a boundary facet belongs to (for outward normals) |
+//!
+//! Boundary parts carry names (`bottom`, `top`, `left`, `right` for generated rectangles,
+//! Gmsh physical-group names for read meshes) which a scenario maps to Γ_D, Γ_N and Γ_C.
+//! A mesh is validated on construction ([`Mesh::try_new`]) and immutable afterwards: every
+//! cell is positively oriented and non-degenerate, and every boundary facet carries a part.
+
+pub mod generate;
+
+use crate::error::{Error, Result};
+use crate::fem::simplex;
+
+/// A validated simplicial mesh; see the module documentation for the array layout.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    dim: usize,
+    coords: Vec<f64>,
+    cells: Vec<u32>,
+    facets: Vec<u32>,
+    facet_part: Vec<u16>,
+    facet_cell: Vec<u32>,
+    part_names: Vec<String>,
+}
+
+/// Relative tolerance below which a cell counts as degenerate: `|T| ≤ tol · h_T^d`.
+const DEGENERATE_TOL: f64 = 1e-12;
+
+impl Mesh {
+    /// Builds and validates a mesh.
+    ///
+    /// `facets` lists boundary facets (d vertices each) with their part index `facet_part`
+    /// into `part_names`.
+    ///
+    /// # Errors
+    /// [`Error::Mesh`] if the dimension is not 2 or 3, array lengths do not match, a vertex
+    /// index is out of range, a coordinate is not finite, a cell is inverted or degenerate,
+    /// a tagged facet is not on the boundary, or a boundary facet has no part.
+    pub fn try_new(
+        dim: usize,
+        coords: Vec<f64>,
+        cells: Vec<u32>,
+        facets: Vec<u32>,
+        facet_part: Vec<u16>,
+        part_names: Vec<String>,
+    ) -> Result<Self> {
+        if dim != 2 && dim != 3 {
+            return Err(Error::Mesh(format!(
+                "dimension {dim} is not supported (2 or 3)"
+            )));
+        }
+        let nv = dim + 1;
+        if coords.len() % dim != 0 || cells.len() % nv != 0 || facets.len() % dim != 0 {
+            return Err(Error::Mesh(
+                "array lengths do not match the dimension".into(),
+            ));
+        }
+        if facet_part.len() * dim != facets.len() {
+            return Err(Error::Mesh(
+                "one part index per boundary facet is required".into(),
+            ));
+        }
+        let n_nodes = coords.len() / dim;
+        if n_nodes > u32::MAX as usize / 2 {
+            return Err(Error::Mesh(format!(
+                "{n_nodes} nodes exceed the supported maximum"
+            )));
+        }
+        if let Some(i) = coords.iter().position(|x| !x.is_finite()) {
+            return Err(Error::Mesh(format!(
+                "node {} has a non-finite coordinate",
+                i / dim
+            )));
+        }
+        if let Some(i) = cells
+            .iter()
+            .chain(facets.iter())
+            .position(|&v| v as usize >= n_nodes)
+        {
+            return Err(Error::Mesh(format!(
+                "vertex index {} out of range (mesh has {n_nodes} nodes)",
+                cells
+                    .iter()
+                    .chain(facets.iter())
+                    .nth(i)
+                    .copied()
+                    .unwrap_or(0)
+            )));
+        }
+        if let Some(&p) = facet_part.iter().find(|&&p| p as usize >= part_names.len()) {
+            return Err(Error::Mesh(format!("facet part index {p} has no name")));
+        }
+        if cells.is_empty() {
+            return Err(Error::Mesh("the mesh has no cells".into()));
+        }
+        let mut mesh = Mesh {
+            dim,
+            coords,
+            cells,
+            facets,
+            facet_part,
+            facet_cell: Vec::new(),
+            part_names,
+        };
+        mesh.check_cells()?;
+        mesh.facet_cell = mesh.match_boundary_facets()?;
+        Ok(mesh)
+    }
+
+    fn check_cells(&self) -> Result<()> {
+        for c in 0..self.n_cells() {
+            let x = self.cell_coords(c);
+            let m = simplex::signed_measure(self.dim, &x);
+            let mut h: f64 = 0.0;
+            for a in 0..=self.dim {
+                for b in 0..a {
+                    let e: f64 = (0..self.dim).map(|i| (x[a][i] - x[b][i]).powi(2)).sum();
+                    h = h.max(e.sqrt());
+                }
+            }
+            if m.abs() <= DEGENERATE_TOL * h.powi(self.dim as i32) {
+                return Err(Error::Mesh(format!(
+                    "cell {c} (vertices {:?}) is degenerate: measure {m:e}",
+                    self.cell(c)
+                )));
+            }
+            if m < 0.0 {
+                return Err(Error::Mesh(format!(
+                    "cell {c} (vertices {:?}) is inverted: signed measure {m:e}",
+                    self.cell(c)
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Finds the boundary facets (facets of exactly one cell) and matches them against the
+    /// tagged facets. Returns the owning cell of each tagged facet.
+    fn match_boundary_facets(&self) -> Result<Vec<u32>> {
+        let d = self.dim;
+        // Sort-based facet matching: (sorted vertices, cell) for every facet of every cell.
+        let mut all: Vec<([u32; 3], u32)> = Vec::with_capacity(self.n_cells() * (d + 1));
+        for c in 0..self.n_cells() {
+            let cell = self.cell(c);
+            for skip in 0..=d {
+                all.push((facet_key(cell, skip), c as u32));
+            }
+        }
+        all.sort_unstable();
+        let mut boundary: Vec<([u32; 3], u32)> = Vec::new();
+        let mut i = 0;
+        while i < all.len() {
+            let mut j = i + 1;
+            while j < all.len() && all[j].0 == all[i].0 {
+                j += 1;
+            }
+            match j - i {
+                1 => boundary.push(all[i]),
+                2 => {}
+                k => {
+                    return Err(Error::Mesh(format!(
+                        "facet {:?} is shared by {k} cells (non-manifold mesh)",
+                        &all[i].0[..d]
+                    )))
+                }
+            }
+            i = j;
+        }
+        drop(all);
+        let mut facet_cell = vec![u32::MAX; self.n_facets()];
+        let mut tagged: Vec<([u32; 3], usize)> = (0..self.n_facets())
+            .map(|f| (sorted_key(self.facet(f)), f))
+            .collect();
+        tagged.sort_unstable();
+        for w in tagged.windows(2) {
+            if w[0].0 == w[1].0 {
+                return Err(Error::Mesh(format!(
+                    "boundary facet {:?} is tagged twice (parts `{}` and `{}`)",
+                    &w[0].0[..d],
+                    self.part_names[self.facet_part[w[0].1] as usize],
+                    self.part_names[self.facet_part[w[1].1] as usize]
+                )));
+            }
+        }
+        for (key, cell) in &boundary {
+            match tagged.binary_search_by(|(k, _)| k.cmp(key)) {
+                Ok(pos) => facet_cell[tagged[pos].1] = *cell,
+                Err(_) => {
+                    return Err(Error::Mesh(format!(
+                        "boundary facet {:?} belongs to no boundary part",
+                        &key[..d]
+                    )))
+                }
+            }
+        }
+        if let Some(f) = facet_cell.iter().position(|&c| c == u32::MAX) {
+            return Err(Error::Mesh(format!(
+                "tagged facet {:?} (part `{}`) is not on the boundary",
+                self.facet(f),
+                self.part_names[self.facet_part[f] as usize]
+            )));
+        }
+        Ok(facet_cell)
+    }
+
+    /// Spatial dimension d (2 or 3).
+    #[inline]
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn n_nodes(&self) -> usize {
+        self.coords.len() / self.dim
+    }
+
+    /// Number of cells.
+    #[inline]
+    pub fn n_cells(&self) -> usize {
+        self.cells.len() / (self.dim + 1)
+    }
+
+    /// Number of tagged boundary facets.
+    #[inline]
+    pub fn n_facets(&self) -> usize {
+        self.facet_part.len()
+    }
+
+    /// Number of vertices per cell, d + 1.
+    #[inline]
+    pub fn nodes_per_cell(&self) -> usize {
+        self.dim + 1
+    }
+
+    /// Coordinates of node `n` (length d).
+    #[inline]
+    pub fn node(&self, n: usize) -> &[f64] {
+        &self.coords[n * self.dim..(n + 1) * self.dim]
+    }
+
+    /// All coordinates, `n_nodes × d`, node-major.
+    #[inline]
+    pub fn coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// Vertex indices of cell `c` (length d + 1).
+    #[inline]
+    pub fn cell(&self, c: usize) -> &[u32] {
+        let nv = self.dim + 1;
+        &self.cells[c * nv..(c + 1) * nv]
+    }
+
+    /// All cells, `n_cells × (d+1)`.
+    #[inline]
+    pub fn cells(&self) -> &[u32] {
+        &self.cells
+    }
+
+    /// Vertex coordinates of cell `c`, padded to 4 points of 3 coordinates.
+    #[inline]
+    pub fn cell_coords(&self, c: usize) -> [[f64; 3]; 4] {
+        let mut x = [[0.0; 3]; 4];
+        for (a, &v) in self.cell(c).iter().enumerate() {
+            x[a][..self.dim].copy_from_slice(self.node(v as usize));
+        }
+        x
+    }
+
+    /// Vertex indices of boundary facet `f` (length d).
+    #[inline]
+    pub fn facet(&self, f: usize) -> &[u32] {
+        &self.facets[f * self.dim..(f + 1) * self.dim]
+    }
+
+    /// Part index of boundary facet `f`.
+    #[inline]
+    pub fn facet_part(&self, f: usize) -> usize {
+        self.facet_part[f] as usize
+    }
+
+    /// The cell boundary facet `f` belongs to.
+    #[inline]
+    pub fn facet_cell(&self, f: usize) -> usize {
+        self.facet_cell[f] as usize
+    }
+
+    /// Names of the boundary parts.
+    pub fn part_names(&self) -> &[String] {
+        &self.part_names
+    }
+
+    /// Index of the part named `name`, if any.
+    pub fn part_index(&self, name: &str) -> Option<usize> {
+        self.part_names.iter().position(|p| p == name)
+    }
+
+    /// Facets of part `part`.
+    pub fn part_facets(&self, part: usize) -> impl Iterator<Item = usize> + '_ {
+        (0..self.n_facets()).filter(move |&f| self.facet_part(f) == part)
+    }
+
+    /// Sorted, unique nodes of the facets of part `part`.
+    pub fn part_nodes(&self, part: usize) -> Vec<u32> {
+        let mut nodes: Vec<u32> = self
+            .part_facets(part)
+            .flat_map(|f| self.facet(f).iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    /// Measure of boundary facet `f` (length in 2D, area in 3D) and its outward unit normal.
+    pub fn facet_measure_normal(&self, f: usize) -> (f64, [f64; 3]) {
+        let v = self.facet(f);
+        let mut p = [[0.0; 3]; 3];
+        for (a, &n) in v.iter().enumerate() {
+            p[a][..self.dim].copy_from_slice(self.node(n as usize));
+        }
+        let mut nrm = if self.dim == 2 {
+            [p[1][1] - p[0][1], p[0][0] - p[1][0], 0.0]
+        } else {
+            let a = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+            let b = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+            simplex::cross(&a, &b)
+        };
+        let len = nrm.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let measure = if self.dim == 2 { len } else { 0.5 * len };
+        for x in nrm.iter_mut() {
+            *x /= len;
+        }
+        // Orient outward: away from the opposite vertex of the owning cell.
+        let cell = self.cell(self.facet_cell(f));
+        if let Some(&opp) = cell.iter().find(|n| !v.contains(n)) {
+            let q = self.node(opp as usize);
+            let dot: f64 = (0..self.dim).map(|i| (p[0][i] - q[i]) * nrm[i]).sum();
+            if dot < 0.0 {
+                for x in nrm.iter_mut() {
+                    *x = -*x;
+                }
+            }
+        }
+        (measure, nrm)
+    }
+
+    /// Total measure of the mesh (area or volume).
+    pub fn measure(&self) -> f64 {
+        (0..self.n_cells())
+            .map(|c| simplex::signed_measure(self.dim, &self.cell_coords(c)))
+            .sum()
+    }
+
+    /// Bounding box `(min, max)` of the nodes (unused coordinates are zero).
+    pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for n in 0..self.n_nodes() {
+            for (i, &x) in self.node(n).iter().enumerate() {
+                lo[i] = lo[i].min(x);
+                hi[i] = hi[i].max(x);
+            }
+        }
+        for i in self.dim..3 {
+            lo[i] = 0.0;
+            hi[i] = 0.0;
+        }
+        (lo, hi)
+    }
+
+    /// Node-to-node adjacency (nodes sharing a cell, excluding the node itself) in CSR form:
+    /// the neighbours of node `n` are `adj[ptr[n]..ptr[n+1]]`, sorted.
+    pub fn node_adjacency(&self) -> (Vec<usize>, Vec<u32>) {
+        let n = self.n_nodes();
+        let nv = self.dim + 1;
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(self.n_cells() * nv * (nv - 1));
+        for c in 0..self.n_cells() {
+            let cell = self.cell(c);
+            for &a in cell {
+                for &b in cell {
+                    if a != b {
+                        pairs.push((a, b));
+                    }
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut ptr = vec![0usize; n + 1];
+        for &(a, _) in &pairs {
+            ptr[a as usize + 1] += 1;
+        }
+        for i in 0..n {
+            ptr[i + 1] += ptr[i];
+        }
+        let adj = pairs.into_iter().map(|(_, b)| b).collect();
+        (ptr, adj)
+    }
+}
+
+fn sorted_key(v: &[u32]) -> [u32; 3] {
+    let mut k = [u32::MAX; 3];
+    k[..v.len()].copy_from_slice(v);
+    k[..v.len()].sort_unstable();
+    k
+}
+
+fn facet_key(cell: &[u32], skip: usize) -> [u32; 3] {
+    let mut k = [u32::MAX; 3];
+    let mut j = 0;
+    for (a, &v) in cell.iter().enumerate() {
+        if a != skip {
+            k[j] = v;
+            j += 1;
+        }
+    }
+    k[..j].sort_unstable();
+    k
+}

@@ -1,0 +1,141 @@
+//! A validated, fully resolved boundary value problem: mesh, material, boundary conditions,
+//! loads, and solver settings.
+
+use crate::assembly::loads;
+use crate::error::{Error, Result};
+use crate::fem::dofs::DofMap;
+use crate::material::Material;
+use crate::mesh::Mesh;
+use crate::solver::SolverSettings;
+
+/// A Dirichlet condition: the selected displacement components are prescribed on a part.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dirichlet {
+    /// Boundary part index (see [`Mesh::part_names`]).
+    pub part: usize,
+    /// Which components are prescribed (`[x, y, z]`; entries beyond d are ignored).
+    pub components: [bool; 3],
+    /// Prescribed value of each component (m).
+    pub value: [f64; 3],
+}
+
+/// A constant surface traction `f_N` (N/m² in 3D, N/m in 2D) on a part (Γ_N).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Traction {
+    /// Boundary part index.
+    pub part: usize,
+    /// Traction vector in global coordinates.
+    pub value: [f64; 3],
+}
+
+/// The problem: find the displacement minimizing the total energy under the given data.
+#[derive(Clone, Debug)]
+pub struct Problem {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// The bulk material.
+    pub material: Material,
+    /// Dirichlet conditions (Γ_D).
+    pub dirichlet: Vec<Dirichlet>,
+    /// Surface tractions (Γ_N).
+    pub tractions: Vec<Traction>,
+    /// Constant body force `f_0` (N/m³).
+    pub body_force: [f64; 3],
+    /// Solver settings.
+    pub solver: SolverSettings,
+}
+
+impl Problem {
+    /// Checks the consistency of the problem data.
+    ///
+    /// # Errors
+    /// [`Error::Mesh`] if a part index is out of range or a part has no facets;
+    /// [`Error::Breakdown`] if a datum is not finite; [`Error::NotPositiveDefinite`] if no
+    /// displacement component is prescribed anywhere (rigid motions are then free).
+    pub fn validate(&self) -> Result<()> {
+        let n_parts = self.mesh.part_names().len();
+        let parts = self
+            .dirichlet
+            .iter()
+            .map(|b| b.part)
+            .chain(self.tractions.iter().map(|t| t.part));
+        for p in parts {
+            if p >= n_parts {
+                return Err(Error::Mesh(format!("boundary part index {p} out of range")));
+            }
+            if self.mesh.part_facets(p).next().is_none() {
+                return Err(Error::Mesh(format!(
+                    "boundary part `{}` has no facets",
+                    self.mesh.part_names()[p]
+                )));
+            }
+        }
+        let data = self
+            .dirichlet
+            .iter()
+            .flat_map(|b| b.value)
+            .chain(self.tractions.iter().flat_map(|t| t.value))
+            .chain(self.body_force);
+        if data.into_iter().any(|x| !x.is_finite()) {
+            return Err(Error::Breakdown(
+                "a load or prescribed value is not finite".into(),
+            ));
+        }
+        if self
+            .dirichlet
+            .iter()
+            .all(|b| !b.components.iter().take(self.mesh.dim()).any(|&c| c))
+        {
+            return Err(Error::NotPositiveDefinite {
+                context: "no Dirichlet condition: the body can move rigidly".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The DOF map with the Dirichlet DOFs eliminated.
+    pub fn dof_map(&self) -> DofMap {
+        let d = self.mesh.dim();
+        let mut fixed = vec![false; d * self.mesh.n_nodes()];
+        for bc in &self.dirichlet {
+            for v in self.mesh.part_nodes(bc.part) {
+                for i in 0..d {
+                    if bc.components[i] {
+                        fixed[d * v as usize + i] = true;
+                    }
+                }
+            }
+        }
+        DofMap::new(d, self.mesh.n_nodes(), &fixed)
+    }
+
+    /// The initial displacement: prescribed values on Dirichlet DOFs, zero elsewhere (DOF
+    /// order, length `d · n_nodes`). Where parts overlap, the later condition wins.
+    pub fn prescribed_displacement(&self) -> Vec<f64> {
+        let d = self.mesh.dim();
+        let mut u = vec![0.0; d * self.mesh.n_nodes()];
+        for bc in &self.dirichlet {
+            for v in self.mesh.part_nodes(bc.part) {
+                for i in 0..d {
+                    if bc.components[i] {
+                        u[d * v as usize + i] = bc.value[i];
+                    }
+                }
+            }
+        }
+        u
+    }
+
+    /// The consistent external force vector `f` (DOF order, length `d · n_nodes`).
+    pub fn external_forces(&self) -> Vec<f64> {
+        let d = self.mesh.dim();
+        let mut f = vec![0.0; d * self.mesh.n_nodes()];
+        if self.body_force.iter().any(|&x| x != 0.0) {
+            loads::add_body_force(&self.mesh, &self.body_force, &mut f);
+        }
+        for t in &self.tractions {
+            loads::add_traction(&self.mesh, t.part, &t.value, &mut f);
+        }
+        f
+    }
+}

@@ -1,0 +1,81 @@
+//! What a solve did: iterations, residuals, timings, sizes.
+
+use super::System;
+use serde::Serialize;
+
+/// Wall-clock time per phase (s).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Timings {
+    /// Sparsity pattern and DOF map.
+    pub pattern: f64,
+    /// Fill-reducing ordering and symbolic factorization.
+    pub symbolic: f64,
+    /// Assembly of energy, gradient and Hessian (all Newton steps).
+    pub assembly: f64,
+    /// Numeric factorizations (all Newton steps).
+    pub factorization: f64,
+    /// Triangular solves (all Newton steps).
+    pub solve: f64,
+    /// Line searches (energy evaluations).
+    pub line_search: f64,
+    /// Whole solve, end to end.
+    pub total: f64,
+}
+
+/// One Newton step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NewtonStep {
+    /// Euclidean norm of the residual (gradient on free DOFs) before the step (N).
+    pub residual: f64,
+    /// Energy before the step (J).
+    pub energy: f64,
+    /// Line-search step length taken (1 = full Newton step).
+    pub step_length: f64,
+}
+
+/// The report of a solve.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SolveReport {
+    /// Whether the convergence criterion was met.
+    pub converged: bool,
+    /// Why the solve stopped, in words.
+    pub message: String,
+    /// Number of DOFs (d · nodes).
+    pub n_dofs: usize,
+    /// Number of free DOFs (equations).
+    pub n_equations: usize,
+    /// Stored entries of the matrix (upper triangle).
+    pub nnz_matrix: usize,
+    /// Stored entries of the Cholesky factor.
+    pub nnz_factor: usize,
+    /// Newton steps.
+    pub newton: Vec<NewtonStep>,
+    /// Final residual norm (N).
+    pub residual: f64,
+    /// Residual tolerance that was applied (N): relative tolerance × force scale.
+    pub residual_tolerance: f64,
+    /// Timings per phase.
+    pub timings: Timings,
+}
+
+impl SolveReport {
+    /// An empty report for `system`, with its sizes and set-up timings filled in.
+    pub fn new(system: &System) -> Self {
+        SolveReport {
+            converged: false,
+            message: "not started".into(),
+            n_dofs: system.dofs.n_dofs(),
+            n_equations: system.dofs.n_free(),
+            nnz_matrix: system.pattern.nnz(),
+            nnz_factor: system.cholesky.nnz_factor(),
+            newton: Vec::new(),
+            residual: f64::NAN,
+            residual_tolerance: f64::NAN,
+            timings: Timings {
+                pattern: system.setup_time.0,
+                symbolic: system.setup_time.1,
+                ..Timings::default()
+            },
+        }
+    }
+}
