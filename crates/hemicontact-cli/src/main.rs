@@ -10,8 +10,10 @@ use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use hemicontact::io::atomic::prepare_dir;
 use hemicontact::io::summary::{write_results, Summary};
+use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
+use hemicontact::solver::Solution;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -38,7 +40,9 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Solve the paper's example (SPEC §5) on an n × n mesh.
+    /// Solve the paper's example (SPEC §5) on an n × n mesh, with C_κ = 10 000 and C_κ = 0;
+    /// write each case's results and figures into DIR/locking and DIR/no-locking and the
+    /// side-by-side figure DIR/comparison.{png,svg}.
     Paper {
         /// Squares per side (even).
         #[arg(long, default_value_t = 128)]
@@ -104,7 +108,7 @@ fn print_problem(problem: &Problem, source: &str) {
         dofs.n_free(),
         dofs.n_dofs() - dofs.n_free()
     );
-    let h = &problem.material.elasticity;
+    let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
     println!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
     println!("boundary parts:");
     for (p, name) in mesh.part_names().iter().enumerate() {
@@ -141,55 +145,152 @@ fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
             Path::new("out").join(stem)
         }
     };
-    run_and_write(&problem, &scenario, &dir, settings.vtu, settings.summary)
+    let case = run_and_write(
+        problem,
+        &scenario,
+        &dir,
+        settings.vtu,
+        settings.summary,
+        "scenario",
+    )?;
+    let cases = [case];
+    print_table(&cases);
+    Ok(outcome(&cases))
+}
+
+/// A solved case, for the terminal table.
+struct Case {
+    label: String,
+    problem: Problem,
+    solution: Solution,
+    summary: Summary,
 }
 
 fn run_and_write(
-    problem: &Problem,
+    problem: Problem,
     scenario: &Scenario,
     dir: &Path,
     vtu: bool,
     json: bool,
-) -> Result<Outcome> {
+    label: &str,
+) -> Result<Case> {
     // Fail before the solve if the results could not be written.
     prepare_dir(dir)?;
-    let solution = hemicontact::solver::solve(problem).context("solve failed")?;
+    let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
     let summary = Summary::new(
-        problem,
+        &problem,
         &solution,
         scenario.file.title.clone(),
         &scenario.source,
     );
-    let written = write_results(dir, problem, &solution, &summary, vtu, json)?;
-    let r = &solution.report;
-    println!(
-        "{:>9} DOFs  {:>3} Newton steps  residual {:.3e}  energy {:.6e} J  max |u| {:.6e} m  {:.3} s",
-        r.n_dofs,
-        r.newton.len(),
-        r.residual,
-        solution.energy,
-        summary.max_displacement,
-        r.timings.total
-    );
-    for p in &written {
-        println!("wrote {}", p.display());
+    let mut written = write_results(dir, &problem, &solution, &summary, vtu, json)?;
+    if problem.mesh.dim() == 2 {
+        let title = scenario
+            .file
+            .title
+            .clone()
+            .unwrap_or_else(|| label.to_string());
+        written.extend(deformed::figure(&problem, &solution, &title).write(dir, "deformed")?);
     }
-    if r.converged {
-        Ok(Outcome::Done)
-    } else {
+    for p in &written {
+        println!("  wrote {}", p.display());
+    }
+    let r = &solution.report;
+    if !r.converged {
         eprintln!(
-            "warning: {}; the last iterate was written and is marked converged = false",
+            "warning: {label}: {}; the last iterate was written, marked \"converged\": false",
             r.message
         );
-        Ok(Outcome::NotConverged)
+    }
+    Ok(Case {
+        label: label.to_string(),
+        problem,
+        solution,
+        summary,
+    })
+}
+
+fn print_table(cases: &[Case]) {
+    println!(
+        "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>6} {:>12} {:>10} {:>10}",
+        "case",
+        "DOFs",
+        "outer",
+        "Newton",
+        "factor.",
+        "time s",
+        "contact",
+        "slip",
+        "max |u| m",
+        "certif."
+    );
+    for c in cases {
+        let r = &c.solution.report;
+        let cert = &r.certificate;
+        let worst = cert.equilibrium.max(cert.normal_law).max(cert.friction_law);
+        println!(
+            "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>6} {:>12} {:>10.6} {:>10.1e}{}",
+            c.label,
+            r.n_dofs,
+            r.outer.len(),
+            r.newton.len(),
+            r.timings.n_factorizations,
+            r.timings.total,
+            cert.n_contact,
+            cert.n_slip,
+            c.summary.max_displacement,
+            worst,
+            if r.converged { "" } else { "  NOT CONVERGED" }
+        );
+    }
+}
+
+fn outcome(cases: &[Case]) -> Outcome {
+    if cases.iter().all(|c| c.solution.report.converged) {
+        Outcome::Done
+    } else {
+        Outcome::NotConverged
     }
 }
 
 fn paper(n: usize, out: &Path) -> Result<Outcome> {
-    let scenario = Scenario::from_str(&builtin::paper_elastic(n), "<built-in paper (elastic)>")?;
-    let problem = scenario.into_problem()?;
+    if n == 0 || !n.is_multiple_of(2) {
+        anyhow::bail!(
+            "--n {n}: the paper's mesh needs an even, positive number of squares per side"
+        );
+    }
     println!(
-        "paper example (plain elasticity; contact, friction and locking not yet modelled), n = {n}"
+        "paper example (SPEC §5), n = {n}: {} squares, h = {}",
+        n * n,
+        16.0 / (2.0 * (n * n) as f64)
     );
-    run_and_write(&problem, &scenario, out, true, true)
+    let mut cases = Vec::new();
+    for (label, c_kappa, sub) in [
+        ("C_kappa = 10000", 10000.0, "locking"),
+        ("C_kappa = 0", 0.0, "no-locking"),
+    ] {
+        let scenario = Scenario::from_str(
+            &builtin::paper(n, c_kappa),
+            &format!("<built-in paper, {label}>"),
+        )?;
+        let problem = scenario.into_problem()?;
+        println!("{label}:");
+        cases.push(run_and_write(
+            problem,
+            &scenario,
+            &out.join(sub),
+            true,
+            true,
+            label,
+        )?);
+    }
+    let panels: Vec<_> = cases
+        .iter()
+        .map(|c| (&c.problem, &c.solution, format!("{}, n = {n}", c.label)))
+        .collect();
+    for p in deformed::side_by_side(&panels).write(out, "comparison")? {
+        println!("  wrote {}", p.display());
+    }
+    print_table(&cases);
+    Ok(outcome(&cases))
 }

@@ -49,6 +49,7 @@
 #![deny(missing_docs)]
 
 pub mod assembly;
+pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod io;
@@ -56,6 +57,7 @@ pub mod linalg;
 pub mod material;
 pub mod mesh;
 pub mod norms;
+pub mod plot;
 pub mod problem;
 pub mod scenario;
 pub mod solver;

@@ -2,6 +2,7 @@
 //! loads, and solver settings.
 
 use crate::assembly::loads;
+use crate::contact::{ContactBoundary, ContactNodes};
 use crate::error::{Error, Result};
 use crate::fem::dofs::DofMap;
 use crate::material::Material;
@@ -41,6 +42,8 @@ pub struct Problem {
     pub tractions: Vec<Traction>,
     /// Constant body force `f_0` (N/m³).
     pub body_force: [f64; 3],
+    /// Contact boundaries (Γ_C), each facing a rigid foundation.
+    pub contact: Vec<ContactBoundary>,
     /// Solver settings.
     pub solver: SolverSettings,
 }
@@ -107,6 +110,28 @@ impl Problem {
             }
         }
         DofMap::new(d, self.mesh.n_nodes(), &fixed)
+    }
+
+    /// Whether each node lies on a Dirichlet part (such nodes are never contact nodes).
+    pub fn on_dirichlet(&self) -> Vec<bool> {
+        let mut on = vec![false; self.mesh.n_nodes()];
+        for bc in &self.dirichlet {
+            for v in self.mesh.part_nodes(bc.part) {
+                on[v as usize] = true;
+            }
+        }
+        on
+    }
+
+    /// The contact points of the problem (SPEC §3).
+    pub fn contact_nodes(&self) -> ContactNodes {
+        ContactNodes::new(&self.mesh, &self.contact, &self.on_dirichlet())
+    }
+
+    /// Diameter of the mesh's bounding box (m): the length scale of the problem.
+    pub fn diameter(&self) -> f64 {
+        let (lo, hi) = self.mesh.bounding_box();
+        (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt()
     }
 
     /// The initial displacement: prescribed values on Dirichlet DOFs, zero elsewhere (DOF

@@ -5,6 +5,7 @@
 //! quantities into small fixed-size arrays, [`pattern`] owns the global indexing (built
 //! once per mesh and DOF map), and [`global`] loops over cells and scatters.
 
+pub mod contact;
 pub mod element;
 pub mod global;
 pub mod loads;

@@ -48,6 +48,16 @@ pub struct Summary {
     pub max_displacement: f64,
     /// Sum of the reaction forces (N).
     pub total_reaction: Vec<f64>,
+    /// Number of contact points.
+    pub contact_points: usize,
+    /// Number of contact points in contact (not separated).
+    pub contact_active: usize,
+    /// Number of slipping contact points.
+    pub contact_slip: usize,
+    /// Number of cells where the locking penalty acts (Q(ε) > 0).
+    pub locked_cells: usize,
+    /// Largest |tr ε| over the cells.
+    pub max_abs_trace_strain: f64,
     /// The solver report (iterations, residuals, timings).
     pub report: SolveReport,
 }
@@ -71,7 +81,18 @@ impl Summary {
         for (k, r) in solution.reactions.iter().enumerate() {
             total_reaction[k % d] += r;
         }
-        let h = &problem.material.elasticity;
+        let h = &problem.material.elasticity.small_strain_hooke(d);
+        let strains = BulkAssembler {
+            mesh,
+            material: &problem.material,
+        }
+        .cell_strains(&solution.u);
+        let locked_cells = strains
+            .iter()
+            .filter(|e| problem.material.locking.is_active(e))
+            .count();
+        let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
+        let cert = &solution.report.certificate;
         Summary {
             version: env!("CARGO_PKG_VERSION").to_string(),
             title,
@@ -89,13 +110,18 @@ impl Summary {
             energy_norm: energy_norm(mesh, h, &solution.u),
             max_displacement,
             total_reaction,
+            contact_points: solution.contact.len(),
+            contact_active: cert.n_contact,
+            contact_slip: cert.n_slip,
+            locked_cells,
+            max_abs_trace_strain,
             report: solution.report.clone(),
         }
     }
 }
 
-/// Writes `solution.vtu` (if `vtu`) and `summary.json` (if `summary`) into `dir`, which
-/// must exist. Returns the paths written.
+/// Writes `solution.vtu` (if `vtu`), `contact.csv` (if the problem has contact) and
+/// `summary.json` (if `json`) into `dir`, which must exist. Returns the paths written.
 ///
 /// # Errors
 /// [`crate::Error::Io`] if a file cannot be written.
@@ -113,6 +139,11 @@ pub fn write_results(
         solution_vtu(problem, solution).write(&path)?;
         written.push(path);
     }
+    if !problem.contact.is_empty() {
+        let path = dir.join("contact.csv");
+        super::atomic::write(&path, contact_csv(problem, solution).as_bytes())?;
+        written.push(path);
+    }
     if json {
         let path = dir.join("summary.json");
         let text = serde_json::to_string_pretty(summary)
@@ -123,8 +154,14 @@ pub fn write_results(
     Ok(written)
 }
 
-/// The `.vtu` content of a solution: displacement and reactions at points; strain, stress,
-/// von Mises stress and tr ε per cell.
+/// The `.vtu` content of a solution: displacement, reactions and contact data at points;
+/// strain, stress, von Mises stress, tr ε and locking activity per cell.
+///
+/// Contact point data (for nodes that are not contact nodes: status −1, zeros elsewhere):
+/// `contact_status` (0 separated, 1 stick, 2 slip), `contact_pressure`, `slip`,
+/// `interface_force` (the force of the foundation on the node, N). Where a node is on two
+/// contact boundaries, the last one's values are shown and the forces are summed.
+/// Cell data `locking_active` is 1 where `Q(ε) > 0` (the penalty acts), `locking_q` is Q(ε).
 pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
     let mesh = &problem.mesh;
     let d = mesh.dim();
@@ -133,23 +170,96 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         material: &problem.material,
     };
     let strains = bulk.cell_strains(&solution.u);
-    let mut eps9 = Vec::with_capacity(9 * strains.len());
-    let mut sig9 = Vec::with_capacity(9 * strains.len());
-    let mut vm = Vec::with_capacity(strains.len());
-    let mut tr = Vec::with_capacity(strains.len());
+    let n_cells = strains.len();
+    let mut eps9 = Vec::with_capacity(9 * n_cells);
+    let mut sig9 = Vec::with_capacity(9 * n_cells);
+    let mut vm = Vec::with_capacity(n_cells);
+    let mut tr = Vec::with_capacity(n_cells);
+    let mut active = Vec::with_capacity(n_cells);
+    let mut q = Vec::with_capacity(n_cells);
+    let locking = &problem.material.locking;
     for e in &strains {
         let s = problem.material.stress(e);
         eps9.extend(e.to_matrix().iter().flatten());
         sig9.extend(s.to_matrix().iter().flatten());
         vm.push(s.von_mises());
         tr.push(e.trace());
+        active.push(i32::from(locking.is_active(e)));
+        let qv = locking.set.q(e);
+        q.push(if qv.is_finite() { qv } else { 0.0 });
+    }
+    let n = mesh.n_nodes();
+    let mut status = vec![-1i32; n];
+    let mut pressure = vec![0.0; n];
+    let mut slip = vec![0.0; n];
+    let mut force = vec![0.0; 3 * n];
+    for c in &solution.contact {
+        let v = c.node as usize;
+        status[v] = c.status.code();
+        pressure[v] = c.pressure;
+        slip[v] = c.slip;
+        for k in 0..3 {
+            force[3 * v + k] += c.force[k];
+        }
     }
     let mut w = VtuWriter::new(mesh);
     w.point_f64("displacement", 3, pad_vector(d, &solution.u))
         .point_f64("reaction", 3, pad_vector(d, &solution.reactions))
+        .point_i32("contact_status", status)
+        .point_f64("contact_pressure", 1, pressure)
+        .point_f64("slip", 1, slip)
+        .point_f64("interface_force", 3, force)
         .cell_f64("strain", 9, eps9)
         .cell_f64("stress", 9, sig9)
         .cell_f64("von_mises", 1, vm)
-        .cell_f64("trace_strain", 1, tr);
+        .cell_f64("trace_strain", 1, tr)
+        .cell_i32("locking_active", active)
+        .cell_f64("locking_q", 1, q);
     w
+}
+
+/// The contact-node table: one row per contact point, comma-separated, with a header.
+///
+/// Columns: node, boundary (part name), x, y, z, weight, u_nu, gap, u_tau_1, u_tau_2, slip,
+/// pressure, bound, force_normal, force_tangential_1, force_tangential_2, status,
+/// normal_residual, friction_residual.
+pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
+    let mesh = &problem.mesh;
+    let mut out = String::from(
+        "node,boundary,x,y,z,weight,u_nu,gap,u_tau_1,u_tau_2,slip,pressure,bound,\
+         force_normal,force_tangential_1,force_tangential_2,status,normal_residual,friction_residual\n",
+    );
+    for c in &solution.contact {
+        let x = mesh.node(c.node as usize);
+        let xyz: Vec<f64> = (0..3).map(|i| x.get(i).copied().unwrap_or(0.0)).collect();
+        let part = &mesh.part_names()[problem.contact[c.boundary].part];
+        let status = match c.status {
+            crate::solver::Status::Separated => "separated",
+            crate::solver::Status::Stick => "stick",
+            crate::solver::Status::Slip => "slip",
+        };
+        out.push_str(&format!(
+            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e}\n",
+            c.node,
+            part,
+            xyz[0],
+            xyz[1],
+            xyz[2],
+            c.weight,
+            c.u_nu,
+            c.gap,
+            c.u_tau[0],
+            c.u_tau[1],
+            c.slip,
+            c.pressure,
+            c.bound,
+            c.force_normal,
+            c.force_tangential[0],
+            c.force_tangential[1],
+            status,
+            c.normal_residual,
+            c.friction_residual
+        ));
+    }
+    out
 }

@@ -1,12 +1,17 @@
 //! Pointwise constitutive laws: a constant strain in, energy density, stress and tangent out.
 //!
-//! The stored energy density of the body is `W(ε)` (SPEC §2: `A = ∂W`); the laws here know
-//! nothing of meshes or DOFs, so each is testable on its own (finite-difference checks of
-//! stress against energy and of tangent against stress live in `tests/`).
+//! The stored energy density of the body is `W(ε) + Ψ(ε)` (SPEC §2 and §4: `A = ∂W`, Ψ the
+//! nearly-locking penalty); the laws here know nothing of meshes or DOFs, so each is
+//! testable on its own (finite-difference checks of stress against energy and of tangent
+//! against stress live in `tests/`).
 
+pub mod hencky;
 pub mod hooke;
+pub mod locking;
 
+pub use hencky::Hencky;
 pub use hooke::{Hooke, Plane};
+pub use locking::{LockingPenalty, LockingSet};
 
 use crate::tensor::{Sym, Tangent};
 
@@ -21,24 +26,105 @@ pub trait StrainEnergy {
     fn tangent(&self, eps: &Sym) -> Tangent;
 }
 
-/// The bulk material of the body: the elasticity law (SPEC §2, "Elasticity A").
+/// The elasticity operator A = ∂W (SPEC §2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Elasticity {
+    /// Isotropic Hooke's law.
+    Hooke(Hooke),
+    /// Strain-stiffening Hencky law.
+    Hencky(Hencky),
+}
+
+impl Elasticity {
+    /// Strong monotonicity constant `m_A` (Pa) in dimension `dim`.
+    pub fn monotonicity(&self, dim: usize) -> f64 {
+        match self {
+            Elasticity::Hooke(h) => h.monotonicity(),
+            Elasticity::Hencky(h) => h.monotonicity(dim),
+        }
+    }
+
+    /// The Hooke operator used for the energy norm of SPEC §5: Hooke's law itself, or the
+    /// small-strain Hooke law of the Hencky model (`λ = K − 2G/d`, `G`).
+    pub fn small_strain_hooke(&self, dim: usize) -> Hooke {
+        match *self {
+            Elasticity::Hooke(h) => h,
+            Elasticity::Hencky(h) => Hooke {
+                lambda: h.bulk - 2.0 * h.shear / dim as f64,
+                mu: h.shear,
+            },
+        }
+    }
+}
+
+impl StrainEnergy for Elasticity {
+    #[inline]
+    fn energy(&self, eps: &Sym) -> f64 {
+        match self {
+            Elasticity::Hooke(h) => h.energy(eps),
+            Elasticity::Hencky(h) => h.energy(eps),
+        }
+    }
+    #[inline]
+    fn stress(&self, eps: &Sym) -> Sym {
+        match self {
+            Elasticity::Hooke(h) => h.stress(eps),
+            Elasticity::Hencky(h) => h.stress(eps),
+        }
+    }
+    #[inline]
+    fn tangent(&self, eps: &Sym) -> Tangent {
+        match self {
+            Elasticity::Hooke(h) => h.tangent(eps),
+            Elasticity::Hencky(h) => h.tangent(eps),
+        }
+    }
+}
+
+/// The bulk material of the body: elasticity plus the nearly-locking penalty.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Elasticity operator A = ∂W.
-    pub elasticity: Hooke,
+    pub elasticity: Elasticity,
+    /// Nearly-locking penalty Ψ ([`LockingPenalty::NONE`] without locking).
+    pub locking: LockingPenalty,
+}
+
+impl Material {
+    /// A material with elasticity `elasticity` and no locking.
+    pub fn elastic(elasticity: Elasticity) -> Self {
+        Material {
+            elasticity,
+            locking: LockingPenalty::NONE,
+        }
+    }
 }
 
 impl StrainEnergy for Material {
     #[inline]
     fn energy(&self, eps: &Sym) -> f64 {
-        self.elasticity.energy(eps)
+        self.elasticity.energy(eps) + self.locking.energy(eps)
     }
     #[inline]
     fn stress(&self, eps: &Sym) -> Sym {
-        self.elasticity.stress(eps)
+        let s = self.elasticity.stress(eps);
+        if self.locking.c_kappa == 0.0 {
+            return s;
+        }
+        let p = self.locking.stress(eps);
+        s.add_scaled(1.0, &p)
     }
     #[inline]
     fn tangent(&self, eps: &Sym) -> Tangent {
-        self.elasticity.tangent(eps)
+        let mut t = self.elasticity.tangent(eps);
+        if self.locking.is_active(eps) {
+            let p = self.locking.tangent(eps);
+            for (row, prow) in t.iter_mut().zip(p.iter()) {
+                for (a, b) in row.iter_mut().zip(prow.iter()) {
+                    *a += b;
+                }
+            }
+        }
+        t
     }
 }

@@ -59,7 +59,7 @@ impl Mesh {
             )));
         }
         let nv = dim + 1;
-        if coords.len() % dim != 0 || cells.len() % nv != 0 || facets.len() % dim != 0 {
+        if !coords.len().is_multiple_of(dim) || !cells.len().is_multiple_of(nv) || !facets.len().is_multiple_of(dim) {
             return Err(Error::Mesh(
                 "array lengths do not match the dimension".into(),
             ));

@@ -30,3 +30,64 @@ value = [0.0, -900.0]
 pub fn paper_elastic(n: usize) -> String {
     PAPER_ELASTIC.replace("{n}", &n.to_string())
 }
+
+/// The paper's example (SPEC §5): the square (0,4)² clamped at the bottom, compressed by
+/// `f_N = (0, −900)` N/m on top, E = 2000 Pa, ν = 0.3 (plane strain, the paper's printed
+/// formula), nearly locking with limited compressibility θ = κ² = 0.16 and compliance
+/// `{c_kappa}`, both vertical sides facing rigid foundations at gap g = 0.4 with normal
+/// compliance c_ν = 10⁴ and Coulomb-type friction `F = μ(‖u_τ‖) p(u_ν)`, j = ‖·‖,
+/// `μ(r) = 0.3 e^{−100 r} + 0.1`. `{n}` is the number of squares per side.
+pub const PAPER: &str = r#"
+title = "Paper example (Barboteu-Han-Migorski 2018), C_kappa = {c_kappa}"
+
+[mesh]
+kind = "rectangle"
+size = [4.0, 4.0]
+n = [{n}, {n}]
+pattern = "symmetric"
+
+[material]
+young = 2000.0
+poisson = 0.3
+plane = "strain"
+
+[locking]
+set = "limited-compressibility"
+theta = 0.16
+treatment = "penalty"
+c_kappa = {c_kappa}
+
+[[dirichlet]]
+part = "bottom"
+
+[[loads.traction]]
+part = "top"
+value = [0.0, -900.0]
+
+[[contact]]
+part = "left"
+gap = 0.4
+law = "normal-compliance"
+c_nu = 10000.0
+[contact.friction]
+bound = "coulomb"
+potential = "norm"
+mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
+
+[[contact]]
+part = "right"
+gap = 0.4
+law = "normal-compliance"
+c_nu = 10000.0
+[contact.friction]
+bound = "coulomb"
+potential = "norm"
+mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
+"#;
+
+/// The paper scenario with `n × n` squares and locking compliance `c_kappa` (Pa).
+pub fn paper(n: usize, c_kappa: f64) -> String {
+    PAPER
+        .replace("{n}", &n.to_string())
+        .replace("{c_kappa}", &format!("{c_kappa:?}"))
+}

@@ -8,12 +8,15 @@
 pub mod builtin;
 pub mod schema;
 
+use crate::contact::{ContactBoundary, Friction, FrictionPotential, NormalCompliance};
 use crate::error::{Error, Result};
-use crate::material::{Hooke, Material, Plane};
+use crate::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane};
 use crate::mesh::generate::{self, Rectangle};
 use crate::mesh::Mesh;
 use crate::problem::{Dirichlet, Problem, Traction};
-use schema::{MeshKind, ScenarioFile};
+use schema::{
+    ElasticityModel, LockingSetKind, MeshKind, NormalLawKind, PotentialKind, ScenarioFile,
+};
 use std::path::{Path, PathBuf};
 
 /// A parsed scenario file (not yet validated).
@@ -127,7 +130,7 @@ impl Scenario {
                     }
                 }
                 let origin = self.finite("mesh.origin", &m.origin, 2)?;
-                if m.pattern == generate::CutPattern::Symmetric && m.n[0] % 2 != 0 {
+                if m.pattern == generate::CutPattern::Symmetric && !m.n[0].is_multiple_of(2) {
                     return Err(self.err(
                         "mesh.n[0]",
                         m.n[0],
@@ -157,6 +160,14 @@ impl Scenario {
         })
     }
 
+    fn positive(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
+        match v {
+            Some(x) if x.is_finite() && x > 0.0 => Ok(x),
+            Some(x) => Err(self.err(field, x, &format!("{what} > 0"))),
+            None => Err(self.err(field, "missing", &format!("{what} > 0 (required)"))),
+        }
+    }
+
     fn build_material(&self, dim: usize) -> Result<Material> {
         let m = &self.file.material;
         if !(m.young.is_finite() && m.young > 0.0) {
@@ -172,9 +183,166 @@ impl Scenario {
         if dim == 3 && m.plane == Plane::Stress {
             return Err(self.err("material.plane", "\"stress\"", "\"strain\" in 3D"));
         }
+        let hooke = Hooke::from_young_poisson(m.young, m.poisson, dim, m.plane);
+        let elasticity = match m.model {
+            ElasticityModel::Hooke => {
+                for (field, v) in [
+                    ("material.stiffening", m.stiffening),
+                    ("material.reference_strain", m.reference_strain),
+                ] {
+                    if let Some(v) = v {
+                        return Err(self.err(field, v, "only with model = \"hencky\""));
+                    }
+                }
+                Elasticity::Hooke(hooke)
+            }
+            ElasticityModel::Hencky => {
+                let ratio =
+                    self.positive("material.stiffening", m.stiffening, "a ratio G_∞/G ≥ 1")?;
+                if ratio < 1.0 {
+                    return Err(self.err(
+                        "material.stiffening",
+                        ratio,
+                        "a ratio G_∞/G ≥ 1 (strain stiffening keeps Φ convex)",
+                    ));
+                }
+                let e0 = self.positive(
+                    "material.reference_strain",
+                    m.reference_strain,
+                    "a strain magnitude",
+                )?;
+                if m.poisson < 0.0 && hooke.lambda + 2.0 * hooke.mu / dim as f64 <= 0.0 {
+                    return Err(self.err(
+                        "material.poisson",
+                        m.poisson,
+                        "a ratio giving a positive bulk modulus",
+                    ));
+                }
+                Elasticity::Hencky(Hencky {
+                    bulk: hooke.lambda + 2.0 * hooke.mu / dim as f64,
+                    shear: hooke.mu,
+                    shear_inf: ratio * hooke.mu,
+                    s0: e0 * e0,
+                })
+            }
+        };
+        let l = &self.file.locking;
+        let set = match l.set {
+            LockingSetKind::None => LockingSet::None,
+            LockingSetKind::LimitedCompressibility => LockingSet::LimitedCompressibility {
+                theta: self.positive(
+                    "locking.theta",
+                    l.theta,
+                    "a volumetric strain threshold θ",
+                )?,
+            },
+            LockingSetKind::Prager => LockingSet::Prager {
+                kappa: self.positive("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
+            },
+            LockingSetKind::Ball => LockingSet::Ball {
+                r: self.positive("locking.radius", l.radius, "a strain radius r")?,
+            },
+        };
+        let c_kappa = match (set, l.c_kappa) {
+            (LockingSet::None, None) => 0.0,
+            (LockingSet::None, Some(c)) => {
+                return Err(self.err(
+                    "locking.c_kappa",
+                    c,
+                    "only with a locking set (locking.set)",
+                ))
+            }
+            (_, Some(c)) if c.is_finite() && c >= 0.0 => c,
+            (_, Some(c)) => {
+                return Err(self.err("locking.c_kappa", c, "a compliance C_κ ≥ 0 (Pa)"))
+            }
+            (_, None) => {
+                return Err(self.err(
+                    "locking.c_kappa",
+                    "missing",
+                    "a compliance C_κ ≥ 0 (Pa) for treatment = \"penalty\"",
+                ))
+            }
+        };
         Ok(Material {
-            elasticity: Hooke::from_young_poisson(m.young, m.poisson, dim, m.plane),
+            elasticity,
+            locking: LockingPenalty { set, c_kappa },
         })
+    }
+
+    fn build_contact(&self, mesh: &Mesh) -> Result<Vec<ContactBoundary>> {
+        let mut out = Vec::new();
+        for (k, c) in self.file.contact.iter().enumerate() {
+            let f = |name: &str| format!("contact[{k}].{name}");
+            let part = self.part(mesh, &f("part"), &c.part)?;
+            if !(c.gap.is_finite() && c.gap >= 0.0) {
+                return Err(self.err(&f("gap"), c.gap, "a gap g ≥ 0 (m)"));
+            }
+            let normal = match c.law {
+                NormalLawKind::NormalCompliance => NormalCompliance {
+                    c_nu: self.positive(
+                        &f("c_nu"),
+                        c.c_nu,
+                        "a normal compliance stiffness c_ν (Pa/m)",
+                    )?,
+                },
+            };
+            let friction = match &c.friction {
+                None => None,
+                Some(fs) => {
+                    let potential = match fs.potential {
+                        PotentialKind::Norm => FrictionPotential::Norm,
+                        PotentialKind::Nonconvex => {
+                            let a = self.positive(&f("friction.a"), fs.a, "a parameter 0 < a")?;
+                            if a >= 1.0 {
+                                return Err(self.err(
+                                    &f("friction.a"),
+                                    a,
+                                    "a parameter with 0 < a < 1",
+                                ));
+                            }
+                            FrictionPotential::Nonconvex { a }
+                        }
+                        PotentialKind::Regularized => FrictionPotential::Regularized {
+                            rho: self.positive(
+                                &f("friction.rho"),
+                                fs.rho,
+                                "a regularization length ρ (m)",
+                            )?,
+                        },
+                    };
+                    if fs.potential != PotentialKind::Nonconvex && fs.a.is_some() {
+                        return Err(self.err(
+                            &f("friction.a"),
+                            fs.a.unwrap_or(0.0),
+                            "only with potential = \"nonconvex\"",
+                        ));
+                    }
+                    if fs.potential != PotentialKind::Regularized && fs.rho.is_some() {
+                        return Err(self.err(
+                            &f("friction.rho"),
+                            fs.rho.unwrap_or(0.0),
+                            "only with potential = \"regularized\"",
+                        ));
+                    }
+                    fs.mu
+                        .validate()
+                        .map_err(|msg| self.err(&f("friction.mu"), format!("{:?}", fs.mu), &msg))?;
+                    Some(Friction {
+                        bound: fs.bound,
+                        mu: fs.mu.clone(),
+                        potential,
+                    })
+                }
+            };
+            out.push(ContactBoundary {
+                part,
+                gap: c.gap,
+                normal,
+                friction,
+            });
+        }
+        Ok(out)
     }
 
     /// Resolves and validates the scenario into a [`Problem`].
@@ -260,12 +428,47 @@ impl Scenario {
         if nw.max_iterations == 0 {
             return Err(self.err("solver.newton.max_iterations", 0, "a positive integer"));
         }
+        let o = &solver.outer;
+        if !(o.tolerance.is_finite() && o.tolerance > 0.0 && o.tolerance < 1.0) {
+            return Err(self.err("solver.outer.tolerance", o.tolerance, "a number in (0, 1)"));
+        }
+        if o.max_iterations == 0 {
+            return Err(self.err("solver.outer.max_iterations", 0, "a positive integer"));
+        }
+        if !(o.relaxation > 0.0 && o.relaxation <= 1.0) {
+            return Err(self.err(
+                "solver.outer.relaxation",
+                o.relaxation,
+                "a factor in (0, 1]",
+            ));
+        }
+        if !(o.friction_regularization.is_finite()
+            && o.friction_regularization > 0.0
+            && o.friction_regularization < 1e-2)
+        {
+            return Err(self.err(
+                "solver.outer.friction_regularization",
+                o.friction_regularization,
+                "a number in (0, 0.01)",
+            ));
+        }
+        let contact = self.build_contact(&mesh)?;
+        for (k, c) in contact.iter().enumerate() {
+            if dirichlet.iter().any(|d| d.part == c.part) {
+                return Err(self.err(
+                    &format!("contact[{k}].part"),
+                    format!("\"{}\"", mesh.part_names()[c.part]),
+                    "a part that is not also a Dirichlet part (nodes on Γ_D are never contact nodes)",
+                ));
+            }
+        }
         let problem = Problem {
             mesh,
             material,
             dirichlet,
             tractions,
             body_force,
+            contact,
             solver,
         };
         problem.validate()?;

@@ -13,6 +13,7 @@
 //! young = 2000.0            # Pa
 //! poisson = 0.3
 //! plane = "strain"          # or "stress" (2D only; default "strain")
+//! # model = "hencky": also stiffening = G_∞/G ≥ 1, reference_strain = e₀ > 0
 //!
 //! [[dirichlet]]
 //! part = "bottom"
@@ -25,6 +26,24 @@
 //! part = "top"
 //! value = [0.0, -900.0]     # N/m² (N/m in 2D)
 //!
+//! [locking]                 # optional (default: none)
+//! set = "limited-compressibility"   # or "prager" (kappa), "ball" (radius), "none"
+//! theta = 0.16
+//! treatment = "penalty"     # nearly locking, paper eq. (40)
+//! c_kappa = 10000.0         # Pa
+//!
+//! [[contact]]               # optional, one per contact part
+//! part = "left"
+//! gap = 0.4                 # m
+//! law = "normal-compliance"
+//! c_nu = 10000.0            # Pa/m
+//! [contact.friction]        # optional (default: frictionless)
+//! bound = "coulomb"         # or "tresca"
+//! potential = "norm"        # or "nonconvex" (with a = …), "regularized" (with rho = …)
+//! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
+//! # mu = { law = "constant", mu = 0.3 }
+//! # mu = { law = "table", points = [[0.0, 0.4], [0.01, 0.1]] }
+//!
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
 //!
@@ -32,6 +51,7 @@
 //! dir = "out/example"       # default: given on the command line
 //! ```
 
+use crate::contact::{FrictionBound, FrictionCoefficient};
 use crate::material::Plane;
 use crate::mesh::generate::CutPattern;
 use crate::solver::SolverSettings;
@@ -49,9 +69,15 @@ pub struct ScenarioFile {
     pub mesh: MeshSpec,
     /// Bulk material.
     pub material: MaterialSpec,
+    /// Locking.
+    #[serde(default)]
+    pub locking: LockingSpec,
     /// Dirichlet parts (Γ_D).
     #[serde(default)]
     pub dirichlet: Vec<DirichletSpec>,
+    /// Contact parts (Γ_C).
+    #[serde(default)]
+    pub contact: Vec<ContactSpec>,
     /// Loads.
     #[serde(default)]
     pub loads: LoadsSpec,
@@ -104,6 +130,8 @@ pub enum ElasticityModel {
     /// Isotropic Hooke's law.
     #[default]
     Hooke,
+    /// Strain-stiffening Hencky law (see `material::hencky`).
+    Hencky,
 }
 
 fn default_plane() -> Plane {
@@ -124,6 +152,121 @@ pub struct MaterialSpec {
     /// Plane idealization (2D).
     #[serde(default = "default_plane")]
     pub plane: Plane,
+    /// Hencky only: ratio G_∞/G ≥ 1 of large- to small-strain shear modulus.
+    #[serde(default)]
+    pub stiffening: Option<f64>,
+    /// Hencky only: deviatoric strain magnitude e₀ > 0 of the transition (s₀ = e₀²).
+    #[serde(default)]
+    pub reference_strain: Option<f64>,
+}
+
+/// Locking set name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LockingSetKind {
+    /// No locking.
+    #[default]
+    None,
+    /// `|tr ε| ≤ θ`.
+    LimitedCompressibility,
+    /// `½‖ε^D‖² ≤ κ²`.
+    Prager,
+    /// `‖ε‖ ≤ r`.
+    Ball,
+}
+
+/// How the locking constraint is imposed.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LockingTreatment {
+    /// Nearly locking: the penalty `(C_κ/2) Q_+²` (paper eq. (40)).
+    #[default]
+    Penalty,
+}
+
+/// `[locking]`.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LockingSpec {
+    /// The locking set.
+    #[serde(default)]
+    pub set: LockingSetKind,
+    /// Threshold θ (limited compressibility).
+    #[serde(default)]
+    pub theta: Option<f64>,
+    /// κ (Prager).
+    #[serde(default)]
+    pub kappa: Option<f64>,
+    /// Radius r (ball).
+    #[serde(default)]
+    pub radius: Option<f64>,
+    /// Treatment (penalty).
+    #[serde(default)]
+    pub treatment: LockingTreatment,
+    /// Penalty compliance C_κ ≥ 0 (Pa).
+    #[serde(default)]
+    pub c_kappa: Option<f64>,
+}
+
+/// Normal contact law name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NormalLawKind {
+    /// `p = c_ν (u_ν − g)_+`.
+    #[default]
+    NormalCompliance,
+}
+
+/// `[[contact]]`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Boundary part name (Γ_C).
+    pub part: String,
+    /// Initial gap g ≥ 0 (m).
+    #[serde(default)]
+    pub gap: f64,
+    /// Normal law.
+    #[serde(default)]
+    pub law: NormalLawKind,
+    /// Normal compliance stiffness c_ν > 0 (Pa/m).
+    #[serde(default)]
+    pub c_nu: Option<f64>,
+    /// Friction; frictionless if absent.
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// Friction potential name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PotentialKind {
+    /// `j = ‖ξ‖`.
+    #[default]
+    Norm,
+    /// The paper's nonconvex example (17), parameter `a`.
+    Nonconvex,
+    /// The regularized law (19), parameter `rho`.
+    Regularized,
+}
+
+/// `[contact.friction]`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// Friction bound type.
+    pub bound: FrictionBound,
+    /// Potential j.
+    #[serde(default)]
+    pub potential: PotentialKind,
+    /// Parameter a_j of the nonconvex potential, 0 < a < 1.
+    #[serde(default)]
+    pub a: Option<f64>,
+    /// Parameter ρ > 0 of the regularized potential (m).
+    #[serde(default)]
+    pub rho: Option<f64>,
+    /// The coefficient μ(r).
+    pub mu: FrictionCoefficient,
 }
 
 /// `[[dirichlet]]`.

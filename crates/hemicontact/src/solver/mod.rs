@@ -1,26 +1,34 @@
-//! The solution method: a fixed-pattern system prepared once, and a globalized Newton
-//! method on the total energy.
+//! The solution method of SPEC §4: a fixed-pattern system prepared once, the
+//! convexification outer loop, and a globalized Newton method for each convex problem.
 //!
-//! The program reads like the method: [`solve`] builds the DOF map and the sparsity pattern,
-//! runs the symbolic analysis once, then Newton iterates (assemble, refactorize, solve,
-//! line search) until the residual is small, and returns the solution with its report.
+//! The program reads like the method: [`solve`] builds the DOF map, the sparsity pattern
+//! and the contact points, runs the symbolic analysis once, then iterates { freeze the
+//! nonmonotone quantities at the contact points; minimize the convex energy by Newton
+//! (assemble, refactorize, solve, line search); measure the change; mix } and finally
+//! evaluates the certificate and returns the solution with its report.
 
+pub mod certificate;
 pub mod newton;
+pub mod outer;
 pub mod report;
 pub mod system;
 
+pub use certificate::{Certificate, ContactResult, Status};
 pub use newton::NewtonSettings;
-pub use report::{NewtonStep, SolveReport, Timings};
+pub use outer::{Acceleration, OuterSettings};
+pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
 pub use system::System;
 
+use crate::assembly::contact::Frozen;
 use crate::error::Result;
 use crate::linalg::Ordering;
+use crate::norms::energy_norm;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Solver settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSettings {
     /// Fill-reducing ordering of the sparse Cholesky factorization. Default: nested
@@ -31,57 +39,179 @@ pub struct SolverSettings {
     pub threads: usize,
     /// Newton method settings.
     pub newton: NewtonSettings,
+    /// Outer (convexification) loop settings.
+    pub outer: OuterSettings,
 }
 
-impl Default for SolverSettings {
-    fn default() -> Self {
-        SolverSettings {
-            ordering: Ordering::default(),
-            threads: 0,
-            newton: NewtonSettings::default(),
-        }
-    }
-}
-
-/// A solved (or not converged) problem: displacement, reactions, energy, and the report.
+/// A solved (or not converged) problem: displacement, reactions, contact results, report.
 #[derive(Clone, Debug)]
 pub struct Solution {
     /// Displacement at every DOF (m), DOF order, length `d · n_nodes`.
     pub u: Vec<f64>,
     /// Reaction forces at prescribed DOFs (N), zero at free DOFs; DOF order.
     pub reactions: Vec<f64>,
-    /// Total potential energy at `u` (J).
+    /// Convexified energy `E_k(u)` of the last convex problem (J).
     pub energy: f64,
+    /// Results at the contact points.
+    pub contact: Vec<ContactResult>,
+    /// The frozen quantities of the last convex problem.
+    pub frozen: Frozen,
     /// What the solver did; `report.converged` says whether `u` is a solution.
     pub report: SolveReport,
 }
 
-/// Solves the problem: prepares the system (pattern, symbolic analysis) and runs Newton.
+/// Whether the outer loop is needed: some friction law has a slip-dependent coefficient, a
+/// Coulomb-type bound, or a nonconvex potential. Otherwise one convex problem is the whole
+/// problem.
+pub fn needs_outer_loop(problem: &Problem) -> bool {
+    problem
+        .contact
+        .iter()
+        .filter_map(|c| c.friction.as_ref())
+        .any(|f| {
+            f.bound == crate::contact::FrictionBound::Coulomb
+                || f.mu.lipschitz() > 0.0
+                || f.potential.alpha_j() > 0.0
+        })
+}
+
+/// Solves the problem from the prescribed displacement (zero elsewhere).
 ///
 /// # Errors
 /// Invalid problem data ([`Problem::validate`]), a matrix that is not positive definite
-/// (rigid motions not blocked), or memory exhaustion. Non-convergence is not an error: see
-/// [`SolveReport::converged`].
+/// (rigid motions not blocked), a numerical breakdown, or memory exhaustion.
+/// Non-convergence is not an error: see [`SolveReport::converged`].
 pub fn solve(problem: &Problem) -> Result<Solution> {
+    let u0 = problem.prescribed_displacement();
+    solve_from(problem, u0)
+}
+
+/// Solves the problem starting from `u` (its prescribed DOFs are overwritten with the
+/// Dirichlet values).
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     let start = Instant::now();
     problem.validate()?;
     let mut system = System::new(problem)?;
-    let mut u = problem.prescribed_displacement();
+    let prescribed = problem.prescribed_displacement();
+    for (k, x) in u.iter_mut().enumerate() {
+        if system.dofs.is_fixed(k) {
+            *x = prescribed[k];
+        }
+    }
     let mut report = SolveReport::new(&system);
-    let outcome = newton::minimize(
-        &mut system,
-        problem,
-        &mut u,
-        &problem.solver.newton,
-        &mut report,
-    );
+    let settings = &problem.solver;
+    let dim = problem.mesh.dim();
+    let hooke = problem.material.elasticity.small_strain_hooke(dim);
+    let n_points = system.contact.len();
+    let outer_loop = needs_outer_loop(problem);
+    let final_tol = settings.newton.residual_tolerance;
+    let mut frozen = system.contact_assembler(problem).freeze(&u);
+    let mut z = outer::flatten(&frozen);
+    let mut mixer = outer::Mixer::new(&settings.outer);
+    let mut u_prev = u.clone();
+    let mut change = f64::INFINITY;
+    let mut last = newton::NewtonOutcome {
+        converged: false,
+        steps: 0,
+        residual: f64::NAN,
+        energy: f64::NAN,
+    };
+    report.converged = false;
+    for k in 0..settings.outer.max_iterations.max(1) {
+        let tol = if !outer_loop || !settings.outer.inexact {
+            final_tol
+        } else {
+            (1e-2 * change).clamp(final_tol, 1e-6_f64.max(final_tol))
+        };
+        last = newton::minimize(
+            &mut system,
+            problem,
+            &mut u,
+            &frozen,
+            &settings.newton,
+            tol,
+            k,
+            &mut report,
+        )?;
+        let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
+        let norm_u = energy_norm(&problem.mesh, &hooke, &u);
+        change = if k == 0 {
+            f64::INFINITY
+        } else {
+            energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
+        };
+        u_prev.copy_from_slice(&u);
+        let g = outer::flatten(&system.contact_assembler(problem).freeze(&u));
+        let fp: f64 = g
+            .iter()
+            .zip(&z)
+            .map(|(a, b)| (a - b).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let mut step = report::OuterStep {
+            change,
+            fixed_point_residual: fp,
+            newton_steps: last.steps,
+            newton_tolerance: tol,
+            newton_converged: last.converged,
+            mixing: String::new(),
+        };
+        if !last.converged && tol == final_tol {
+            step.mixing = "stop: Newton did not converge".into();
+            report.outer.push(step);
+            report.message = format!(
+                "Newton did not converge in outer iteration {k}: residual {:e} > tolerance {:e}",
+                last.residual, report.residual_tolerance
+            );
+            break;
+        }
+        let at_final = tol == final_tol && last.converged;
+        if at_final && (!outer_loop || change <= settings.outer.tolerance) {
+            report.outer.push(step);
+            report.converged = true;
+            report.message = format!(
+                "converged: {} outer iterations, {} Newton steps",
+                report.outer.len(),
+                report.newton.len()
+            );
+            break;
+        }
+        if outer_loop {
+            let (next, note) = mixer.next(&z, &g);
+            step.mixing = note;
+            z = next;
+            frozen = outer::unflatten(&z, n_points);
+        }
+        report.outer.push(step);
+    }
+    if !report.converged && report.message.is_empty() || report.message == "not started" {
+        report.message = format!(
+            "not converged: {} outer iterations (cap), last relative change {:e} > tolerance {:e}{}",
+            report.outer.len(),
+            change,
+            settings.outer.tolerance,
+            if mixer.oscillations > 0 { "; oscillation was detected" } else { "" }
+        );
+    }
+    // Final evaluation for the certificate and the reactions.
+    let energy = system.evaluate(problem, &u, &frozen, false);
+    let reactions = system.reactions();
+    let ca = system.contact_assembler(problem);
+    let equilibrium = last.residual
+        / (report.residual_tolerance / final_tol.max(f64::MIN_POSITIVE)).max(f64::MIN_POSITIVE);
+    let (contact, certificate) =
+        certificate::evaluate(&ca, &u, &system.grad_bulk, &system.f_ext, equilibrium);
+    report.certificate = certificate;
     report.timings.total = start.elapsed().as_secs_f64();
-    outcome?;
-    let (energy, reactions) = system.energy_and_reactions(problem, &u);
     Ok(Solution {
         u,
         reactions,
         energy,
+        contact,
+        frozen,
         report,
     })
 }

@@ -1,7 +1,8 @@
 //! Globalized Newton method for the minimization of a convex total energy.
 //!
-//! Each step assembles gradient and Hessian, refactorizes the Hessian numerically on the
-//! fixed pattern, solves for the Newton direction Δ, and takes the largest step `t ∈
+//! Each step assembles gradient and Hessian, solves for the Newton direction Δ (see
+//! [`System::linear_solve`]: the last factorization is reused when the Hessian is unchanged,
+//! used as a PCG preconditioner when it changed a little, and refactorized otherwise), and takes the largest step `t ∈
 //! {1, ½, ¼, …}` that satisfies the Armijo condition `Π(u + tΔ) ≤ Π(u) + c t ∇Π·Δ`.
 //! It stops when the residual (gradient on the free DOFs) is below `residual_tolerance`
 //! times the force scale `max(‖f_ext‖, ‖∇W‖)` (‖∇W‖: internal forces over all DOFs,
@@ -10,6 +11,7 @@
 
 use super::report::{NewtonStep, SolveReport};
 use super::System;
+use crate::assembly::contact::Frozen;
 use crate::error::{Error, Result};
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
@@ -29,6 +31,15 @@ pub struct NewtonSettings {
     pub armijo: f64,
     /// Maximum number of step halvings per line search. Default 40 (t ≥ 1e-12).
     pub max_backtracks: usize,
+    /// Maximum conjugate-gradient iterations preconditioned by the last factorization
+    /// before the Hessian is refactorized. Default 8: one triangular solve costs about a
+    /// tenth of a factorization, and changes of the active sets (locking cells, contact and
+    /// stick nodes) are low-rank updates that PCG resolves in about as many iterations as
+    /// their rank. 0 disables PCG (every changed Hessian is refactorized).
+    pub pcg_iterations: usize,
+    /// Relative residual PCG must reach to be accepted. Default 1e-6 (an inexact Newton
+    /// forcing term small enough to keep the Newton convergence fast).
+    pub pcg_tolerance: f64,
 }
 
 impl Default for NewtonSettings {
@@ -38,6 +49,8 @@ impl Default for NewtonSettings {
             residual_tolerance: 1e-10,
             armijo: 1e-4,
             max_backtracks: 40,
+            pcg_iterations: 8,
+            pcg_tolerance: 1e-6,
         }
     }
 }
@@ -46,41 +59,60 @@ fn norm(x: &[f64]) -> f64 {
     x.iter().map(|v| v * v).sum::<f64>().sqrt()
 }
 
-/// Minimizes the total energy of `problem` starting from `u` (which must hold the prescribed
-/// Dirichlet values). On return `u` is the last iterate and `report` says whether it
-/// converged.
+/// Outcome of one Newton solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonOutcome {
+    /// Whether the residual criterion was met.
+    pub converged: bool,
+    /// Newton steps taken.
+    pub steps: usize,
+    /// Final residual (N).
+    pub residual: f64,
+    /// Energy at the final iterate (J).
+    pub energy: f64,
+}
+
+/// Minimizes the convexified energy of `problem` for the frozen quantities `frozen`,
+/// starting from `u` (which must hold the prescribed Dirichlet values), to the relative
+/// residual tolerance `tolerance`. On return `u` is the last iterate; the steps are appended
+/// to `report.newton` (tagged with `outer`), and timings accumulated.
 ///
 /// # Errors
 /// [`Error::NotPositiveDefinite`] if a Hessian cannot be factorized, [`Error::Breakdown`] if
 /// the energy or residual is not finite.
+#[allow(clippy::too_many_arguments)]
 pub fn minimize(
     system: &mut System,
     problem: &Problem,
     u: &mut [f64],
+    frozen: &Frozen,
     settings: &NewtonSettings,
+    tolerance: f64,
+    outer: usize,
     report: &mut SolveReport,
-) -> Result<()> {
+) -> Result<NewtonOutcome> {
     let n = system.dofs.n_free();
     let mut r = vec![0.0; n];
     let mut delta = vec![0.0; n];
+    let mut r_neg = vec![0.0; n];
     let mut trial = u.to_vec();
     let f_scale = norm(&system.f_ext);
-    report.converged = false;
-    for _ in 0..=settings.max_iterations {
+    let mut steps = 0;
+    loop {
         let t = Instant::now();
-        let energy = system.evaluate(problem, u, true);
+        let energy = system.evaluate(problem, u, frozen, true);
         report.timings.assembly += t.elapsed().as_secs_f64();
         system.reduce(&system.grad, &mut r);
         let res = norm(&r);
         // Internal forces over all DOFs: gradient + f_ext.
         let internal = system
-            .grad
+            .grad_bulk
             .iter()
             .zip(&system.f_ext)
             .map(|(g, f)| (g + f).powi(2))
             .sum::<f64>()
             .sqrt();
-        let tol = settings.residual_tolerance * f_scale.max(internal).max(f64::MIN_POSITIVE);
+        let tol = tolerance * f_scale.max(internal).max(f64::MIN_POSITIVE);
         report.residual = res;
         report.residual_tolerance = tol;
         if !energy.is_finite() || !res.is_finite() {
@@ -89,23 +121,18 @@ pub fn minimize(
                 report.newton.len()
             )));
         }
-        if res <= tol {
-            report.converged = true;
-            report.message = format!("converged in {} Newton steps", report.newton.len());
-            return Ok(());
+        if res <= tol || steps == settings.max_iterations {
+            return Ok(NewtonOutcome {
+                converged: res <= tol,
+                steps,
+                residual: res,
+                energy,
+            });
         }
-        if report.newton.len() == settings.max_iterations {
-            break;
-        }
-        let t = Instant::now();
-        system.cholesky.factorize(&system.pattern, &system.hess)?;
-        report.timings.factorization += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        for (d, ri) in delta.iter_mut().zip(&r) {
+        for (d, ri) in r_neg.iter_mut().zip(&r) {
             *d = -ri;
         }
-        system.cholesky.solve_in_place(&mut delta);
-        report.timings.solve += t.elapsed().as_secs_f64();
+        let linear = system.linear_solve(&r_neg, &mut delta, settings, &mut report.timings)?;
         let slope: f64 = r.iter().zip(&delta).map(|(a, b)| a * b).sum();
         let t = Instant::now();
         let mut step = 1.0;
@@ -116,7 +143,7 @@ pub fn minimize(
                     trial[dof] = u[dof] + step * delta[eq as usize];
                 }
             }
-            let e_trial = system.evaluate(problem, &trial, false);
+            let e_trial = system.evaluate(problem, &trial, frozen, false);
             // Below round-off of the energy, the Armijo test is meaningless: accept.
             let negligible = -slope <= 1e-14 * energy.abs();
             if e_trial <= energy + settings.armijo * step * slope || negligible {
@@ -126,17 +153,22 @@ pub fn minimize(
             step *= 0.5;
         }
         report.timings.line_search += t.elapsed().as_secs_f64();
+        steps += 1;
         report.newton.push(NewtonStep {
+            outer,
             residual: res,
             energy,
             step_length: if accepted { step } else { 0.0 },
+            refactorized: linear.refactorized,
+            pcg_iterations: linear.pcg_iterations,
         });
         if !accepted {
-            report.message = format!(
-                "line search failed at Newton step {} (residual {res:e}, tolerance {tol:e})",
-                report.newton.len()
-            );
-            return Ok(());
+            return Ok(NewtonOutcome {
+                converged: false,
+                steps,
+                residual: res,
+                energy,
+            });
         }
         for (dof, &eq) in system.dofs.equations().iter().enumerate() {
             if eq != crate::fem::dofs::FIXED {
@@ -144,9 +176,4 @@ pub fn minimize(
             }
         }
     }
-    report.message = format!(
-        "not converged: {} Newton steps, residual {:e} > tolerance {:e}",
-        settings.max_iterations, report.residual, report.residual_tolerance
-    );
-    Ok(())
 }

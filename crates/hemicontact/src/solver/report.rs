@@ -14,8 +14,10 @@ pub struct Timings {
     pub assembly: f64,
     /// Numeric factorizations (all Newton steps).
     pub factorization: f64,
-    /// Triangular solves (all Newton steps).
+    /// Triangular solves and PCG iterations (all Newton steps).
     pub solve: f64,
+    /// Number of numeric factorizations.
+    pub n_factorizations: usize,
     /// Line searches (energy evaluations).
     pub line_search: f64,
     /// Whole solve, end to end.
@@ -25,12 +27,35 @@ pub struct Timings {
 /// One Newton step.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct NewtonStep {
+    /// Outer iteration this step belongs to.
+    pub outer: usize,
     /// Euclidean norm of the residual (gradient on free DOFs) before the step (N).
     pub residual: f64,
     /// Energy before the step (J).
     pub energy: f64,
     /// Line-search step length taken (1 = full Newton step).
     pub step_length: f64,
+    /// Whether the Hessian was refactorized for this step.
+    pub refactorized: bool,
+    /// Conjugate-gradient iterations (0: direct solve with the factorization).
+    pub pcg_iterations: usize,
+}
+
+/// One outer (convexification) iteration.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OuterStep {
+    /// Relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E` (∞ for the first iteration).
+    pub change: f64,
+    /// Norm of the fixed-point residual `G(z) − z` of the frozen quantities.
+    pub fixed_point_residual: f64,
+    /// Newton steps of this convex solve.
+    pub newton_steps: usize,
+    /// Relative Newton tolerance used.
+    pub newton_tolerance: f64,
+    /// Whether the convex solve met its tolerance.
+    pub newton_converged: bool,
+    /// How the next frozen quantities were formed.
+    pub mixing: String,
 }
 
 /// The report of a solve.
@@ -48,8 +73,14 @@ pub struct SolveReport {
     pub nnz_matrix: usize,
     /// Stored entries of the Cholesky factor.
     pub nnz_factor: usize,
-    /// Newton steps.
+    /// Outer iterations.
+    pub outer: Vec<OuterStep>,
+    /// Newton steps (all outer iterations).
     pub newton: Vec<NewtonStep>,
+    /// Number of contact points.
+    pub n_contact_points: usize,
+    /// The certificate of the final iterate.
+    pub certificate: super::certificate::Certificate,
     /// Final residual norm (N).
     pub residual: f64,
     /// Residual tolerance that was applied (N): relative tolerance × force scale.
@@ -68,7 +99,10 @@ impl SolveReport {
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
             nnz_factor: system.cholesky.nnz_factor(),
+            outer: Vec::new(),
             newton: Vec::new(),
+            n_contact_points: system.contact.len(),
+            certificate: Default::default(),
             residual: f64::NAN,
             residual_tolerance: f64::NAN,
             timings: Timings {

@@ -1,10 +1,14 @@
 //! The discrete system, prepared once per problem: DOF map, sparsity pattern, symbolic
-//! factorization, external forces, and the work arrays of the Newton iteration.
+//! factorization, contact points, external forces, and the work arrays of the Newton
+//! iteration. [`System::evaluate`] computes the convexified energy `E_k` of SPEC §4 with its
+//! gradient and generalized Hessian for given frozen contact quantities.
 
+use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};
 use crate::assembly::global::Want;
 use crate::assembly::{BulkAssembler, SystemPattern};
+use crate::contact::ContactNodes;
 use crate::error::Result;
-use crate::fem::dofs::DofMap;
+use crate::fem::dofs::{DofMap, FIXED};
 use crate::linalg::Cholesky;
 use crate::problem::Problem;
 use std::time::Instant;
@@ -18,18 +22,42 @@ pub struct System {
     pub pattern: SystemPattern,
     /// Cholesky factorization (symbolic analysis done).
     pub cholesky: Cholesky,
+    /// Contact points.
+    pub contact: ContactNodes,
+    /// Hessian slots of the contact points' node blocks.
+    pub contact_slots: Vec<u32>,
+    /// Numerical regularization ρ_num of the norm in the friction potential (m).
+    pub rho_num: f64,
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
     /// Gradient of the total energy at the last evaluation, DOF order.
     pub grad: Vec<f64>,
+    /// Gradient of the bulk energy minus external forces at the last evaluation (the
+    /// negative of the interface forces plus residual), DOF order.
+    pub grad_bulk: Vec<f64>,
     /// Hessian values at the last evaluation with a Hessian (upper triangle).
     pub hess: Vec<f64>,
     /// Seconds spent on (pattern, symbolic analysis).
     pub setup_time: (f64, f64),
+    /// Hessian values of the current factorization (empty: none yet).
+    factored: Vec<f64>,
+    /// PCG work vectors (r, z, p, Ap).
+    work: [Vec<f64>; 4],
+    /// Refactorize at the next linear solve (the factorization went stale).
+    refactor_next: bool,
+}
+
+/// How a Newton system was solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LinearInfo {
+    /// Whether the Hessian was refactorized.
+    pub refactorized: bool,
+    /// PCG iterations (0: direct solve).
+    pub pcg_iterations: usize,
 }
 
 impl System {
-    /// Builds the DOF map and pattern, and runs the symbolic analysis.
+    /// Builds the DOF map, pattern and contact points, and runs the symbolic analysis.
     ///
     /// # Errors
     /// [`crate::Error::OutOfMemory`] if the pattern or factor cannot be allocated.
@@ -37,6 +65,8 @@ impl System {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
+        let contact = problem.contact_nodes();
+        let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
         let cholesky = Cholesky::analyze(
             &problem.mesh,
@@ -53,16 +83,40 @@ impl System {
             dofs,
             pattern,
             cholesky,
+            contact,
+            contact_slots,
+            rho_num: problem.solver.outer.friction_regularization * problem.diameter(),
             f_ext,
             grad: vec![0.0; n],
+            grad_bulk: vec![0.0; n],
             hess,
             setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
+            factored: Vec::new(),
+            work: Default::default(),
+            refactor_next: false,
         })
     }
 
-    /// Total energy `Π(u) = Σ_T |T| W(ε_T(u)) − f·u` at `u`; the gradient goes to
-    /// `self.grad`, and with `hessian` the Hessian to `self.hess`.
-    pub fn evaluate(&mut self, problem: &Problem, u: &[f64], hessian: bool) -> f64 {
+    /// The contact assembler of `problem` on this system.
+    pub fn contact_assembler<'a>(&'a self, problem: &'a Problem) -> ContactAssembler<'a> {
+        ContactAssembler {
+            dim: problem.mesh.dim(),
+            nodes: &self.contact,
+            boundaries: &problem.contact,
+            rho_num: self.rho_num,
+        }
+    }
+
+    /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
+    /// frozen quantities `frozen`; the gradient goes to `self.grad` (and the bulk part minus
+    /// `f` to `self.grad_bulk`), and with `hessian` the Hessian to `self.hess`.
+    pub fn evaluate(
+        &mut self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        hessian: bool,
+    ) -> f64 {
         let bulk = BulkAssembler {
             mesh: &problem.mesh,
             material: &problem.material,
@@ -77,28 +131,160 @@ impl System {
         } else {
             None
         };
-        let e = bulk.assemble(u, &mut self.grad, want, &self.pattern, hess);
+        let e_bulk = bulk.assemble(u, &mut self.grad_bulk, want, &self.pattern, hess);
         let mut work = 0.0;
-        for ((g, f), x) in self.grad.iter_mut().zip(&self.f_ext).zip(u) {
+        for ((g, f), x) in self.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
             *g -= f;
             work += f * x;
         }
-        e - work
+        self.grad.copy_from_slice(&self.grad_bulk);
+        let contact = ContactAssembler {
+            dim: problem.mesh.dim(),
+            nodes: &self.contact,
+            boundaries: &problem.contact,
+            rho_num: self.rho_num,
+        };
+        let hc = if hessian {
+            Some((self.hess.as_mut_slice(), self.contact_slots.as_slice()))
+        } else {
+            None
+        };
+        let e_contact = contact.assemble(u, frozen, &mut self.grad, hc);
+        e_bulk + e_contact - work
+    }
+
+    /// Solves `H x = b` for the current Hessian `self.hess`.
+    ///
+    /// - If the Hessian equals the factorized one (to 1e-12 relative: it is piecewise
+    ///   constant in the active sets, and the friction curvature of slipping nodes is
+    ///   negligible), the factorization is reused: one triangular solve.
+    /// - Else, if a factorization exists, preconditioned conjugate gradients with it as
+    ///   preconditioner, up to `settings.pcg_iterations` iterations to the relative
+    ///   residual `settings.pcg_tolerance`.
+    /// - Otherwise (or if PCG does not get there) the Hessian is refactorized.
+    ///
+    /// # Errors
+    /// As [`Cholesky::factorize`].
+    pub fn linear_solve(
+        &mut self,
+        b: &[f64],
+        x: &mut [f64],
+        settings: &super::NewtonSettings,
+        timings: &mut super::Timings,
+    ) -> Result<LinearInfo> {
+        let t = Instant::now();
+        let mut info = LinearInfo {
+            refactorized: false,
+            pcg_iterations: 0,
+        };
+        if !self.factored.is_empty() && !self.refactor_next {
+            let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let (mut change, mut changed) = (0.0f64, 0usize);
+            for (a, c) in self.hess.iter().zip(&self.factored) {
+                let d = (a - c).abs();
+                change = change.max(d);
+                changed += usize::from(d > 1e-12 * scale);
+            }
+            if change <= 1e-12 * scale {
+                x.copy_from_slice(b);
+                self.cholesky.solve_in_place(x);
+                timings.solve += t.elapsed().as_secs_f64();
+                return Ok(info);
+            }
+            // Each changed cell or contact node alters at most ld(ld+1)/2 entries and adds
+            // about one PCG iteration; try PCG only when the estimated rank is small.
+            let ld = self.pattern.local_dofs();
+            let rank_estimate = changed / (ld * (ld + 1) / 2);
+            if settings.pcg_iterations > 0 && rank_estimate < settings.pcg_iterations {
+                if let Some(k) = self.pcg(b, x, settings.pcg_iterations, settings.pcg_tolerance) {
+                    info.pcg_iterations = k;
+                    // A factorization that needs several PCG iterations is stale: the next
+                    // system will most likely differ from it in the same way.
+                    self.refactor_next = k >= 3;
+                    timings.solve += t.elapsed().as_secs_f64();
+                    return Ok(info);
+                }
+            }
+        }
+        timings.solve += t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        self.factored.clear();
+        self.refactor_next = false;
+        self.cholesky.factorize(&self.pattern, &self.hess)?;
+        self.factored.extend_from_slice(&self.hess);
+        timings.factorization += t.elapsed().as_secs_f64();
+        timings.n_factorizations += 1;
+        let t = Instant::now();
+        x.copy_from_slice(b);
+        self.cholesky.solve_in_place(x);
+        timings.solve += t.elapsed().as_secs_f64();
+        info.refactorized = true;
+        Ok(info)
+    }
+
+    /// Preconditioned conjugate gradients on `self.hess` with the current factorization as
+    /// preconditioner, from x = P⁻¹b. Returns the iteration count if the relative residual
+    /// reached `tol` within `max_iter` iterations.
+    fn pcg(&mut self, b: &[f64], x: &mut [f64], max_iter: usize, tol: f64) -> Option<usize> {
+        let n = b.len();
+        let [r, z, p, ap] = &mut self.work;
+        for v in [&mut *r, &mut *z, &mut *p, &mut *ap] {
+            v.resize(n, 0.0);
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let b_norm = dot(b, b).sqrt();
+        if b_norm == 0.0 {
+            x.fill(0.0);
+            return Some(0);
+        }
+        x.copy_from_slice(b);
+        self.cholesky.solve_in_place(x);
+        self.pattern.sym_matvec(&self.hess, x, ap);
+        for i in 0..n {
+            r[i] = b[i] - ap[i];
+        }
+        z.copy_from_slice(r);
+        self.cholesky.solve_in_place(z);
+        p.copy_from_slice(z);
+        let mut rz = dot(r, z);
+        for k in 1..=max_iter {
+            self.pattern.sym_matvec(&self.hess, p, ap);
+            let pap = dot(p, ap);
+            if pap.is_nan() || pap <= 0.0 {
+                return None;
+            }
+            let alpha = rz / pap;
+            for i in 0..n {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * ap[i];
+            }
+            if dot(r, r).sqrt() <= tol * b_norm {
+                return Some(k);
+            }
+            z.copy_from_slice(r);
+            self.cholesky.solve_in_place(z);
+            let rz_new = dot(r, z);
+            let beta = rz_new / rz;
+            rz = rz_new;
+            for i in 0..n {
+                p[i] = z[i] + beta * p[i];
+            }
+        }
+        None
     }
 
     /// Gradient restricted to the free DOFs (equation order) into `r`.
     pub fn reduce(&self, full: &[f64], r: &mut [f64]) {
         for (dof, &eq) in self.dofs.equations().iter().enumerate() {
-            if eq != crate::fem::dofs::FIXED {
+            if eq != FIXED {
                 r[eq as usize] = full[dof];
             }
         }
     }
 
-    /// Energy at `u` and the reaction forces (gradient at prescribed DOFs, zero elsewhere).
-    pub fn energy_and_reactions(&mut self, problem: &Problem, u: &[f64]) -> (f64, Vec<f64>) {
-        let e = self.evaluate(problem, u, false);
-        let reactions = (0..self.dofs.n_dofs())
+    /// Reaction forces at prescribed DOFs (zero elsewhere) from the last evaluation.
+    pub fn reactions(&self) -> Vec<f64> {
+        (0..self.dofs.n_dofs())
             .map(|k| {
                 if self.dofs.is_fixed(k) {
                     self.grad[k]
@@ -106,7 +292,6 @@ impl System {
                     0.0
                 }
             })
-            .collect();
-        (e, reactions)
+            .collect()
     }
 }

@@ -1,0 +1,29 @@
+//! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`]) and the contact
+//! nodes with their lumped weights, normals and tangents ([`nodes`]).
+//!
+//! Conventions (SPEC §1): `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
+//! normal displacement and `g ≥ 0` the initial gap to the foundation, so `u_ν − g > 0` is a
+//! penetration. The tangential displacement `u_τ = u − u_ν ν` is stored in the coordinates of
+//! an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the
+//! body has normal part `σ_ν = −p(u_ν) ≤ 0` and tangential part `σ_τ ∈ −F ∂j(u_τ)`.
+
+pub mod friction;
+pub mod nodes;
+pub mod normal;
+
+pub use friction::{Friction, FrictionBound, FrictionCoefficient, FrictionPotential};
+pub use nodes::ContactNodes;
+pub use normal::NormalCompliance;
+
+/// One contact boundary: a part of the mesh facing a rigid foundation, with its laws.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactBoundary {
+    /// Boundary part index (see [`crate::mesh::Mesh::part_names`]).
+    pub part: usize,
+    /// Initial gap g ≥ 0 along the normal (m).
+    pub gap: f64,
+    /// Normal compliance law.
+    pub normal: NormalCompliance,
+    /// Friction law, or `None` for frictionless contact.
+    pub friction: Option<Friction>,
+}

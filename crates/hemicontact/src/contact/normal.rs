@@ -1,0 +1,34 @@
+//! Normal compliance (SPEC §1): `−σ_ν = p(u_ν) = c_ν (u_ν − g)_+`, the reaction of
+//! deformable asperities, with energy `P(u_ν) = (c_ν/2)(u_ν − g)_+²` (SPEC §4).
+
+/// Normal compliance with stiffness `c_nu` (Pa/m, i.e. pressure per penetration).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NormalCompliance {
+    /// Stiffness c_ν ≥ 0 of the asperities.
+    pub c_nu: f64,
+}
+
+impl NormalCompliance {
+    /// Energy density `P = (c_ν/2)(u_ν − g)_+²` per unit area.
+    #[inline]
+    pub fn energy(&self, u_nu: f64, gap: f64) -> f64 {
+        let s = (u_nu - gap).max(0.0);
+        0.5 * self.c_nu * s * s
+    }
+
+    /// Contact pressure `p = c_ν (u_ν − g)_+ ≥ 0`.
+    #[inline]
+    pub fn pressure(&self, u_nu: f64, gap: f64) -> f64 {
+        self.c_nu * (u_nu - gap).max(0.0)
+    }
+
+    /// Generalized derivative `p'(u_ν) = c_ν H(u_ν − g)` (0 at the kink).
+    #[inline]
+    pub fn stiffness(&self, u_nu: f64, gap: f64) -> f64 {
+        if u_nu > gap {
+            self.c_nu
+        } else {
+            0.0
+        }
+    }
+}

@@ -1,0 +1,160 @@
+//! Locking sets `B = {ε : Q(ε) ≤ 0}` and the nearly-locking penalty (SPEC §2, paper eq. (40)).
+//!
+//! | set | Q(ε) | ∂Q | ∂²Q |
+//! |-----|------|----|-----|
+//! | limited compressibility | `|tr ε| − θ` | `sgn(tr ε) I` | 0 |
+//! | Prager | `½‖ε^D‖² − κ²` | `ε^D` | `𝕀^D = 𝕀 − (1/d) I⊗I` |
+//! | ball | `‖ε‖ − r` | `ε/‖ε‖` | `(𝕀 − n⊗n)/‖ε‖`, `n = ε/‖ε‖` |
+//!
+//! The penalty energy `Ψ(ε) = (C_κ/2) Q(ε)_+²` has stress `C_κ Q_+ ∂Q` (for limited
+//! compressibility `C_κ (|tr ε| − θ)_+ sgn(tr ε) I`) and generalized tangent
+//! `C_κ (H(Q) ∂Q⊗∂Q + Q_+ ∂²Q)` with `H` the Heaviside step (taken 0 at Q = 0). Ψ is convex
+//! (Q convex, `t ↦ t_+²` convex and nondecreasing) and C¹ with a piecewise smooth gradient,
+//! which is what the semismooth Newton method needs. `C_κ = 0` is the material without
+//! locking.
+
+use super::StrainEnergy;
+use crate::tensor::{add_identity, add_outer, zero_tangent, Sym, Tangent};
+
+/// A locking set B; see the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LockingSet {
+    /// No locking: B is the whole space.
+    None,
+    /// `|tr ε| ≤ θ` (the paper's example, θ = κ²).
+    LimitedCompressibility {
+        /// Threshold θ > 0 on the volumetric strain.
+        theta: f64,
+    },
+    /// Prager's ideal locking `½‖ε^D‖² ≤ κ²`.
+    Prager {
+        /// κ > 0.
+        kappa: f64,
+    },
+    /// `‖ε‖ ≤ r`.
+    Ball {
+        /// Radius r > 0.
+        r: f64,
+    },
+}
+
+impl LockingSet {
+    /// `Q(ε)`: negative inside B, zero on its boundary, positive outside.
+    #[inline]
+    pub fn q(&self, eps: &Sym) -> f64 {
+        match *self {
+            LockingSet::None => f64::NEG_INFINITY,
+            LockingSet::LimitedCompressibility { theta } => eps.trace().abs() - theta,
+            LockingSet::Prager { kappa } => {
+                let dev = eps.deviator();
+                0.5 * dev.dot(&dev) - kappa * kappa
+            }
+            LockingSet::Ball { r } => eps.norm() - r,
+        }
+    }
+
+    /// `∂Q(ε)` (where Q > 0, so that the kinks of the table are never evaluated).
+    #[inline]
+    pub fn dq(&self, eps: &Sym) -> Sym {
+        match *self {
+            LockingSet::None => Sym::zero(eps.dim),
+            LockingSet::LimitedCompressibility { .. } => {
+                Sym::identity(eps.dim).scaled(eps.trace().signum())
+            }
+            LockingSet::Prager { .. } => eps.deviator(),
+            LockingSet::Ball { .. } => {
+                let n = eps.norm();
+                if n > 0.0 {
+                    eps.scaled(1.0 / n)
+                } else {
+                    Sym::zero(eps.dim)
+                }
+            }
+        }
+    }
+
+    /// Adds `s ∂²Q(ε)` to the tangent `t`.
+    #[inline]
+    fn add_d2q(&self, t: &mut Tangent, eps: &Sym, s: f64) {
+        let d = eps.dim;
+        match *self {
+            LockingSet::None | LockingSet::LimitedCompressibility { .. } => {}
+            LockingSet::Prager { .. } => {
+                let i = Sym::identity(d);
+                add_identity(t, d, s);
+                add_outer(t, -s / d as f64, &i, &i);
+            }
+            LockingSet::Ball { .. } => {
+                let norm = eps.norm();
+                if norm > 0.0 {
+                    let n = eps.scaled(1.0 / norm);
+                    add_identity(t, d, s / norm);
+                    add_outer(t, -s / norm, &n, &n);
+                }
+            }
+        }
+    }
+}
+
+/// The nearly-locking penalty `Ψ(ε) = (C_κ/2) Q(ε)_+²`; see the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LockingPenalty {
+    /// The locking set B.
+    pub set: LockingSet,
+    /// Compliance C_κ ≥ 0 (Pa).
+    pub c_kappa: f64,
+}
+
+impl LockingPenalty {
+    /// No locking.
+    pub const NONE: LockingPenalty = LockingPenalty {
+        set: LockingSet::None,
+        c_kappa: 0.0,
+    };
+
+    /// Whether the penalty is active (`Q(ε) > 0` and `C_κ > 0`).
+    #[inline]
+    pub fn is_active(&self, eps: &Sym) -> bool {
+        self.c_kappa > 0.0 && self.set.q(eps) > 0.0
+    }
+}
+
+impl StrainEnergy for LockingPenalty {
+    #[inline]
+    fn energy(&self, eps: &Sym) -> f64 {
+        if self.c_kappa == 0.0 {
+            return 0.0;
+        }
+        let q = self.set.q(eps).max(0.0);
+        0.5 * self.c_kappa * q * q
+    }
+
+    #[inline]
+    fn stress(&self, eps: &Sym) -> Sym {
+        let q = if self.c_kappa == 0.0 {
+            0.0
+        } else {
+            self.set.q(eps)
+        };
+        if q <= 0.0 {
+            return Sym::zero(eps.dim);
+        }
+        self.set.dq(eps).scaled(self.c_kappa * q)
+    }
+
+    #[inline]
+    fn tangent(&self, eps: &Sym) -> Tangent {
+        let mut t = zero_tangent();
+        let q = if self.c_kappa == 0.0 {
+            0.0
+        } else {
+            self.set.q(eps)
+        };
+        if q > 0.0 {
+            let dq = self.set.dq(eps);
+            add_outer(&mut t, self.c_kappa, &dq, &dq);
+            self.set.add_d2q(&mut t, eps, self.c_kappa * q);
+        }
+        t
+    }
+}

@@ -1,0 +1,465 @@
+//! Figures as scenes of simple primitives, rendered to SVG (text) and PNG (tiny-skia, with
+//! an embedded 8×8 bitmap font, so no system fonts are needed).
+//!
+//! A [`Figure`] is a list of [`Prim`]itives in pixel coordinates (origin top-left, y down).
+//! [`deformed`] builds the deformed-mesh figures of the paper (its Fig. 2 and Fig. 3),
+//! [`convergence`] the log–log convergence plots.
+
+pub mod deformed;
+
+use crate::error::{Error, Result};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// An RGB colour.
+pub type Rgb = [u8; 3];
+
+/// Text anchor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Anchor {
+    /// Left-aligned at the position.
+    Start,
+    /// Centred on the position.
+    Middle,
+    /// Right-aligned at the position.
+    End,
+}
+
+/// A drawing primitive (pixel coordinates).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Prim {
+    /// Line segments `(a, b)` drawn with one stroke.
+    Segments {
+        /// The segments.
+        segments: Vec<([f64; 2], [f64; 2])>,
+        /// Colour.
+        color: Rgb,
+        /// Width (px).
+        width: f64,
+    },
+    /// An open or closed polyline.
+    Polyline {
+        /// Vertices.
+        points: Vec<[f64; 2]>,
+        /// Colour.
+        color: Rgb,
+        /// Width (px).
+        width: f64,
+        /// Dashed.
+        dashed: bool,
+    },
+    /// A filled polygon.
+    Polygon {
+        /// Vertices.
+        points: Vec<[f64; 2]>,
+        /// Fill colour.
+        fill: Rgb,
+    },
+    /// An arrow from `from` to `to` with a head of `head` px.
+    Arrow {
+        /// Tail.
+        from: [f64; 2],
+        /// Tip.
+        to: [f64; 2],
+        /// Colour.
+        color: Rgb,
+        /// Width (px).
+        width: f64,
+    },
+    /// A filled circle.
+    Circle {
+        /// Centre.
+        center: [f64; 2],
+        /// Radius (px).
+        radius: f64,
+        /// Fill colour.
+        fill: Rgb,
+    },
+    /// A text label (height ≈ `size` px).
+    Text {
+        /// Anchor position (baseline).
+        pos: [f64; 2],
+        /// The text (ASCII; other characters are drawn as `?` in PNG).
+        text: String,
+        /// Height (px); the PNG font scales the 8×8 glyphs by `round(size / 8)`.
+        size: f64,
+        /// Anchor.
+        anchor: Anchor,
+        /// Colour.
+        color: Rgb,
+    },
+}
+
+/// A figure: size in pixels and primitives.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Figure {
+    /// Width (px).
+    pub width: u32,
+    /// Height (px).
+    pub height: u32,
+    /// Primitives, drawn in order.
+    pub prims: Vec<Prim>,
+}
+
+fn hex(c: Rgb) -> String {
+    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+impl Figure {
+    /// A blank figure.
+    pub fn new(width: u32, height: u32) -> Self {
+        Figure {
+            width,
+            height,
+            prims: Vec::new(),
+        }
+    }
+
+    /// The SVG document.
+    pub fn to_svg(&self) -> String {
+        let mut s = String::new();
+        let _ = writeln!(
+            s,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
+             <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>",
+            w = self.width,
+            h = self.height
+        );
+        for p in &self.prims {
+            match p {
+                Prim::Segments {
+                    segments,
+                    color,
+                    width,
+                } => {
+                    let mut d = String::with_capacity(24 * segments.len());
+                    for (a, b) in segments {
+                        let _ = write!(d, "M{:.1} {:.1}L{:.1} {:.1}", a[0], a[1], b[0], b[1]);
+                    }
+                    let _ = writeln!(
+                        s,
+                        "<path d=\"{d}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"/>",
+                        hex(*color)
+                    );
+                }
+                Prim::Polyline {
+                    points,
+                    color,
+                    width,
+                    dashed,
+                } => {
+                    let pts: Vec<String> = points
+                        .iter()
+                        .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
+                        .collect();
+                    let dash = if *dashed {
+                        " stroke-dasharray=\"6 4\""
+                    } else {
+                        ""
+                    };
+                    let _ = writeln!(
+                        s,
+                        "<polyline points=\"{}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"{dash}/>",
+                        pts.join(" "),
+                        hex(*color)
+                    );
+                }
+                Prim::Polygon { points, fill } => {
+                    let pts: Vec<String> = points
+                        .iter()
+                        .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
+                        .collect();
+                    let _ = writeln!(
+                        s,
+                        "<polygon points=\"{}\" fill=\"{}\"/>",
+                        pts.join(" "),
+                        hex(*fill)
+                    );
+                }
+                Prim::Arrow {
+                    from,
+                    to,
+                    color,
+                    width,
+                } => {
+                    let head = arrow_head(*from, *to, 3.0 + 2.0 * width);
+                    let _ = writeln!(
+                        s,
+                        "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{c}\" stroke-width=\"{width}\"/>\
+                         <polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{c}\"/>",
+                        from[0],
+                        from[1],
+                        to[0],
+                        to[1],
+                        head[0][0],
+                        head[0][1],
+                        head[1][0],
+                        head[1][1],
+                        head[2][0],
+                        head[2][1],
+                        c = hex(*color)
+                    );
+                }
+                Prim::Circle {
+                    center,
+                    radius,
+                    fill,
+                } => {
+                    let _ = writeln!(
+                        s,
+                        "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{radius}\" fill=\"{}\"/>",
+                        center[0],
+                        center[1],
+                        hex(*fill)
+                    );
+                }
+                Prim::Text {
+                    pos,
+                    text,
+                    size,
+                    anchor,
+                    color,
+                } => {
+                    let a = match anchor {
+                        Anchor::Start => "start",
+                        Anchor::Middle => "middle",
+                        Anchor::End => "end",
+                    };
+                    let _ = writeln!(
+                        s,
+                        "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"sans-serif\" font-size=\"{size}\" \
+                         text-anchor=\"{a}\" fill=\"{}\">{}</text>",
+                        pos[0],
+                        pos[1],
+                        hex(*color),
+                        xml_escape(text)
+                    );
+                }
+            }
+        }
+        s.push_str("</svg>\n");
+        s
+    }
+
+    /// The PNG image.
+    ///
+    /// # Errors
+    /// [`Error::Breakdown`] if the image cannot be allocated or encoded.
+    pub fn to_png(&self) -> Result<Vec<u8>> {
+        use tiny_skia::{
+            Color, FillRule, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
+        };
+        let mut pm = Pixmap::new(self.width, self.height).ok_or_else(|| {
+            Error::Breakdown(format!(
+                "cannot allocate a {}×{} image",
+                self.width, self.height
+            ))
+        })?;
+        pm.fill(Color::WHITE);
+        let paint_of = |c: Rgb| {
+            let mut p = Paint::default();
+            p.set_color_rgba8(c[0], c[1], c[2], 255);
+            p.anti_alias = true;
+            p
+        };
+        let id = Transform::identity();
+        let f = |x: f64| x as f32;
+        for p in &self.prims {
+            match p {
+                Prim::Segments {
+                    segments,
+                    color,
+                    width,
+                } => {
+                    let mut pb = PathBuilder::new();
+                    for (a, b) in segments {
+                        pb.move_to(f(a[0]), f(a[1]));
+                        pb.line_to(f(b[0]), f(b[1]));
+                    }
+                    if let Some(path) = pb.finish() {
+                        let stroke = Stroke {
+                            width: f(*width),
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*color), &stroke, id, None);
+                    }
+                }
+                Prim::Polyline {
+                    points,
+                    color,
+                    width,
+                    dashed,
+                } => {
+                    let mut pb = PathBuilder::new();
+                    for (k, q) in points.iter().enumerate() {
+                        if k == 0 {
+                            pb.move_to(f(q[0]), f(q[1]));
+                        } else {
+                            pb.line_to(f(q[0]), f(q[1]));
+                        }
+                    }
+                    if let Some(path) = pb.finish() {
+                        let mut stroke = Stroke {
+                            width: f(*width),
+                            ..Stroke::default()
+                        };
+                        if *dashed {
+                            stroke.dash = StrokeDash::new(vec![6.0, 4.0], 0.0);
+                        }
+                        pm.stroke_path(&path, &paint_of(*color), &stroke, id, None);
+                    }
+                }
+                Prim::Polygon { points, fill } => {
+                    let mut pb = PathBuilder::new();
+                    for (k, q) in points.iter().enumerate() {
+                        if k == 0 {
+                            pb.move_to(f(q[0]), f(q[1]));
+                        } else {
+                            pb.line_to(f(q[0]), f(q[1]));
+                        }
+                    }
+                    pb.close();
+                    if let Some(path) = pb.finish() {
+                        pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
+                    }
+                }
+                Prim::Arrow {
+                    from,
+                    to,
+                    color,
+                    width,
+                } => {
+                    let mut pb = PathBuilder::new();
+                    pb.move_to(f(from[0]), f(from[1]));
+                    pb.line_to(f(to[0]), f(to[1]));
+                    if let Some(path) = pb.finish() {
+                        let stroke = Stroke {
+                            width: f(*width),
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*color), &stroke, id, None);
+                    }
+                    let h = arrow_head(*from, *to, 3.0 + 2.0 * width);
+                    let mut pb = PathBuilder::new();
+                    pb.move_to(f(h[0][0]), f(h[0][1]));
+                    pb.line_to(f(h[1][0]), f(h[1][1]));
+                    pb.line_to(f(h[2][0]), f(h[2][1]));
+                    pb.close();
+                    if let Some(path) = pb.finish() {
+                        pm.fill_path(&path, &paint_of(*color), FillRule::Winding, id, None);
+                    }
+                }
+                Prim::Circle {
+                    center,
+                    radius,
+                    fill,
+                } => {
+                    if let Some(path) =
+                        PathBuilder::from_circle(f(center[0]), f(center[1]), f(*radius))
+                    {
+                        pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
+                    }
+                }
+                Prim::Text {
+                    pos,
+                    text,
+                    size,
+                    anchor,
+                    color,
+                } => {
+                    draw_text(&mut pm, *pos, text, *size, *anchor, *color);
+                }
+            }
+        }
+        pm.encode_png()
+            .map_err(|e| Error::Breakdown(format!("PNG encoding: {e}")))
+    }
+
+    /// Writes `<stem>.svg` and `<stem>.png` into `dir` (atomically); returns the paths.
+    ///
+    /// # Errors
+    /// [`Error::Io`] if a file cannot be written.
+    pub fn write(&self, dir: &Path, stem: &str) -> Result<Vec<std::path::PathBuf>> {
+        let svg = dir.join(format!("{stem}.svg"));
+        let png = dir.join(format!("{stem}.png"));
+        crate::io::atomic::write(&svg, self.to_svg().as_bytes())?;
+        crate::io::atomic::write(&png, &self.to_png()?)?;
+        Ok(vec![svg, png])
+    }
+}
+
+/// Width in pixels of `text` at height `size` as drawn in the PNG (the SVG font is about
+/// as wide).
+pub fn text_width(text: &str, size: f64) -> f64 {
+    8.0 * (size / 8.0).round().max(1.0) * text.chars().count() as f64
+}
+
+/// The three corners of an arrow head of length `len` at `to`.
+fn arrow_head(from: [f64; 2], to: [f64; 2], len: f64) -> [[f64; 2]; 3] {
+    let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+    let l = (dx * dx + dy * dy).sqrt().max(1e-9);
+    let (ux, uy) = (dx / l, dy / l);
+    let len = len.min(0.6 * l);
+    let base = [to[0] - len * ux, to[1] - len * uy];
+    let w = 0.5 * len;
+    [
+        to,
+        [base[0] - w * uy, base[1] + w * ux],
+        [base[0] + w * uy, base[1] - w * ux],
+    ]
+}
+
+/// Draws ASCII text with the embedded 8×8 bitmap font, scaled to about `size` px.
+fn draw_text(
+    pm: &mut tiny_skia::Pixmap,
+    pos: [f64; 2],
+    text: &str,
+    size: f64,
+    anchor: Anchor,
+    color: Rgb,
+) {
+    use font8x8::UnicodeFonts;
+    let scale = (size / 8.0).round().max(1.0) as i64;
+    let advance = 8 * scale;
+    let width = advance * text.chars().count() as i64;
+    let x0 = match anchor {
+        Anchor::Start => pos[0] as i64,
+        Anchor::Middle => pos[0] as i64 - width / 2,
+        Anchor::End => pos[0] as i64 - width,
+    };
+    let y0 = pos[1] as i64 - 7 * scale;
+    let (w, h) = (pm.width() as i64, pm.height() as i64);
+    let data = pm.data_mut();
+    for (k, ch) in text.chars().enumerate() {
+        let glyph = font8x8::BASIC_FONTS
+            .get(ch)
+            .or_else(|| font8x8::BASIC_FONTS.get('?'))
+            .unwrap_or([0; 8]);
+        for (row, bits) in glyph.iter().enumerate() {
+            for col in 0..8 {
+                if bits & (1 << col) == 0 {
+                    continue;
+                }
+                for sy in 0..scale {
+                    for sx in 0..scale {
+                        let x = x0 + k as i64 * advance + col * scale + sx;
+                        let y = y0 + row as i64 * scale + sy;
+                        if x >= 0 && y >= 0 && x < w && y < h {
+                            let i = 4 * (y * w + x) as usize;
+                            data[i] = color[0];
+                            data[i + 1] = color[1];
+                            data[i + 2] = color[2];
+                            data[i + 3] = 255;
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
