@@ -110,6 +110,31 @@ fn print_problem(problem: &Problem, source: &str) {
     );
     let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
     println!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+    let lock = &problem.material.locking;
+    if lock.c_kappa > 0.0 {
+        println!(
+            "locking    {:?}, penalty C_κ = {:e} Pa",
+            lock.set, lock.c_kappa
+        );
+    } else {
+        println!("locking    none");
+    }
+    for (k, c) in problem.contact.iter().enumerate() {
+        let friction = match &c.friction {
+            None => "frictionless".to_string(),
+            Some(f) => format!(
+                "{:?}-type bound, μ = {:?}, j = {:?}",
+                f.bound, f.mu, f.potential
+            ),
+        };
+        println!(
+            "contact[{k}] part `{}`: gap {} m, normal compliance c_ν = {:e}, {friction}",
+            mesh.part_names()[c.part],
+            c.gap,
+            c.normal.c_nu
+        );
+    }
+    println!("contact points {}", problem.contact_nodes().len());
     println!("boundary parts:");
     for (p, name) in mesh.part_names().iter().enumerate() {
         let facets = mesh.part_facets(p).count();
@@ -120,6 +145,9 @@ fn print_problem(problem: &Problem, source: &str) {
         }
         if problem.tractions.iter().any(|t| t.part == p) {
             roles.push("Neumann");
+        }
+        if problem.contact.iter().any(|c| c.part == p) {
+            roles.push("contact");
         }
         let role = if roles.is_empty() {
             "free".to_string()

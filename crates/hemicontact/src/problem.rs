@@ -112,20 +112,21 @@ impl Problem {
         DofMap::new(d, self.mesh.n_nodes(), &fixed)
     }
 
-    /// Whether each node lies on a Dirichlet part (such nodes are never contact nodes).
-    pub fn on_dirichlet(&self) -> Vec<bool> {
-        let mut on = vec![false; self.mesh.n_nodes()];
-        for bc in &self.dirichlet {
-            for v in self.mesh.part_nodes(bc.part) {
-                on[v as usize] = true;
-            }
-        }
-        on
+    /// Whether each node has all its displacement components prescribed (a node of Γ_D in
+    /// the SPEC's sense, `u = 0` on Γ_D; such nodes are never contact nodes). A node on a
+    /// roller (some components free) stays a contact node: the foundation acts on its free
+    /// components.
+    pub fn fully_prescribed(&self) -> Vec<bool> {
+        let d = self.mesh.dim();
+        let dofs = self.dof_map();
+        (0..self.mesh.n_nodes())
+            .map(|v| (0..d).all(|i| dofs.is_fixed(d * v + i)))
+            .collect()
     }
 
     /// The contact points of the problem (SPEC §3).
     pub fn contact_nodes(&self) -> ContactNodes {
-        ContactNodes::new(&self.mesh, &self.contact, &self.on_dirichlet())
+        ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())
     }
 
     /// Diameter of the mesh's bounding box (m): the length scale of the problem.

@@ -34,8 +34,8 @@ pub struct ContactNodes {
 
 impl ContactNodes {
     /// Builds the contact points of `boundaries` on `mesh`, skipping nodes where
-    /// `on_dirichlet[node]` is true.
-    pub fn new(mesh: &Mesh, boundaries: &[ContactBoundary], on_dirichlet: &[bool]) -> Self {
+    /// `excluded[node]` is true (nodes with all components prescribed).
+    pub fn new(mesh: &Mesh, boundaries: &[ContactBoundary], excluded: &[bool]) -> Self {
         let d = mesh.dim();
         let mut out = ContactNodes::default();
         let mut acc_w = vec![0.0; mesh.n_nodes()];
@@ -56,7 +56,7 @@ impl ContactNodes {
                 }
             }
             for &v in &nodes {
-                if on_dirichlet[v as usize] {
+                if excluded[v as usize] {
                     continue;
                 }
                 let mut n = acc_n[v as usize];

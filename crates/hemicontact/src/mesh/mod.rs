@@ -59,7 +59,10 @@ impl Mesh {
             )));
         }
         let nv = dim + 1;
-        if !coords.len().is_multiple_of(dim) || !cells.len().is_multiple_of(nv) || !facets.len().is_multiple_of(dim) {
+        if !coords.len().is_multiple_of(dim)
+            || !cells.len().is_multiple_of(nv)
+            || !facets.len().is_multiple_of(dim)
+        {
             return Err(Error::Mesh(
                 "array lengths do not match the dimension".into(),
             ));

@@ -17,6 +17,10 @@
 //! contact; a Tresca-type bound acts regardless of the pressure, so its points are stick or
 //! slip), *slip* when in contact with `r > r_stick` (or frictionless), *stick* otherwise.
 //!
+//! On a roller node (some components prescribed), a law is only checked along directions
+//! that involve free components only: along a prescribed one the force is a support
+//! reaction.
+//!
 //! Residuals are forces (N, or N/m in 2D), reported relative to the force scale `S` =
 //! the largest nodal external force or contact force. `r_stick = 10³ ρ_num`.
 
@@ -112,6 +116,7 @@ pub fn evaluate(
     u: &[f64],
     grad_bulk: &[f64],
     f_ext: &[f64],
+    fixed: &dyn Fn(usize) -> bool,
     equilibrium: f64,
 ) -> (Vec<ContactResult>, Certificate) {
     let d = ca.dim;
@@ -138,7 +143,16 @@ pub fn evaluate(
         for a in 0..m {
             ft[a] = (0..d).map(|k| force[k] * t[a][k]).sum();
         }
-        let normal_residual = (fn_ + w * s.pressure).abs();
+        // On a roller, the force along a prescribed component is a support reaction, not a
+        // contact force: a law is checked only along directions made of free components.
+        let free = |dir: &[f64; 3]| (0..d).all(|k| dir[k].abs() < 1e-12 || !fixed(d * v + k));
+        let normal_checked = free(n);
+        let tangent_checked = (0..m).all(|a| free(&t[a]));
+        let normal_residual = if normal_checked {
+            (fn_ + w * s.pressure).abs()
+        } else {
+            0.0
+        };
         let ft_norm = (ft[0] * ft[0] + ft[1] * ft[1]).sqrt();
         let in_contact = s.pressure > 0.0;
         let (status, friction_residual) = match &cb.friction {
@@ -179,6 +193,11 @@ pub fn evaluate(
                     )
                 }
             }
+        };
+        let friction_residual = if tangent_checked {
+            friction_residual
+        } else {
+            0.0
         };
         scale = scale.max(w * s.pressure).max(w * s.bound);
         results.push(ContactResult {

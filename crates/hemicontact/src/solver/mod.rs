@@ -118,6 +118,7 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         steps: 0,
         residual: f64::NAN,
         energy: f64::NAN,
+        force_scale: f64::NAN,
     };
     report.converged = false;
     for k in 0..settings.outer.max_iterations.max(1) {
@@ -151,9 +152,15 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             .map(|(a, b)| (a - b).powi(2))
             .sum::<f64>()
             .sqrt();
+        let g_norm = g.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let fp_rel = if fp == 0.0 {
+            0.0
+        } else {
+            fp / g_norm.max(f64::MIN_POSITIVE)
+        };
         let mut step = report::OuterStep {
             change,
-            fixed_point_residual: fp,
+            fixed_point_residual: fp_rel,
             newton_steps: last.steps,
             newton_tolerance: tol,
             newton_converged: last.converged,
@@ -169,7 +176,8 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             break;
         }
         let at_final = tol == final_tol && last.converged;
-        if at_final && (!outer_loop || change <= settings.outer.tolerance) {
+        let tol_outer = settings.outer.tolerance;
+        if at_final && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer)) {
             report.outer.push(step);
             report.converged = true;
             report.message = format!(
@@ -189,9 +197,10 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     }
     if !report.converged && report.message.is_empty() || report.message == "not started" {
         report.message = format!(
-            "not converged: {} outer iterations (cap), last relative change {:e} > tolerance {:e}{}",
+            "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
             report.outer.len(),
             change,
+            report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
             settings.outer.tolerance,
             if mixer.oscillations > 0 { "; oscillation was detected" } else { "" }
         );
@@ -200,10 +209,15 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     let energy = system.evaluate(problem, &u, &frozen, false);
     let reactions = system.reactions();
     let ca = system.contact_assembler(problem);
-    let equilibrium = last.residual
-        / (report.residual_tolerance / final_tol.max(f64::MIN_POSITIVE)).max(f64::MIN_POSITIVE);
-    let (contact, certificate) =
-        certificate::evaluate(&ca, &u, &system.grad_bulk, &system.f_ext, equilibrium);
+    let equilibrium = last.residual / last.force_scale;
+    let (contact, certificate) = certificate::evaluate(
+        &ca,
+        &u,
+        &system.grad_bulk,
+        &system.f_ext,
+        &|k| system.dofs.is_fixed(k),
+        equilibrium,
+    );
     report.certificate = certificate;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {

@@ -70,6 +70,8 @@ pub struct NewtonOutcome {
     pub residual: f64,
     /// Energy at the final iterate (J).
     pub energy: f64,
+    /// Force scale of the residual criterion, `max(‖f_ext‖, ‖∇W‖)` (N).
+    pub force_scale: f64,
 }
 
 /// Minimizes the convexified energy of `problem` for the frozen quantities `frozen`,
@@ -112,7 +114,8 @@ pub fn minimize(
             .map(|(g, f)| (g + f).powi(2))
             .sum::<f64>()
             .sqrt();
-        let tol = tolerance * f_scale.max(internal).max(f64::MIN_POSITIVE);
+        let force_scale = f_scale.max(internal).max(f64::MIN_POSITIVE);
+        let tol = tolerance * force_scale;
         report.residual = res;
         report.residual_tolerance = tol;
         if !energy.is_finite() || !res.is_finite() {
@@ -127,6 +130,7 @@ pub fn minimize(
                 steps,
                 residual: res,
                 energy,
+                force_scale,
             });
         }
         for (d, ri) in r_neg.iter_mut().zip(&r) {
@@ -168,6 +172,7 @@ pub fn minimize(
                 steps,
                 residual: res,
                 energy,
+                force_scale,
             });
         }
         for (dof, &eq) in system.dofs.equations().iter().enumerate() {

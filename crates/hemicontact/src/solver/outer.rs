@@ -21,7 +21,10 @@
 //!   final Newton tolerance `tol_N`.
 //!
 //! The loop stops when the relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E` falls below
-//! `tolerance` (default 1e-10), or reports non-convergence after `max_iterations`.
+//! `tolerance` (default 1e-10) *and* so does the relative fixed-point residual
+//! `‖G(z) − z‖ / ‖G(z)‖` (a mixed iterate can stall — `u` stops changing while the frozen
+//! quantities are still inconsistent with it — so the change of u alone is not a proof of
+//! convergence); otherwise it reports non-convergence after `max_iterations`.
 
 use crate::assembly::contact::Frozen;
 use serde::{Deserialize, Serialize};
@@ -157,8 +160,8 @@ impl Mixer {
                 (next, note)
             }
             Acceleration::Anderson => {
-                if prev.is_some_and(|p| res > p) {
-                    // Safeguard: the residual grew. Restart from a damped step.
+                if prev.is_some_and(|p| res >= p) {
+                    // Safeguard: the residual did not decrease. Restart from a damped step.
                     self.restarts += 1;
                     self.f_hist.clear();
                     self.g_hist.clear();
@@ -210,6 +213,21 @@ impl Mixer {
                     for (k, x) in next.iter_mut().enumerate() {
                         *x -= gj * (self.g_hist[j + 1][k] - self.g_hist[j][k]);
                     }
+                }
+                // Stagnation: the mixed iterate does not move although the residual is not
+                // small. Restart from a damped step.
+                let moved = norm(&next.iter().zip(z).map(|(a, b)| a - b).collect::<Vec<_>>());
+                if moved < 1e-3 * res {
+                    self.restarts += 1;
+                    self.f_hist.clear();
+                    self.g_hist.clear();
+                    self.f_hist.push(f.clone());
+                    self.g_hist.push(g.to_vec());
+                    let next = z.iter().zip(&f).map(|(a, b)| a + 0.5 * b).collect();
+                    return (
+                        next,
+                        "Anderson stagnated: restart, damped step ω = 0.5".into(),
+                    );
                 }
                 (next, format!("Anderson, depth {m}"))
             }

@@ -46,7 +46,7 @@ pub struct NewtonStep {
 pub struct OuterStep {
     /// Relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E` (∞ for the first iteration).
     pub change: f64,
-    /// Norm of the fixed-point residual `G(z) − z` of the frozen quantities.
+    /// Relative fixed-point residual `‖G(z) − z‖ / ‖G(z)‖` of the frozen quantities.
     pub fixed_point_residual: f64,
     /// Newton steps of this convex solve.
     pub newton_steps: usize,
