@@ -111,3 +111,76 @@ pub fn run(sizes: &[usize], repeat: usize) -> Result<()> {
     println!("times in seconds; numeric phases are medians of the repetitions");
     Ok(())
 }
+
+/// Peak resident memory of this process so far (MiB), from /proc/self/status (Linux).
+fn peak_memory_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+/// The nonlinear paper solve (C_κ = 10 000) against one linear elastic solve on the same
+/// mesh, measured in the same run: medians of `repeat` end-to-end solves each.
+pub fn run_paper(sizes: &[usize], repeat: usize) -> Result<()> {
+    let repeat = repeat.max(1);
+    println!(
+        "{:>5} {:>9} {:>10} {:>10} {:>7} {:>6} {:>7} {:>8} {:>10} {:>10}",
+        "n",
+        "DOFs",
+        "linear s",
+        "paper s",
+        "ratio",
+        "outer",
+        "Newton",
+        "factor.",
+        "solve s",
+        "peak MiB"
+    );
+    for &n in sizes {
+        let linear = Scenario::from_str(&builtin::paper_elastic(n), "<bench>")?.into_problem()?;
+        let paper = Scenario::from_str(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?;
+        let mut t_lin = Vec::new();
+        let mut t_pap = Vec::new();
+        let mut t_solve = Vec::new();
+        let mut last = None;
+        for _ in 0..repeat {
+            let t = Instant::now();
+            let s = hemicontact::solver::solve(&linear)?;
+            t_lin.push(t.elapsed().as_secs_f64());
+            anyhow::ensure!(s.report.converged, "linear solve did not converge");
+            let t = Instant::now();
+            let s = hemicontact::solver::solve(&paper)?;
+            t_pap.push(t.elapsed().as_secs_f64());
+            anyhow::ensure!(
+                s.report.converged,
+                "paper solve did not converge: {}",
+                s.report.message
+            );
+            let tm = &s.report.timings;
+            t_solve.push(tm.total - tm.pattern - tm.symbolic);
+            last = Some(s);
+        }
+        let s = last.ok_or_else(|| anyhow::anyhow!("no run"))?;
+        let (lin, pap) = (median(t_lin), median(t_pap));
+        println!(
+            "{:>5} {:>9} {:>10.3} {:>10.3} {:>7.2} {:>6} {:>7} {:>8} {:>10.3} {:>10.0}",
+            n,
+            s.report.n_dofs,
+            lin,
+            pap,
+            pap / lin,
+            s.report.outer.len(),
+            s.report.newton.len(),
+            s.report.timings.n_factorizations,
+            median(t_solve),
+            peak_memory_mib().unwrap_or(f64::NAN)
+        );
+    }
+    println!(
+        "end-to-end seconds (setup included), medians of {repeat}; 'solve s' excludes the pattern \
+         and symbolic analysis; ratio = paper / linear elastic on the same mesh; peak = process \
+         peak resident memory so far"
+    );
+    Ok(())
+}

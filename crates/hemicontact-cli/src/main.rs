@@ -52,7 +52,8 @@ enum Command {
         out: PathBuf,
     },
     /// Time the phases of a linear solve of the paper's square (pattern, assembly,
-    /// ordering + symbolic analysis, numeric factorization, triangular solve).
+    /// ordering + symbolic analysis, numeric factorization, triangular solve), or with
+    /// --paper the whole nonlinear paper solve against a linear elastic solve.
     Bench {
         /// Comma-separated mesh sizes n (squares per side).
         #[arg(long, value_delimiter = ',', default_values_t = vec![128usize, 512])]
@@ -60,6 +61,10 @@ enum Command {
         /// Repetitions of the numeric phases (the median is reported).
         #[arg(long, default_value_t = 3)]
         repeat: usize,
+        /// Benchmark the nonlinear paper solve (C_κ = 10 000) against a linear elastic
+        /// solve on the same mesh instead of the linear-algebra phases.
+        #[arg(long)]
+        paper: bool,
     },
 }
 
@@ -75,7 +80,12 @@ fn main() -> ExitCode {
         Command::Check { file } => check(&file).map(|_| Outcome::Done),
         Command::Solve { file, out } => solve(&file, out.as_deref()),
         Command::Paper { n, out } => paper(n, &out),
-        Command::Bench { n, repeat } => bench::run(&n, repeat).map(|_| Outcome::Done),
+        Command::Bench { n, repeat, paper } => if paper {
+            bench::run_paper(&n, repeat)
+        } else {
+            bench::run(&n, repeat)
+        }
+        .map(|_| Outcome::Done),
     };
     match result {
         Ok(Outcome::Done) => ExitCode::SUCCESS,

@@ -17,6 +17,27 @@ pub enum Want {
     Hessian,
 }
 
+/// Buffers for [`BulkAssembler::assemble_parallel`]: one gradient and one Hessian array per
+/// chunk beyond the first, kept between calls so that assembly does not allocate.
+#[derive(Clone, Debug, Default)]
+pub struct Workspace {
+    /// Number of chunks (parallel tasks); 1 assembles serially.
+    pub chunks: usize,
+    grads: Vec<Vec<f64>>,
+    hesses: Vec<Vec<f64>>,
+}
+
+impl Workspace {
+    /// A workspace for `chunks` parallel chunks.
+    pub fn new(chunks: usize) -> Self {
+        Workspace {
+            chunks: chunks.max(1),
+            grads: Vec::new(),
+            hesses: Vec::new(),
+        }
+    }
+}
+
 /// Assembles the bulk energy of a mesh and a material.
 #[derive(Clone, Copy, Debug)]
 pub struct BulkAssembler<'a, M: StrainEnergy> {
@@ -26,7 +47,7 @@ pub struct BulkAssembler<'a, M: StrainEnergy> {
     pub material: &'a M,
 }
 
-impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
+impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
     /// Local displacement vector of cell `c` from the global vector `u` (DOF order).
     #[inline]
     fn gather(&self, u: &[f64], c: usize) -> [f64; 12] {
@@ -44,6 +65,7 @@ impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
     /// respect to *all* DOFs into `grad` (length `d · n_nodes`, overwritten): its entries at
     /// prescribed DOFs are the reaction forces. With [`Want::Hessian`], the upper-triangular
     /// Hessian on the free DOFs is written into `hess` (length `pattern.nnz()`, overwritten).
+    /// Serial; see [`BulkAssembler::assemble_parallel`].
     ///
     /// # Panics
     /// If a length does not match, or `Want::Hessian` is asked without `hess`.
@@ -54,21 +76,105 @@ impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
         grad: &mut [f64],
         want: Want,
         pattern: &SystemPattern,
+        hess: Option<&mut [f64]>,
+    ) -> f64 {
+        let mesh = self.mesh;
+        assert_eq!(u.len(), mesh.dim() * mesh.n_nodes());
+        assert_eq!(grad.len(), u.len());
+        if let Some(h) = hess.as_deref() {
+            assert_eq!(h.len(), pattern.nnz());
+        }
+        assert!(want == Want::Gradient || hess.is_some());
+        let hess = if want == Want::Hessian { hess } else { None };
+        self.assemble_range(0..mesh.n_cells(), u, grad, pattern, hess)
+    }
+
+    /// As [`BulkAssembler::assemble`], with the cells split into `workspace.chunks`
+    /// contiguous ranges assembled in parallel (rayon) into private buffers that are then
+    /// summed in range order. The result is deterministic for a given number of chunks and
+    /// equal to the serial one up to the order of floating-point additions.
+    ///
+    /// # Panics
+    /// As [`BulkAssembler::assemble`].
+    #[track_caller]
+    pub fn assemble_parallel(
+        &self,
+        u: &[f64],
+        grad: &mut [f64],
+        want: Want,
+        pattern: &SystemPattern,
+        hess: Option<&mut [f64]>,
+        workspace: &mut Workspace,
+    ) -> f64 {
+        let n_cells = self.mesh.n_cells();
+        // Below a few thousand cells per chunk the buffers cost more than they save.
+        let k = workspace.chunks.min(n_cells / 4096).max(1);
+        if k == 1 {
+            return self.assemble(u, grad, want, pattern, hess);
+        }
+        assert_eq!(grad.len(), u.len());
+        assert!(want == Want::Gradient || hess.is_some());
+        let hess = if want == Want::Hessian { hess } else { None };
+        let with_hess = hess.is_some();
+        workspace.grads.resize_with(k - 1, Vec::new);
+        workspace.hesses.resize_with(k - 1, Vec::new);
+        let mut jobs: Vec<(std::ops::Range<usize>, &mut [f64], Option<&mut [f64]>)> =
+            Vec::with_capacity(k);
+        let bounds: Vec<usize> = (0..=k).map(|i| i * n_cells / k).collect();
+        jobs.push((bounds[0]..bounds[1], grad, hess));
+        for (i, (g, h)) in workspace
+            .grads
+            .iter_mut()
+            .zip(workspace.hesses.iter_mut())
+            .enumerate()
+        {
+            g.resize(u.len(), 0.0);
+            let h = if with_hess {
+                h.resize(pattern.nnz(), 0.0);
+                Some(h.as_mut_slice())
+            } else {
+                None
+            };
+            jobs.push((bounds[i + 1]..bounds[i + 2], g.as_mut_slice(), h));
+        }
+        use rayon::prelude::*;
+        let energies: Vec<f64> = jobs
+            .par_iter_mut()
+            .map(|(r, g, h)| self.assemble_range(r.clone(), u, g, pattern, h.as_deref_mut()))
+            .collect();
+        let (first, rest) = jobs.split_at_mut(1);
+        let (_, grad, hess) = &mut first[0];
+        for (_, g, h) in rest.iter() {
+            for (a, b) in grad.iter_mut().zip(g.iter()) {
+                *a += b;
+            }
+            if let (Some(dst), Some(src)) = (hess.as_deref_mut(), h.as_deref()) {
+                for (a, b) in dst.iter_mut().zip(src.iter()) {
+                    *a += b;
+                }
+            }
+        }
+        energies.iter().sum()
+    }
+
+    /// Serial assembly of the cells in `range` into `grad` and `hess` (overwritten).
+    fn assemble_range(
+        &self,
+        range: std::ops::Range<usize>,
+        u: &[f64],
+        grad: &mut [f64],
+        pattern: &SystemPattern,
         mut hess: Option<&mut [f64]>,
     ) -> f64 {
         let mesh = self.mesh;
         let d = mesh.dim();
         let ld = d * (d + 1);
-        assert_eq!(u.len(), d * mesh.n_nodes());
-        assert_eq!(grad.len(), u.len());
         grad.fill(0.0);
         if let Some(h) = hess.as_deref_mut() {
-            assert_eq!(h.len(), pattern.nnz());
             h.fill(0.0);
         }
-        assert!(want == Want::Gradient || hess.is_some());
         let mut energy = 0.0;
-        for c in 0..mesh.n_cells() {
+        for c in range {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix(d, &geo);
             let ue = self.gather(u, c);

@@ -4,7 +4,7 @@
 //! gradient and generalized Hessian for given frozen contact quantities.
 
 use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};
-use crate::assembly::global::Want;
+use crate::assembly::global::{Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
 use crate::error::Result;
@@ -45,6 +45,8 @@ pub struct System {
     work: [Vec<f64>; 4],
     /// Refactorize at the next linear solve (the factorization went stale).
     refactor_next: bool,
+    /// Parallel assembly buffers.
+    workspace: Workspace,
 }
 
 /// How a Newton system was solved.
@@ -94,6 +96,10 @@ impl System {
             factored: Vec::new(),
             work: Default::default(),
             refactor_next: false,
+            workspace: Workspace::new(match problem.solver.threads {
+                0 => rayon::current_num_threads(),
+                t => t,
+            }),
         })
     }
 
@@ -131,7 +137,14 @@ impl System {
         } else {
             None
         };
-        let e_bulk = bulk.assemble(u, &mut self.grad_bulk, want, &self.pattern, hess);
+        let e_bulk = bulk.assemble_parallel(
+            u,
+            &mut self.grad_bulk,
+            want,
+            &self.pattern,
+            hess,
+            &mut self.workspace,
+        );
         let mut work = 0.0;
         for ((g, f), x) in self.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
             *g -= f;
