@@ -36,7 +36,7 @@ enum Command {
     Solve {
         /// Scenario file (TOML).
         file: PathBuf,
-        /// Output folder (default: the scenario's output.dir, else out/<file stem>).
+        /// Output folder (default: the scenario's output.dir, else `out/<file stem>`).
         #[arg(long)]
         out: Option<PathBuf>,
     },

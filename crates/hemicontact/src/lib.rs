@@ -4,14 +4,19 @@
 //! unilateral contact and nonmonotone, slip-dependent friction (variational–hemivariational
 //! inequalities, Barboteu–Han–Migórski 2018).
 //!
-//! The displacement `u` of an elastic body `Ω ⊂ R^d` minimizes a (per outer iteration
-//! convex) total energy
-//! `Π(u) = Σ_T |T| W(ε_T(u)) − ⟨f, u⟩` over P1 fields with `u = u_D` on Γ_D. The Hessian is
-//! assembled on a sparsity pattern built once, and factorized by a sparse Cholesky whose
-//! symbolic analysis is done once.
+//! An elastic body `Ω ⊂ R^d` (P1 triangles) is clamped on Γ_D, loaded on Γ_N and may touch
+//! rigid foundations on Γ_C (normal compliance) with slip-dependent (nonmonotone) friction;
+//! the material may *lock* (its strain is confined to a convex set B, here through the
+//! nearly-locking penalty). The solver ([`solver::solve`]) is the convexification method of
+//! SPEC §4: each outer iteration freezes the friction bound `F = μ(‖u_τ‖) p(u_ν)` (and the
+//! linearized concave part of a nonconvex potential) at the contact nodes and minimizes the
+//! remaining convex energy
+//! `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + Σ_i w_i [P(u_ν,i) + F_i^k j_cvx(u_τ,i) − b_i^k·u_τ,i] − ⟨f, u⟩`
+//! by a semismooth Newton method on a sparsity pattern whose symbolic Cholesky analysis is
+//! done once. Every solve returns a certificate computed from the equilibrium of the body.
 //!
-//! Layout (dependency order): [`mesh`] → [`fem`] → [`material`] → [`assembly`] →
-//! [`linalg`] → [`solver`] → [`scenario`] / [`io`].
+//! Layout (dependency order): [`mesh`] → [`fem`] → [`material`], [`contact`] (pointwise
+//! laws) → [`assembly`] → [`linalg`] → [`solver`] → [`scenario`] / [`io`] / [`plot`].
 //!
 //! ```
 //! use hemicontact::scenario::Scenario;
@@ -25,27 +30,43 @@
 //! poisson = 0.3
 //! [[dirichlet]]
 //! part = "bottom"
-//! [[traction]]
+//! [[loads.traction]]
 //! part = "top"
-//! value = [0.0, -10.0]
+//! value = [0.0, -300.0]
+//! [[contact]]
+//! part = "right"
+//! gap = 0.01
+//! c_nu = 1.0e4
+//! [contact.friction]
+//! bound = "coulomb"
+//! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 //! "#;
 //! let problem = Scenario::from_str(text, "<doc>").unwrap().into_problem().unwrap();
 //! let solution = hemicontact::solver::solve(&problem).unwrap();
 //! assert!(solution.report.converged);
+//! // The block bulges into the wall on the right: some node is in contact.
+//! assert!(solution.report.certificate.n_contact > 0);
+//! assert!(solution.report.certificate.friction_law < 1e-8);
 //! ```
 //!
 //! ## Outputs
 //!
 //! | file | content |
 //! |------|---------|
-//! | `solution.vtu` | VTK UnstructuredGrid: displacement and reactions at points; strain, stress, von Mises, tr ε per cell |
-//! | `summary.json` | sizes, timings per phase, Newton history, energy, energy norm, max displacement |
+//! | `solution.vtu` | VTK UnstructuredGrid: displacement, reactions, contact status, pressure, slip, interface force at points; strain, stress, von Mises, tr ε, locking activity per cell |
+//! | `contact.csv` | one row per contact node: kinematics, forces, status, law residuals |
+//! | `summary.json` | sizes, energy norm, max displacement, contact/slip/locked counts, iteration histories, timings, certificate |
+//! | `deformed.png/.svg` | the deformed mesh with interface forces (2D) |
 //!
 //! ## Current state / limitations
 //!
-//! - Linear elasticity (Hooke, plane strain/stress) in 2D on generated rectangles.
-//! - Contact, friction and locking laws, 3D tetrahedra and Gmsh meshes are not yet
-//!   implemented (see the project's issues).
+//! - 2D (triangles) on generated rectangles; 3D tetrahedra and Gmsh meshes are not yet
+//!   available.
+//! - Locking by the nearly-locking penalty and contact by normal compliance; the exact
+//!   constraints (ideal locking, Signorini) are not yet available.
+//! - The norm `‖·‖` of the friction potential is regularized numerically by
+//!   `ρ_num = 10⁻⁸ diam(Ω)` (see [`solver::OuterSettings::friction_regularization`]); a
+//!   sticking node may therefore move by up to about ρ_num.
 #![deny(missing_docs)]
 
 pub mod assembly;

@@ -45,6 +45,8 @@ pub struct System {
     work: [Vec<f64>; 4],
     /// Refactorize at the next linear solve (the factorization went stale).
     refactor_next: bool,
+    /// Duration of the last numeric factorization (s).
+    factor_seconds: f64,
     /// Parallel assembly buffers.
     workspace: Workspace,
 }
@@ -96,6 +98,7 @@ impl System {
             factored: Vec::new(),
             work: Default::default(),
             refactor_next: false,
+            factor_seconds: 0.0,
             workspace: Workspace::new(match problem.solver.threads {
                 0 => rayon::current_num_threads(),
                 t => t,
@@ -209,11 +212,15 @@ impl System {
             let ld = self.pattern.local_dofs();
             let rank_estimate = changed / (ld * (ld + 1) / 2);
             if settings.pcg_iterations > 0 && rank_estimate < settings.pcg_iterations {
-                if let Some(k) = self.pcg(b, x, settings.pcg_iterations, settings.pcg_tolerance) {
+                let t_pcg = Instant::now();
+                let outcome = self.pcg(b, x, settings.pcg_iterations, settings.pcg_tolerance);
+                let per_iteration = t_pcg.elapsed().as_secs_f64()
+                    / (outcome.unwrap_or(settings.pcg_iterations) + 1) as f64;
+                if let Some(k) = outcome {
                     info.pcg_iterations = k;
-                    // A factorization that needs several PCG iterations is stale: the next
-                    // system will most likely differ from it in the same way.
-                    self.refactor_next = k >= 3;
+                    // The next system will most likely differ from the factorized one in the
+                    // same way: refactorize once PCG costs more than half a factorization.
+                    self.refactor_next = (k + 1) as f64 * per_iteration > 0.5 * self.factor_seconds;
                     timings.solve += t.elapsed().as_secs_f64();
                     return Ok(info);
                 }
@@ -225,7 +232,8 @@ impl System {
         self.refactor_next = false;
         self.cholesky.factorize(&self.pattern, &self.hess)?;
         self.factored.extend_from_slice(&self.hess);
-        timings.factorization += t.elapsed().as_secs_f64();
+        self.factor_seconds = t.elapsed().as_secs_f64();
+        timings.factorization += self.factor_seconds;
         timings.n_factorizations += 1;
         let t = Instant::now();
         x.copy_from_slice(b);
