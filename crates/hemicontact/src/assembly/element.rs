@@ -2,19 +2,33 @@
 //! `|T| Bᵀσ` (gradient) and `|T| Bᵀ C B` (Hessian).
 //!
 //! Local DOFs of a cell are numbered `p = d·a + i` (vertex `a`, component `i`), so a cell has
-//! `ld = d(d+1)` local DOFs: 6 for triangles, 12 for tetrahedra.
+//! `LD = d(d+1)` local DOFs: 6 for triangles, 12 for tetrahedra. The kernels are generic over
+//! `LD` so that every loop has a compile-time bound and every local array its exact size
+//! (the dimension is `d = 2` for `LD = 6` and `d = 3` for `LD = 12`).
 
-use crate::fem::simplex::SimplexGeometry;
+use crate::fem::simplex::{self, SimplexGeometry};
+use crate::mesh::Mesh;
 use crate::tensor::{mandel_len, Sym, Tangent, SQRT2};
 
 /// Strain-displacement matrix `B[m][p]`: Mandel component `m` of the strain produced by a
-/// unit value of local DOF `p` (shape `mandel_len(d) × d(d+1)`, padded to 6 × 12).
-pub type BMatrix = [[f64; 12]; 6];
+/// unit value of local DOF `p` (rows beyond `mandel_len(d)` are zero).
+pub type BMatrix<const LD: usize> = [[f64; LD]; 6];
+
+/// Spatial dimension of a cell with `ld` local DOFs (6 → 2, 12 → 3).
+#[inline]
+pub const fn dim_of(ld: usize) -> usize {
+    if ld == 6 {
+        2
+    } else {
+        3
+    }
+}
 
 /// Builds the strain-displacement matrix of a cell from its hat-function gradients.
 #[inline]
-pub fn b_matrix(dim: usize, geo: &SimplexGeometry) -> BMatrix {
-    let mut b = [[0.0; 12]; 6];
+pub fn b_matrix<const LD: usize>(geo: &SimplexGeometry) -> BMatrix<LD> {
+    let dim = dim_of(LD);
+    let mut b = [[0.0; LD]; 6];
     let h = 1.0 / SQRT2;
     for a in 0..=dim {
         let g = &geo.grad[a];
@@ -40,52 +54,73 @@ pub fn b_matrix(dim: usize, geo: &SimplexGeometry) -> BMatrix {
     b
 }
 
-/// Strain `ε = B u_e` from the local displacement vector `u_e` (length `d(d+1)`).
+/// Strain `ε = B u_e` from the local displacement vector `u_e`.
 #[inline]
-pub fn strain(dim: usize, b: &BMatrix, u_e: &[f64; 12]) -> Sym {
-    let ld = dim * (dim + 1);
+pub fn strain<const LD: usize>(b: &BMatrix<LD>, u_e: &[f64; LD]) -> Sym {
+    let dim = dim_of(LD);
     let mut eps = Sym::zero(dim);
-    for (m, row) in b.iter().enumerate().take(mandel_len(dim)) {
-        eps.c[m] = (0..ld).map(|p| row[p] * u_e[p]).sum();
+    for m in 0..mandel_len(dim) {
+        eps.c[m] = (0..LD).map(|p| b[m][p] * u_e[p]).sum();
     }
     eps
 }
 
-/// Element gradient `g_e = w Bᵀσ` (length `d(d+1)`).
+/// Element gradient `g_e = w Bᵀσ`.
 #[inline]
-pub fn gradient(dim: usize, b: &BMatrix, sigma: &Sym, w: f64) -> [f64; 12] {
-    let ld = dim * (dim + 1);
-    let nm = mandel_len(dim);
-    let mut g = [0.0; 12];
-    for (p, gp) in g.iter_mut().enumerate().take(ld) {
-        *gp = w * (0..nm).map(|m| b[m][p] * sigma.c[m]).sum::<f64>();
+pub fn gradient<const LD: usize>(b: &BMatrix<LD>, sigma: &Sym, w: f64) -> [f64; LD] {
+    let nm = mandel_len(dim_of(LD));
+    let mut g = [0.0; LD];
+    for p in 0..LD {
+        g[p] = w * (0..nm).map(|m| b[m][p] * sigma.c[m]).sum::<f64>();
     }
     g
 }
 
-/// Element Hessian `K_e = w Bᵀ C B`, upper triangle in local order: entry `(p, q)` with
-/// `p ≤ q` at `k[p][q]`.
+/// Element Hessian `K_e = w Bᵀ C B`; only the upper triangle `k[p][q]`, `p ≤ q`, is set.
 #[inline]
-pub fn hessian(dim: usize, b: &BMatrix, c: &Tangent, w: f64) -> [[f64; 12]; 12] {
-    let ld = dim * (dim + 1);
-    let nm = mandel_len(dim);
-    // CB[m][q] = Σ_n C[m][n] B[n][q]
-    let mut cb = [[0.0; 12]; 6];
+pub fn hessian<const LD: usize>(b: &BMatrix<LD>, c: &Tangent, w: f64) -> [[f64; LD]; LD] {
+    let nm = mandel_len(dim_of(LD));
+    // CB[m][q] = w Σ_n C[m][n] B[n][q]
+    let mut cb = [[0.0; LD]; 6];
     for m in 0..nm {
         for n in 0..nm {
             let cmn = w * c[m][n];
-            if cmn != 0.0 {
-                for q in 0..ld {
-                    cb[m][q] += cmn * b[n][q];
-                }
+            for q in 0..LD {
+                cb[m][q] += cmn * b[n][q];
             }
         }
     }
-    let mut k = [[0.0; 12]; 12];
-    for p in 0..ld {
-        for q in p..ld {
+    let mut k = [[0.0; LD]; LD];
+    for p in 0..LD {
+        for q in p..LD {
             k[p][q] = (0..nm).map(|m| b[m][p] * cb[m][q]).sum();
         }
     }
     k
+}
+
+/// Local displacement vector of cell `c` from the global vector `u` (DOF order).
+#[inline]
+pub fn gather<const LD: usize>(mesh: &Mesh, u: &[f64], c: usize) -> [f64; LD] {
+    let d = dim_of(LD);
+    let mut ue = [0.0; LD];
+    for (a, &v) in mesh.cell(c).iter().enumerate() {
+        ue[d * a..d * a + d].copy_from_slice(&u[d * v as usize..d * v as usize + d]);
+    }
+    ue
+}
+
+/// Measure and constant strain of cell `c` of `mesh` for the displacement `u`.
+#[inline]
+pub fn cell_strain(mesh: &Mesh, u: &[f64], c: usize) -> (f64, Sym) {
+    fn inner<const LD: usize>(mesh: &Mesh, u: &[f64], c: usize) -> (f64, Sym) {
+        let geo = simplex::geometry(dim_of(LD), &mesh.cell_coords(c));
+        let b = b_matrix::<LD>(&geo);
+        (geo.measure, strain(&b, &gather::<LD>(mesh, u, c)))
+    }
+    if mesh.dim() == 2 {
+        inner::<6>(mesh, u, c)
+    } else {
+        inner::<12>(mesh, u, c)
+    }
 }

@@ -38,6 +38,9 @@ impl Workspace {
     }
 }
 
+/// One parallel assembly task: a cell range and its output buffers.
+type Job<'b> = (std::ops::Range<usize>, &'b mut [f64], Option<&'b mut [f64]>);
+
 /// Assembles the bulk energy of a mesh and a material.
 #[derive(Clone, Copy, Debug)]
 pub struct BulkAssembler<'a, M: StrainEnergy> {
@@ -48,17 +51,6 @@ pub struct BulkAssembler<'a, M: StrainEnergy> {
 }
 
 impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
-    /// Local displacement vector of cell `c` from the global vector `u` (DOF order).
-    #[inline]
-    fn gather(&self, u: &[f64], c: usize) -> [f64; 12] {
-        let d = self.mesh.dim();
-        let mut ue = [0.0; 12];
-        for (a, &v) in self.mesh.cell(c).iter().enumerate() {
-            ue[d * a..d * a + d].copy_from_slice(&u[d * v as usize..d * v as usize + d]);
-        }
-        ue
-    }
-
     /// One pass over the cells at displacement `u` (length `d · n_nodes`).
     ///
     /// Returns the bulk energy (J, or J/m for plane problems) and writes the gradient with
@@ -118,8 +110,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         let with_hess = hess.is_some();
         workspace.grads.resize_with(k - 1, Vec::new);
         workspace.hesses.resize_with(k - 1, Vec::new);
-        let mut jobs: Vec<(std::ops::Range<usize>, &mut [f64], Option<&mut [f64]>)> =
-            Vec::with_capacity(k);
+        let mut jobs: Vec<Job<'_>> = Vec::with_capacity(k);
         let bounds: Vec<usize> = (0..=k).map(|i| i * n_cells / k).collect();
         jobs.push((bounds[0]..bounds[1], grad, hess));
         for (i, (g, h)) in workspace
@@ -164,11 +155,26 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         u: &[f64],
         grad: &mut [f64],
         pattern: &SystemPattern,
+        hess: Option<&mut [f64]>,
+    ) -> f64 {
+        if self.mesh.dim() == 2 {
+            self.assemble_cells::<6>(range, u, grad, pattern, hess)
+        } else {
+            self.assemble_cells::<12>(range, u, grad, pattern, hess)
+        }
+    }
+
+    /// [`BulkAssembler::assemble_range`] for cells with `LD` local DOFs.
+    fn assemble_cells<const LD: usize>(
+        &self,
+        range: std::ops::Range<usize>,
+        u: &[f64],
+        grad: &mut [f64],
+        pattern: &SystemPattern,
         mut hess: Option<&mut [f64]>,
     ) -> f64 {
         let mesh = self.mesh;
-        let d = mesh.dim();
-        let ld = d * (d + 1);
+        let d = element::dim_of(LD);
         grad.fill(0.0);
         if let Some(h) = hess.as_deref_mut() {
             h.fill(0.0);
@@ -176,23 +182,22 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         let mut energy = 0.0;
         for c in range {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
-            let b = element::b_matrix(d, &geo);
-            let ue = self.gather(u, c);
-            let eps = element::strain(d, &b, &ue);
+            let b = element::b_matrix::<LD>(&geo);
+            let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
             energy += geo.measure * self.material.energy(&eps);
             let sigma = self.material.stress(&eps);
-            let ge = element::gradient(d, &b, &sigma, geo.measure);
+            let ge = element::gradient(&b, &sigma, geo.measure);
             for (a, &v) in mesh.cell(c).iter().enumerate() {
                 for i in 0..d {
                     grad[d * v as usize + i] += ge[d * a + i];
                 }
             }
             if let Some(h) = hess.as_deref_mut() {
-                let ke = element::hessian(d, &b, &self.material.tangent(&eps), geo.measure);
+                let ke = element::hessian(&b, &self.material.tangent(&eps), geo.measure);
                 let slots = pattern.cell_slots(c);
                 let mut k = 0;
-                for p in 0..ld {
-                    for q in p..ld {
+                for p in 0..LD {
+                    for q in p..LD {
                         let s = slots[k];
                         k += 1;
                         if s != FIXED_SLOT {
@@ -207,13 +212,8 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
 
     /// Constant strain of every cell at displacement `u`.
     pub fn cell_strains(&self, u: &[f64]) -> Vec<Sym> {
-        let d = self.mesh.dim();
         (0..self.mesh.n_cells())
-            .map(|c| {
-                let geo = simplex::geometry(d, &self.mesh.cell_coords(c));
-                let b = element::b_matrix(d, &geo);
-                element::strain(d, &b, &self.gather(u, c))
-            })
+            .map(|c| element::cell_strain(self.mesh, u, c).1)
             .collect()
     }
 }
