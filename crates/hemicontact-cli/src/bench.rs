@@ -13,7 +13,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// Runs the benchmark for each mesh size in `sizes`, repeating numeric phases `repeat` times.
-pub fn run(sizes: &[usize], repeat: usize) -> Result<()> {
+pub fn run(sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
     let repeat = repeat.max(1);
     println!(
         "{:>5} {:>9} {:>18} {:>11} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9}",
@@ -66,7 +66,7 @@ pub fn run(sizes: &[usize], repeat: usize) -> Result<()> {
                 dofs.equations(),
                 &pattern,
                 ordering,
-                faer::Par::rayon(0),
+                hemicontact::solver::parallelism(threads),
             )?;
             let t_sym = t.elapsed().as_secs_f64();
             let mut t_num = Vec::new();

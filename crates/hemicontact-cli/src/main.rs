@@ -61,6 +61,9 @@ enum Command {
         /// Repetitions of the numeric phases (the median is reported).
         #[arg(long, default_value_t = 3)]
         repeat: usize,
+        /// Threads of the factorization in the linear-algebra benchmark (0: all cores).
+        #[arg(long, default_value_t = 1)]
+        threads: usize,
         /// Benchmark the nonlinear paper solve (C_κ = 10 000) against a linear elastic
         /// solve on the same mesh instead of the linear-algebra phases.
         #[arg(long)]
@@ -80,10 +83,15 @@ fn main() -> ExitCode {
         Command::Check { file } => check(&file).map(|_| Outcome::Done),
         Command::Solve { file, out } => solve(&file, out.as_deref()),
         Command::Paper { n, out } => paper(n, &out),
-        Command::Bench { n, repeat, paper } => if paper {
+        Command::Bench {
+            n,
+            repeat,
+            threads,
+            paper,
+        } => if paper {
             bench::run_paper(&n, repeat)
         } else {
-            bench::run(&n, repeat)
+            bench::run(&n, repeat, threads)
         }
         .map(|_| Outcome::Done),
     };

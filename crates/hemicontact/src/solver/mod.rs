@@ -28,19 +28,38 @@ use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Solver settings.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSettings {
     /// Fill-reducing ordering of the sparse Cholesky factorization. Default: nested
     /// dissection, which gives the smallest factor on the meshes measured by
     /// `hemicontact bench`.
     pub ordering: Ordering,
-    /// Threads for the factorization (0: all cores). Default 0.
+    /// Parallel tasks for the assembly (0: one per core). Default 0: on the 2-core target,
+    /// two chunks assemble 1.6× faster than one (`examples`-free measurement in
+    /// `hemicontact bench`).
     pub threads: usize,
+    /// Threads for the sparse Cholesky factorization and solves (0: all cores). Default 1:
+    /// faer's parallel supernodal factorization was measured *slower* than the sequential one
+    /// on the 2-core target (paper square, n = 512: 1.5–1.7 s against 1.1 s; n = 128: 80 ms
+    /// against 35 ms), the two cores contending for memory bandwidth.
+    pub factorization_threads: usize,
     /// Newton method settings.
     pub newton: NewtonSettings,
     /// Outer (convexification) loop settings.
     pub outer: OuterSettings,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            ordering: Ordering::default(),
+            threads: 0,
+            factorization_threads: 1,
+            newton: NewtonSettings::default(),
+            outer: OuterSettings::default(),
+        }
+    }
 }
 
 /// A solved (or not converged) problem: displacement, reactions, contact results, report.
@@ -230,9 +249,14 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     })
 }
 
-/// Builds the rayon parallelism for `threads` (0: all available cores).
+/// Builds the faer parallelism for `threads` (0: all available cores).
 pub fn parallelism(threads: usize) -> faer::Par {
-    if threads == 1 {
+    let threads = if threads == 0 {
+        rayon::current_num_threads()
+    } else {
+        threads
+    };
+    if threads <= 1 {
         faer::Par::Seq
     } else {
         faer::Par::rayon(threads)

@@ -47,6 +47,10 @@ pub struct System {
     refactor_next: bool,
     /// Duration of the last numeric factorization (s).
     factor_seconds: f64,
+    /// Duration of the last direct triangular solve (s).
+    solve_seconds: f64,
+    /// Time spent in PCG beyond plain solves since the last factorization (s).
+    pcg_spent: f64,
     /// Parallel assembly buffers.
     workspace: Workspace,
 }
@@ -77,7 +81,7 @@ impl System {
             dofs.equations(),
             &pattern,
             problem.solver.ordering,
-            super::parallelism(problem.solver.threads),
+            super::parallelism(problem.solver.factorization_threads),
         )?;
         let t2 = Instant::now();
         let f_ext = problem.external_forces();
@@ -99,6 +103,8 @@ impl System {
             work: Default::default(),
             refactor_next: false,
             factor_seconds: 0.0,
+            solve_seconds: 0.0,
+            pcg_spent: 0.0,
             workspace: Workspace::new(match problem.solver.threads {
                 0 => rayon::current_num_threads(),
                 t => t,
@@ -169,7 +175,8 @@ impl System {
         e_bulk + e_contact - work
     }
 
-    /// Solves `H x = b` for the current Hessian `self.hess`.
+    /// Solves `H x = b` for the current Hessian `self.hess`, to the relative residual `eta`
+    /// where an iterative solve is used (the forcing term of the inexact Newton method).
     ///
     /// - If the Hessian equals the factorized one (to 1e-12 relative: it is piecewise
     ///   constant in the active sets, and the friction curvature of slipping nodes is
@@ -185,6 +192,7 @@ impl System {
         &mut self,
         b: &[f64],
         x: &mut [f64],
+        eta: f64,
         settings: &super::NewtonSettings,
         timings: &mut super::Timings,
     ) -> Result<LinearInfo> {
@@ -204,23 +212,29 @@ impl System {
             if change <= 1e-12 * scale {
                 x.copy_from_slice(b);
                 self.cholesky.solve_in_place(x);
-                timings.solve += t.elapsed().as_secs_f64();
+                self.solve_seconds = t.elapsed().as_secs_f64();
+                timings.solve += self.solve_seconds;
                 return Ok(info);
             }
             // Each changed cell or contact node alters at most ld(ld+1)/2 entries and adds
             // about one PCG iteration; try PCG only when the estimated rank is small.
             let ld = self.pattern.local_dofs();
             let rank_estimate = changed / (ld * (ld + 1) / 2);
-            if settings.pcg_iterations > 0 && rank_estimate < settings.pcg_iterations {
+            // PCG pays while its iterations (one solve and one product each) cost less than
+            // a factorization: cap them by the measured cost ratio.
+            let affordable = (0.7 * self.factor_seconds / self.solve_seconds.max(1e-9)) as usize;
+            let max_iter = settings.pcg_iterations.min(affordable);
+            if max_iter > 0 && rank_estimate < max_iter {
                 let t_pcg = Instant::now();
-                let outcome = self.pcg(b, x, settings.pcg_iterations, settings.pcg_tolerance);
-                let per_iteration = t_pcg.elapsed().as_secs_f64()
-                    / (outcome.unwrap_or(settings.pcg_iterations) + 1) as f64;
+                let outcome = self.pcg(b, x, max_iter, eta);
+                // Ski rental: pay PCG iterations ("rent") until their accumulated cost beyond
+                // one plain solve reaches the cost of a factorization ("buy"), then
+                // refactorize at the next step. This costs at most twice the optimum in
+                // hindsight, whatever the sequence of Hessians.
+                self.pcg_spent += (t_pcg.elapsed().as_secs_f64() - self.solve_seconds).max(0.0);
                 if let Some(k) = outcome {
                     info.pcg_iterations = k;
-                    // The next system will most likely differ from the factorized one in the
-                    // same way: refactorize once PCG costs more than half a factorization.
-                    self.refactor_next = (k + 1) as f64 * per_iteration > 0.5 * self.factor_seconds;
+                    self.refactor_next = self.pcg_spent >= self.factor_seconds;
                     timings.solve += t.elapsed().as_secs_f64();
                     return Ok(info);
                 }
@@ -230,6 +244,7 @@ impl System {
         let t = Instant::now();
         self.factored.clear();
         self.refactor_next = false;
+        self.pcg_spent = 0.0;
         self.cholesky.factorize(&self.pattern, &self.hess)?;
         self.factored.extend_from_slice(&self.hess);
         self.factor_seconds = t.elapsed().as_secs_f64();
@@ -238,7 +253,8 @@ impl System {
         let t = Instant::now();
         x.copy_from_slice(b);
         self.cholesky.solve_in_place(x);
-        timings.solve += t.elapsed().as_secs_f64();
+        self.solve_seconds = t.elapsed().as_secs_f64();
+        timings.solve += self.solve_seconds;
         info.refactorized = true;
         Ok(info)
     }
