@@ -5,6 +5,17 @@
 //! error, 3 solve did not converge (results are still written, marked as not converged).
 
 mod bench;
+mod study;
+
+/// `println!` that ignores a closed standard output (a pipe into `head`) instead of
+/// panicking.
+#[macro_export]
+macro_rules! say {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($t)*);
+    }};
+}
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
@@ -14,6 +25,7 @@ use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::Solution;
+use hemicontact::study::StudySettings;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -42,7 +54,8 @@ enum Command {
     },
     /// Solve the paper's example (SPEC §5) on an n × n mesh, with C_κ = 10 000 and C_κ = 0;
     /// write each case's results and figures into DIR/locking and DIR/no-locking and the
-    /// side-by-side figure DIR/comparison.{png,svg}.
+    /// side-by-side figure DIR/comparison.{png,svg}. With --study, run the paper's
+    /// convergence study for both cases instead (results in DIR/study).
     Paper {
         /// Squares per side (even).
         #[arg(long, default_value_t = 128)]
@@ -50,6 +63,33 @@ enum Command {
         /// Output folder.
         #[arg(long, default_value = "out/paper")]
         out: PathBuf,
+        /// Run the convergence study (levels and reference below).
+        #[arg(long)]
+        study: bool,
+        /// Study levels (squares per side).
+        #[arg(long, value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
+        levels: Vec<usize>,
+        /// Study reference resolution.
+        #[arg(long, default_value_t = 512)]
+        reference: usize,
+    },
+    /// Convergence study of a scenario on a generated rectangle: solve on each level and
+    /// measure the relative energy-norm error against a reference solution.
+    Convergence {
+        /// Scenario file (TOML).
+        file: PathBuf,
+        /// Levels (squares along x), increasing.
+        #[arg(long, value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
+        levels: Vec<usize>,
+        /// Reference resolution (squares along x).
+        #[arg(long, default_value_t = 512)]
+        reference: usize,
+        /// Output folder (default `out/<file stem>-convergence`).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Start every level from zero instead of the previous level's solution.
+        #[arg(long)]
+        no_nested: bool,
     },
     /// Time the phases of a linear solve of the paper's square (pattern, assembly,
     /// ordering + symbolic analysis, numeric factorization, triangular solve), or with
@@ -82,7 +122,26 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Check { file } => check(&file).map(|_| Outcome::Done),
         Command::Solve { file, out } => solve(&file, out.as_deref()),
-        Command::Paper { n, out } => paper(n, &out),
+        Command::Paper {
+            n,
+            out,
+            study,
+            levels,
+            reference,
+        } => {
+            if study {
+                paper_study(&levels, reference, &out.join("study"))
+            } else {
+                paper(n, &out)
+            }
+        }
+        Command::Convergence {
+            file,
+            levels,
+            reference,
+            out,
+            no_nested,
+        } => convergence(&file, &levels, reference, out.as_deref(), !no_nested),
         Command::Bench {
             n,
             repeat,
@@ -109,33 +168,34 @@ fn check(file: &Path) -> Result<()> {
     let scenario = Scenario::from_file(file)?;
     let problem = scenario.into_problem()?;
     print_problem(&problem, &scenario.source);
-    println!("ok: {} is valid", file.display());
+    say!("ok: {} is valid", file.display());
     Ok(())
 }
 
 fn print_problem(problem: &Problem, source: &str) {
     let mesh = &problem.mesh;
     let dofs = problem.dof_map();
-    println!("scenario   {source}");
-    println!("dimension  {}", mesh.dim());
-    println!("nodes      {}", mesh.n_nodes());
-    println!("cells      {}", mesh.n_cells());
-    println!(
+    say!("scenario   {source}");
+    say!("dimension  {}", mesh.dim());
+    say!("nodes      {}", mesh.n_nodes());
+    say!("cells      {}", mesh.n_cells());
+    say!(
         "DOFs       {} ({} free, {} prescribed)",
         dofs.n_dofs(),
         dofs.n_free(),
         dofs.n_dofs() - dofs.n_free()
     );
     let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
-    println!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+    say!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
     let lock = &problem.material.locking;
     if lock.c_kappa > 0.0 {
-        println!(
+        say!(
             "locking    {:?}, penalty C_κ = {:e} Pa",
-            lock.set, lock.c_kappa
+            lock.set,
+            lock.c_kappa
         );
     } else {
-        println!("locking    none");
+        say!("locking    none");
     }
     for (k, c) in problem.contact.iter().enumerate() {
         let friction = match &c.friction {
@@ -145,15 +205,15 @@ fn print_problem(problem: &Problem, source: &str) {
                 f.bound, f.mu, f.potential
             ),
         };
-        println!(
+        say!(
             "contact[{k}] part `{}`: gap {} m, normal compliance c_ν = {:e}, {friction}",
             mesh.part_names()[c.part],
             c.gap,
             c.normal.c_nu
         );
     }
-    println!("contact points {}", problem.contact_nodes().len());
-    println!("boundary parts:");
+    say!("contact points {}", problem.contact_nodes().len());
+    say!("boundary parts:");
     for (p, name) in mesh.part_names().iter().enumerate() {
         let facets = mesh.part_facets(p).count();
         let nodes = mesh.part_nodes(p).len();
@@ -172,7 +232,7 @@ fn print_problem(problem: &Problem, source: &str) {
         } else {
             roles.join(" + ")
         };
-        println!("  {name:<10} {facets:>6} facets {nodes:>6} nodes  {role}");
+        say!("  {name:<10} {facets:>6} facets {nodes:>6} nodes  {role}");
     }
 }
 
@@ -239,7 +299,7 @@ fn run_and_write(
         written.extend(deformed::figure(&problem, &solution, &title).write(dir, "deformed")?);
     }
     for p in &written {
-        println!("  wrote {}", p.display());
+        say!("  wrote {}", p.display());
     }
     let r = &solution.report;
     if !r.converged {
@@ -257,7 +317,7 @@ fn run_and_write(
 }
 
 fn print_table(cases: &[Case]) {
-    println!(
+    say!(
         "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>6} {:>12} {:>10} {:>10}",
         "case",
         "DOFs",
@@ -274,7 +334,7 @@ fn print_table(cases: &[Case]) {
         let r = &c.solution.report;
         let cert = &r.certificate;
         let worst = cert.equilibrium.max(cert.normal_law).max(cert.friction_law);
-        println!(
+        say!(
             "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>6} {:>12} {:>10.6} {:>10.1e}{}",
             c.label,
             r.n_dofs,
@@ -305,7 +365,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
             "--n {n}: the paper's mesh needs an even, positive number of squares per side"
         );
     }
-    println!(
+    say!(
         "paper example (SPEC §5), n = {n}: {} squares, h = {}",
         n * n,
         16.0 / (2.0 * (n * n) as f64)
@@ -320,7 +380,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
             &format!("<built-in paper, {label}>"),
         )?;
         let problem = scenario.into_problem()?;
-        println!("{label}:");
+        say!("{label}:");
         cases.push(run_and_write(
             problem,
             &scenario,
@@ -335,8 +395,80 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         .map(|c| (&c.problem, &c.solution, format!("{}, n = {n}", c.label)))
         .collect();
     for p in deformed::side_by_side(&panels).write(out, "comparison")? {
-        println!("  wrote {}", p.display());
+        say!("  wrote {}", p.display());
     }
     print_table(&cases);
     Ok(outcome(&cases))
+}
+
+fn paper_study(levels: &[usize], reference: usize, out: &Path) -> Result<Outcome> {
+    let mut cases = Vec::new();
+    for (label, c_kappa) in [("C_kappa = 10000", 10000.0), ("C_kappa = 0", 0.0)] {
+        let scenario = Scenario::from_str(
+            &builtin::paper(reference, c_kappa),
+            &format!("<built-in paper, {label}>"),
+        )?;
+        cases.push((label.to_string(), scenario));
+    }
+    let settings = StudySettings {
+        levels: levels.to_vec(),
+        reference,
+        nested_iteration: true,
+    };
+    say!("paper convergence study: levels {levels:?}, reference n = {reference}");
+    let studies = study::run(
+        &cases,
+        &settings,
+        out,
+        "Paper example: relative energy-norm error",
+    )?;
+    Ok(study_outcome(&studies))
+}
+
+fn convergence(
+    file: &Path,
+    levels: &[usize],
+    reference: usize,
+    out: Option<&Path>,
+    nested: bool,
+) -> Result<Outcome> {
+    let scenario = Scenario::from_file(file)?;
+    // Validate once, at the coarsest level, before any long solve.
+    scenario
+        .with_resolution(levels.first().copied().unwrap_or(reference))?
+        .into_problem()?;
+    let dir = match out {
+        Some(d) => d.to_path_buf(),
+        None => {
+            let stem = file
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("scenario");
+            Path::new("out").join(format!("{stem}-convergence"))
+        }
+    };
+    let label = scenario
+        .file
+        .title
+        .clone()
+        .unwrap_or_else(|| file.display().to_string());
+    let settings = StudySettings {
+        levels: levels.to_vec(),
+        reference,
+        nested_iteration: nested,
+    };
+    let studies = study::run(&[(label.clone(), scenario)], &settings, &dir, &label)?;
+    Ok(study_outcome(&studies))
+}
+
+fn study_outcome(studies: &[hemicontact::study::Study]) -> Outcome {
+    let all = studies
+        .iter()
+        .all(|s| s.reference_converged && s.levels.iter().all(|l| l.converged));
+    if all {
+        Outcome::Done
+    } else {
+        eprintln!("warning: some solves did not converge (see table.md)");
+        Outcome::NotConverged
+    }
 }

@@ -82,6 +82,7 @@ pub mod plot;
 pub mod problem;
 pub mod scenario;
 pub mod solver;
+pub mod study;
 pub mod tensor;
 
 pub use error::{Error, Result};

@@ -2,3 +2,4 @@
 
 pub mod dofs;
 pub mod simplex;
+pub mod transfer;

@@ -2,8 +2,10 @@
 //! an embedded 8×8 bitmap font, so no system fonts are needed).
 //!
 //! A [`Figure`] is a list of [`Prim`]itives in pixel coordinates (origin top-left, y down).
-//! [`deformed`] builds the deformed-mesh figures of the paper (its Fig. 2 and Fig. 3).
+//! [`deformed`] builds the deformed-mesh figures of the paper (its Fig. 2 and Fig. 3),
+//! [`convergence`] the log–log convergence plot (its Fig. 4).
 
+pub mod convergence;
 pub mod deformed;
 
 use crate::error::{Error, Result};

@@ -91,6 +91,30 @@ impl Scenario {
         Ok(out)
     }
 
+    /// The same scenario with `n` squares along x (and proportionally many along y), for
+    /// mesh-refinement studies.
+    ///
+    /// # Errors
+    /// [`Error::Scenario`] if `n` is zero or the y count would not be an integer.
+    pub fn with_resolution(&self, n: usize) -> Result<Scenario> {
+        let m = &self.file.mesh;
+        let (nx, ny) = (
+            m.n.first().copied().unwrap_or(1),
+            m.n.get(1).copied().unwrap_or(1),
+        );
+        let n64 = n as u64;
+        if n == 0 || nx == 0 || !(n64 * ny).is_multiple_of(nx) {
+            return Err(self.err(
+                "mesh.n",
+                format!("{:?} scaled to {n} squares along x", m.n),
+                "a resolution for which n · ny / nx is an integer",
+            ));
+        }
+        let mut out = self.clone();
+        out.file.mesh.n = vec![n64, n64 * ny / nx];
+        Ok(out)
+    }
+
     /// The output settings of the scenario.
     pub fn output(&self) -> OutputSettings {
         let o = &self.file.output;

@@ -1,0 +1,286 @@
+//! Convergence study (SPEC §5): solve a scenario on a sequence of meshes and measure the
+//! relative energy-norm error against a reference solution on a fine mesh.
+//!
+//! For each level, the solution `u^h` is carried onto the reference mesh by P1
+//! interpolation ([`crate::fem::transfer`]: exact for nested meshes) and the error
+//! `‖u_ref − u^h‖_E / ‖u_ref‖_E` is computed with the energy norm of SPEC §5
+//! ([`crate::norms::energy_norm`], the small-strain Hooke operator of the material). The
+//! paper's mesh parameter `h` is the element *area*; the element edge (square side) is
+//! reported too, with the observed orders between consecutive levels in both.
+//!
+//! With nested iteration, a level starts from the previous level's solution interpolated
+//! onto its mesh (the result does not depend on the start beyond the solver tolerance).
+
+use crate::error::{Error, Result};
+use crate::fem::transfer::interpolate;
+use crate::norms::energy_norm;
+use crate::problem::Problem;
+use crate::scenario::Scenario;
+use crate::solver::{solve_from, Solution};
+use serde::Serialize;
+use std::time::Instant;
+
+/// One level of a study.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Level {
+    /// Squares along x.
+    pub n: usize,
+    /// Element area (the paper's h).
+    pub h_area: f64,
+    /// Element edge (square side along x).
+    pub h_edge: f64,
+    /// Number of DOFs.
+    pub dofs: usize,
+    /// Relative energy-norm error against the reference.
+    pub error: f64,
+    /// Observed order in h (area) from the previous level (None for the first).
+    pub order_area: Option<f64>,
+    /// Observed order in the edge length from the previous level.
+    pub order_edge: Option<f64>,
+    /// Outer iterations.
+    pub outer: usize,
+    /// Newton steps.
+    pub newton: usize,
+    /// Whether the solve converged.
+    pub converged: bool,
+    /// Solve time (s).
+    pub seconds: f64,
+}
+
+/// A study of one scenario.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Study {
+    /// Label of the case.
+    pub label: String,
+    /// Reference resolution (squares along x).
+    pub reference_n: usize,
+    /// DOFs of the reference.
+    pub reference_dofs: usize,
+    /// Whether the reference solve converged.
+    pub reference_converged: bool,
+    /// Reference solve time (s).
+    pub reference_seconds: f64,
+    /// Energy norm of the reference solution.
+    pub reference_norm: f64,
+    /// The levels.
+    pub levels: Vec<Level>,
+}
+
+/// Progress events of a study, for a progress display.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Progress {
+    /// Solving a level (`None`: the reference) of the case `label`.
+    Solving {
+        /// The case.
+        label: String,
+        /// Squares along x.
+        n: usize,
+        /// Whether it is the reference.
+        reference: bool,
+    },
+    /// A solve finished.
+    Solved {
+        /// Seconds.
+        seconds: f64,
+    },
+}
+
+/// Settings of a study.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudySettings {
+    /// Levels (squares along x), increasing.
+    pub levels: Vec<usize>,
+    /// Reference resolution, larger than every level.
+    pub reference: usize,
+    /// Start each level from the previous one's solution.
+    pub nested_iteration: bool,
+}
+
+impl Default for StudySettings {
+    fn default() -> Self {
+        StudySettings {
+            levels: vec![4, 8, 16, 32, 64, 128],
+            reference: 512,
+            nested_iteration: true,
+        }
+    }
+}
+
+fn order(e0: f64, e1: f64, h0: f64, h1: f64) -> f64 {
+    (e0 / e1).ln() / (h0 / h1).ln()
+}
+
+/// Runs the study of `scenario` (a generated rectangle) under the label `label`.
+///
+/// # Errors
+/// [`Error::Scenario`] if the scenario is not a generated rectangle or a level is invalid;
+/// any error of the solves.
+pub fn run(
+    scenario: &Scenario,
+    label: &str,
+    settings: &StudySettings,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Study> {
+    if settings.levels.is_empty() {
+        return Err(Error::Scenario {
+            file: scenario.source.clone(),
+            field: "levels".into(),
+            value: "[]".into(),
+            allowed: "at least one level".into(),
+        });
+    }
+    if settings.levels.windows(2).any(|w| w[1] <= w[0])
+        || settings.levels.iter().any(|&n| n >= settings.reference)
+    {
+        return Err(Error::Scenario {
+            file: scenario.source.clone(),
+            field: "levels".into(),
+            value: format!("{:?} (reference {})", settings.levels, settings.reference),
+            allowed: "strictly increasing levels, all below the reference".into(),
+        });
+    }
+    progress(Progress::Solving {
+        label: label.into(),
+        n: settings.reference,
+        reference: true,
+    });
+    let reference = scenario
+        .with_resolution(settings.reference)?
+        .into_problem()?;
+    let t = Instant::now();
+    let ref_sol = crate::solver::solve(&reference)?;
+    let reference_seconds = t.elapsed().as_secs_f64();
+    progress(Progress::Solved {
+        seconds: reference_seconds,
+    });
+    let hooke = reference
+        .material
+        .elasticity
+        .small_strain_hooke(reference.mesh.dim());
+    let reference_norm = energy_norm(&reference.mesh, &hooke, &ref_sol.u);
+    let mut levels: Vec<Level> = Vec::new();
+    let mut previous: Option<(Problem, Solution)> = None;
+    for &n in &settings.levels {
+        progress(Progress::Solving {
+            label: label.into(),
+            n,
+            reference: false,
+        });
+        let problem = scenario.with_resolution(n)?.into_problem()?;
+        let start = match (&previous, settings.nested_iteration) {
+            (Some((p, s)), true) => interpolate(&p.mesh, &s.u, &problem.mesh),
+            _ => problem.prescribed_displacement(),
+        };
+        let t = Instant::now();
+        let sol = solve_from(&problem, start)?;
+        let seconds = t.elapsed().as_secs_f64();
+        progress(Progress::Solved { seconds });
+        let on_ref = interpolate(&problem.mesh, &sol.u, &reference.mesh);
+        let diff: Vec<f64> = ref_sol.u.iter().zip(&on_ref).map(|(a, b)| a - b).collect();
+        let error =
+            energy_norm(&reference.mesh, &hooke, &diff) / reference_norm.max(f64::MIN_POSITIVE);
+        let (lo, hi) = problem.mesh.bounding_box();
+        let geometry = scenario.file.mesh.n.clone();
+        let ny = geometry.get(1).copied().unwrap_or(1) as f64 * n as f64 / geometry[0] as f64;
+        let h_edge = (hi[0] - lo[0]) / n as f64;
+        let h_area = (hi[0] - lo[0]) * (hi[1] - lo[1]) / (2.0 * n as f64 * ny);
+        let (order_area, order_edge) = match levels.last() {
+            Some(p) => (
+                Some(order(p.error, error, p.h_area, h_area)),
+                Some(order(p.error, error, p.h_edge, h_edge)),
+            ),
+            None => (None, None),
+        };
+        levels.push(Level {
+            n,
+            h_area,
+            h_edge,
+            dofs: sol.report.n_dofs,
+            error,
+            order_area,
+            order_edge,
+            outer: sol.report.outer.len(),
+            newton: sol.report.newton.len(),
+            converged: sol.report.converged,
+            seconds,
+        });
+        previous = Some((problem, sol));
+    }
+    Ok(Study {
+        label: label.into(),
+        reference_n: settings.reference,
+        reference_dofs: ref_sol.report.n_dofs,
+        reference_converged: ref_sol.report.converged,
+        reference_seconds,
+        reference_norm,
+        levels,
+    })
+}
+
+/// The studies as a Markdown table.
+pub fn markdown(studies: &[Study]) -> String {
+    let mut s = String::new();
+    for st in studies {
+        s.push_str(&format!(
+            "### {}\n\nReference: n = {} ({} DOFs, {}), ‖u_ref‖_E = {:.6e}\n\n",
+            st.label,
+            st.reference_n,
+            st.reference_dofs,
+            if st.reference_converged {
+                "converged"
+            } else {
+                "NOT converged"
+            },
+            st.reference_norm
+        ));
+        s.push_str("| n | h (area) | edge | DOFs | rel. error ‖·‖_E | order in h | order in edge | outer | Newton | time s |\n");
+        s.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+        for l in &st.levels {
+            let o = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.3}"));
+            s.push_str(&format!(
+                "| {} | {:.6e} | {:.6e} | {} | {:.6e} | {} | {} | {} | {} | {:.3}{} |\n",
+                l.n,
+                l.h_area,
+                l.h_edge,
+                l.dofs,
+                l.error,
+                o(l.order_area),
+                o(l.order_edge),
+                l.outer,
+                l.newton,
+                l.seconds,
+                if l.converged { "" } else { " (not converged)" }
+            ));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// The studies as CSV (one row per case and level).
+pub fn csv(studies: &[Study]) -> String {
+    let mut s = String::from(
+        "case,n,h_area,h_edge,dofs,error,order_area,order_edge,outer,newton,converged,seconds\n",
+    );
+    for st in studies {
+        for l in &st.levels {
+            let o = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+            s.push_str(&format!(
+                "{},{},{:e},{:e},{},{:e},{},{},{},{},{},{:e}\n",
+                st.label,
+                l.n,
+                l.h_area,
+                l.h_edge,
+                l.dofs,
+                l.error,
+                o(l.order_area),
+                o(l.order_edge),
+                l.outer,
+                l.newton,
+                l.converged,
+                l.seconds
+            ));
+        }
+    }
+    s
+}
