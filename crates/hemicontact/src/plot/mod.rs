@@ -297,15 +297,7 @@ impl Figure {
                     width,
                     dashed,
                 } => {
-                    let mut pb = PathBuilder::new();
-                    for (k, q) in points.iter().enumerate() {
-                        if k == 0 {
-                            pb.move_to(f(q[0]), f(q[1]));
-                        } else {
-                            pb.line_to(f(q[0]), f(q[1]));
-                        }
-                    }
-                    if let Some(path) = pb.finish() {
+                    if let Some(path) = polygon_path(points, false) {
                         let mut stroke = Stroke {
                             width: f(*width),
                             ..Stroke::default()
@@ -317,16 +309,7 @@ impl Figure {
                     }
                 }
                 Prim::Polygon { points, fill } => {
-                    let mut pb = PathBuilder::new();
-                    for (k, q) in points.iter().enumerate() {
-                        if k == 0 {
-                            pb.move_to(f(q[0]), f(q[1]));
-                        } else {
-                            pb.line_to(f(q[0]), f(q[1]));
-                        }
-                    }
-                    pb.close();
-                    if let Some(path) = pb.finish() {
+                    if let Some(path) = polygon_path(points, true) {
                         pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
                     }
                 }
@@ -336,10 +319,7 @@ impl Figure {
                     color,
                     width,
                 } => {
-                    let mut pb = PathBuilder::new();
-                    pb.move_to(f(from[0]), f(from[1]));
-                    pb.line_to(f(to[0]), f(to[1]));
-                    if let Some(path) = pb.finish() {
+                    if let Some(path) = polygon_path(&[*from, *to], false) {
                         let stroke = Stroke {
                             width: f(*width),
                             ..Stroke::default()
@@ -347,12 +327,7 @@ impl Figure {
                         pm.stroke_path(&path, &paint_of(*color), &stroke, id, None);
                     }
                     let h = arrow_head(*from, *to, 3.0 + 2.0 * width);
-                    let mut pb = PathBuilder::new();
-                    pb.move_to(f(h[0][0]), f(h[0][1]));
-                    pb.line_to(f(h[1][0]), f(h[1][1]));
-                    pb.line_to(f(h[2][0]), f(h[2][1]));
-                    pb.close();
-                    if let Some(path) = pb.finish() {
+                    if let Some(path) = polygon_path(&h, true) {
                         pm.fill_path(&path, &paint_of(*color), FillRule::Winding, id, None);
                     }
                 }
@@ -393,6 +368,22 @@ impl Figure {
         crate::io::atomic::write(&png, &self.to_png()?)?;
         Ok(vec![svg, png])
     }
+}
+
+/// A tiny-skia path through `points`, closed if `close`.
+fn polygon_path(points: &[[f64; 2]], close: bool) -> Option<tiny_skia::Path> {
+    let mut pb = tiny_skia::PathBuilder::new();
+    for (k, q) in points.iter().enumerate() {
+        if k == 0 {
+            pb.move_to(q[0] as f32, q[1] as f32);
+        } else {
+            pb.line_to(q[0] as f32, q[1] as f32);
+        }
+    }
+    if close {
+        pb.close();
+    }
+    pb.finish()
 }
 
 /// Width in pixels of `text` at height `size` as drawn in the PNG (the SVG font is about

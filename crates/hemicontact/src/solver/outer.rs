@@ -161,17 +161,8 @@ impl Mixer {
             }
             Acceleration::Anderson => {
                 if prev.is_some_and(|p| res >= p) {
-                    // Safeguard: the residual did not decrease. Restart from a damped step.
-                    self.restarts += 1;
-                    self.f_hist.clear();
-                    self.g_hist.clear();
-                    self.f_hist.push(f.clone());
-                    self.g_hist.push(g.to_vec());
-                    let next = z.iter().zip(&f).map(|(a, b)| a + 0.5 * b).collect();
-                    return (
-                        next,
-                        "residual grew: Anderson restart, damped step ω = 0.5".into(),
-                    );
+                    // Safeguard: the residual did not decrease.
+                    return self.restart(z, &f, g, "residual did not decrease");
                 }
                 self.f_hist.push(f.clone());
                 self.g_hist.push(g.to_vec());
@@ -218,20 +209,28 @@ impl Mixer {
                 // small. Restart from a damped step.
                 let moved = norm(&next.iter().zip(z).map(|(a, b)| a - b).collect::<Vec<_>>());
                 if moved < 1e-3 * res {
-                    self.restarts += 1;
-                    self.f_hist.clear();
-                    self.g_hist.clear();
-                    self.f_hist.push(f.clone());
-                    self.g_hist.push(g.to_vec());
-                    let next = z.iter().zip(&f).map(|(a, b)| a + 0.5 * b).collect();
-                    return (
-                        next,
-                        "Anderson stagnated: restart, damped step ω = 0.5".into(),
-                    );
+                    return self.restart(z, &f, g, "Anderson stagnated");
                 }
                 (next, format!("Anderson, depth {m}"))
             }
         }
+    }
+}
+
+impl Mixer {
+    /// Drops the Anderson history (keeping the current point) and takes the damped step
+    /// `z + ½ (G(z) − z)`.
+    fn restart(&mut self, z: &[f64], f: &[f64], g: &[f64], why: &str) -> (Vec<f64>, String) {
+        self.restarts += 1;
+        self.f_hist.clear();
+        self.g_hist.clear();
+        self.f_hist.push(f.to_vec());
+        self.g_hist.push(g.to_vec());
+        let next = z.iter().zip(f).map(|(a, b)| a + 0.5 * b).collect();
+        (
+            next,
+            format!("{why}: Anderson restart, damped step ω = 0.5"),
+        )
     }
 }
 
