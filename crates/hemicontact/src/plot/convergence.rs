@@ -164,10 +164,10 @@ pub fn figure(studies: &[Study], title: &str) -> Figure {
             });
         }
         fig.prims.push(Prim::Text {
-            pos: [left + 10.0, top + 16.0],
+            pos: [w - right - 10.0, h - bottom - 10.0],
             text: "dashed: slopes 1/2 and 1 in h".into(),
             size: 12.0,
-            anchor: Anchor::Start,
+            anchor: Anchor::End,
             color: DARK,
         });
     }
