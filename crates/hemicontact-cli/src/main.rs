@@ -168,6 +168,9 @@ fn check(file: &Path) -> Result<()> {
     let scenario = Scenario::from_file(file)?;
     let problem = scenario.into_problem()?;
     print_problem(&problem, &scenario.source);
+    if !problem.contact.is_empty() {
+        print_uniqueness(&hemicontact::solver::uniqueness::check(&problem)?);
+    }
     say!("ok: {} is valid", file.display());
     Ok(())
 }
@@ -233,6 +236,29 @@ fn print_problem(problem: &Problem, source: &str) {
             roles.join(" + ")
         };
         say!("  {name:<10} {facets:>6} facets {nodes:>6} nodes  {role}");
+    }
+}
+
+fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
+    say!(
+        "uniqueness (Theorem 4): m_A = {:.6e}, μ₀ = {}, L_μ = {}, c_j = {}, α_j = {}",
+        u.m_a,
+        u.mu0,
+        u.l_mu,
+        u.c_j,
+        u.alpha_j
+    );
+    match (&u.note, u.trace_constant) {
+        (Some(note), _) => say!("  not applicable: {note}"),
+        (None, Some(g)) => say!(
+            "  ‖γ‖ = {g:.6e} ({} power iterations); (μ₀α_j + c_jL_μ)‖γ‖² = {:.6e} {} m_A: condition {} (margin {:.6e})",
+            u.iterations,
+            u.lhs,
+            if u.holds { "<" } else { "≥" },
+            if u.holds { "holds" } else { "FAILS" },
+            u.margin
+        ),
+        (None, None) => {}
     }
 }
 

@@ -186,13 +186,17 @@ fn hooke_tangent_eigenstructure() {
                 assert!((ce.c[k] - 2.0 * g * e.c[k]).abs() < 1e-13);
             }
         }
-        assert_eq!(law.monotonicity(), 2.0 * g);
+        assert_eq!(law.monotonicity(dim), 2.0 * g);
     }
     // With λ < 0 (ν < 0) the smallest eigenvalue in 3D is the bulk one, 3λ + 2G > 0.
     let auxetic = Hooke::from_young_poisson(1.0, -0.4, 3, Plane::Strain);
     let smallest = 3.0 * auxetic.lambda + 2.0 * auxetic.mu;
     assert!(smallest > 0.0 && smallest < 2.0 * auxetic.mu);
-    assert!((auxetic.monotonicity() - smallest).abs() < 1e-14);
+    assert!((auxetic.monotonicity(3) - smallest).abs() < 1e-14);
+    // In 2D the volumetric eigenvalue is 2λ + 2G (the bound is sharp there too).
+    let auxetic_2d = Hooke::from_young_poisson(1.0, -0.4, 2, Plane::Strain);
+    let smallest_2d = 2.0 * auxetic_2d.lambda + 2.0 * auxetic_2d.mu;
+    assert!((auxetic_2d.monotonicity(2) - smallest_2d).abs() < 1e-14);
 }
 
 /// Hand values for the paper's material, E = 2000 Pa, ν = 0.3:

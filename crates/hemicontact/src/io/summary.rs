@@ -58,6 +58,8 @@ pub struct Summary {
     pub locked_cells: usize,
     /// Largest |tr ε| over the cells.
     pub max_abs_trace_strain: f64,
+    /// The uniqueness condition of the paper's Theorem 4 (SPEC §1).
+    pub uniqueness: Option<crate::solver::uniqueness::Uniqueness>,
     /// The solver report (iterations, residuals, timings).
     pub report: SolveReport,
 }
@@ -115,6 +117,7 @@ impl Summary {
             contact_slip: cert.n_slip,
             locked_cells,
             max_abs_trace_strain,
+            uniqueness: None,
             report: solution.report.clone(),
         }
     }

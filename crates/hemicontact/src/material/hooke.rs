@@ -40,9 +40,11 @@ impl Hooke {
         Hooke { lambda, mu }
     }
 
-    /// Strong monotonicity constant `m_A` of A (Pa): `2G` for `λ ≥ 0`.
-    pub fn monotonicity(&self) -> f64 {
-        2.0 * self.mu + self.lambda.min(0.0) * 3.0
+    /// Strong monotonicity constant `m_A` of A (Pa) in dimension `dim`: the smallest
+    /// eigenvalue of the tangent, `min(2G, dλ + 2G)` (deviatoric and volumetric
+    /// directions): `2G` for `λ ≥ 0`.
+    pub fn monotonicity(&self, dim: usize) -> f64 {
+        2.0 * self.mu + (dim as f64 * self.lambda).min(0.0)
     }
 }
 

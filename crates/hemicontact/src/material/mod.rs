@@ -39,7 +39,7 @@ impl Elasticity {
     /// Strong monotonicity constant `m_A` (Pa) in dimension `dim`.
     pub fn monotonicity(&self, dim: usize) -> f64 {
         match self {
-            Elasticity::Hooke(h) => h.monotonicity(),
+            Elasticity::Hooke(h) => h.monotonicity(dim),
             Elasticity::Hencky(h) => h.monotonicity(dim),
         }
     }

@@ -12,6 +12,7 @@ pub mod newton;
 pub mod outer;
 pub mod report;
 pub mod system;
+pub mod uniqueness;
 
 pub use certificate::{Certificate, ContactResult, Status};
 pub use newton::NewtonSettings;

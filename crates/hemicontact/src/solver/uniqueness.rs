@@ -1,0 +1,179 @@
+//! The uniqueness condition of the paper's Theorem 4 (SPEC §1):
+//! `(μ₀ α_j + c_j L_μ) ‖γ‖² < m_A`.
+//!
+//! - `m_A`: strong monotonicity constant of the elasticity operator
+//!   ([`crate::material::Elasticity::monotonicity`]); the locking penalty is convex and
+//!   only adds a monotone part.
+//! - `μ₀ = sup μ`, `L_μ` the Lipschitz constant of μ, `c_j` the bound of ∂j and `α_j` its
+//!   relaxed-monotonicity constant (see [`crate::contact::friction`]); the largest value of
+//!   `μ₀ α_j + c_j L_μ` over the contact boundaries is used.
+//! - `‖γ‖`: the norm of the trace operator `V → L²(Γ_C)^d` with `‖v‖_V = ‖ε(v)‖_{L²}`,
+//!   computed for the discrete space: `‖γ‖² = max_v ‖v‖²_{Γ_C} / ‖ε(v)‖²`, the largest
+//!   eigenvalue of `M_C x = λ K_ε x`, with `K_ε` the matrix of `∫ ε(u):ε(v)` (Hooke with
+//!   λ = 0, G = ½) on the free DOFs and `M_C` the lumped boundary mass on Γ_C (the nodal
+//!   weights of the contact points, as in the discrete problem). It is found by power
+//!   iteration on `K_ε⁻¹ M_C` with the Rayleigh quotient, reusing the symbolic Cholesky
+//!   analysis of the problem's pattern.
+//!
+//! The theorem covers Tresca-type friction bounds `F = μ(‖u_τ‖)`; for Coulomb-type bounds
+//! `F = μ p(u_ν)` the check reports that it does not apply.
+
+use super::System;
+use crate::assembly::global::Want;
+use crate::assembly::BulkAssembler;
+use crate::contact::FrictionBound;
+use crate::error::Result;
+use crate::fem::dofs::FIXED;
+use crate::material::{Hooke, Material};
+use crate::problem::Problem;
+use serde::Serialize;
+
+/// The outcome of the uniqueness check; see the module documentation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Uniqueness {
+    /// Whether Theorem 4 applies (no Coulomb-type bound).
+    pub applies: bool,
+    /// Why it does not apply, if so.
+    pub note: Option<String>,
+    /// m_A (Pa).
+    pub m_a: f64,
+    /// Largest μ₀ over the friction laws.
+    pub mu0: f64,
+    /// Largest L_μ.
+    pub l_mu: f64,
+    /// Largest c_j.
+    pub c_j: f64,
+    /// Largest α_j.
+    pub alpha_j: f64,
+    /// The trace constant ‖γ‖ (not computed when the theorem does not apply).
+    pub trace_constant: Option<f64>,
+    /// Power iterations used for ‖γ‖.
+    pub iterations: usize,
+    /// Left-hand side `max_b (μ₀ α_j + c_j L_μ) ‖γ‖²` (NaN when not computed).
+    pub lhs: f64,
+    /// `m_A − lhs`: positive when the condition holds.
+    pub margin: f64,
+    /// Whether the condition holds (and the theorem applies).
+    pub holds: bool,
+}
+
+/// The discrete trace constant ‖γ‖ of the problem's Γ_C (all contact boundaries) and the
+/// number of power iterations; `0.0` if there is no contact point.
+///
+/// # Errors
+/// As [`System::new`] and the factorization of `K_ε`.
+pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
+    let mut system = System::new(problem)?;
+    if system.contact.is_empty() {
+        return Ok((0.0, 0));
+    }
+    let d = problem.mesh.dim();
+    let material = Material::elastic(crate::material::Elasticity::Hooke(Hooke {
+        lambda: 0.0,
+        mu: 0.5,
+    }));
+    let bulk = BulkAssembler {
+        mesh: &problem.mesh,
+        material: &material,
+    };
+    let u = vec![0.0; d * problem.mesh.n_nodes()];
+    let mut grad = vec![0.0; u.len()];
+    let mut k = vec![0.0; system.pattern.nnz()];
+    bulk.assemble(&u, &mut grad, Want::Hessian, &system.pattern, Some(&mut k));
+    system.cholesky.factorize(&system.pattern, &k)?;
+    // Lumped boundary mass on the free DOFs.
+    let n = system.pattern.n();
+    let mut m = vec![0.0; n];
+    for i in 0..system.contact.len() {
+        let v = system.contact.node[i] as usize;
+        for c in 0..d {
+            let eq = system.dofs.equation(d * v + c);
+            if eq != FIXED {
+                m[eq as usize] += system.contact.weight[i];
+            }
+        }
+    }
+    let mut x: Vec<f64> = m.iter().map(|&w| if w > 0.0 { 1.0 } else { 0.0 }).collect();
+    let mut kx = vec![0.0; n];
+    let mut lambda = 0.0;
+    let max_iter = 2000;
+    for it in 1..=max_iter {
+        // x ← K⁻¹ M x, normalized.
+        for (xi, mi) in x.iter_mut().zip(&m) {
+            *xi *= mi;
+        }
+        system.cholesky.solve_in_place(&mut x);
+        let s = x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if s == 0.0 {
+            return Ok((0.0, it));
+        }
+        for xi in x.iter_mut() {
+            *xi /= s;
+        }
+        system.pattern.sym_matvec(&k, &x, &mut kx);
+        let xmx: f64 = x.iter().zip(&m).map(|(a, w)| w * a * a).sum();
+        let xkx: f64 = x.iter().zip(&kx).map(|(a, b)| a * b).sum();
+        let next = xmx / xkx;
+        if it > 1 && (next - lambda).abs() <= 1e-10 * next {
+            return Ok((next.sqrt(), it));
+        }
+        lambda = next;
+    }
+    Ok((lambda.sqrt(), max_iter))
+}
+
+/// Evaluates the uniqueness condition for `problem`.
+///
+/// # Errors
+/// As [`trace_constant`].
+pub fn check(problem: &Problem) -> Result<Uniqueness> {
+    let d = problem.mesh.dim();
+    let m_a = problem.material.elasticity.monotonicity(d);
+    let frictions: Vec<_> = problem
+        .contact
+        .iter()
+        .filter_map(|c| c.friction.as_ref())
+        .collect();
+    let coulomb = frictions.iter().any(|f| f.bound == FrictionBound::Coulomb);
+    let (mut mu0, mut l_mu, mut c_j, mut alpha_j, mut factor) =
+        (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for f in &frictions {
+        let (a, b, c, e) = (
+            f.mu.sup(),
+            f.mu.lipschitz(),
+            f.potential.c_j(),
+            f.potential.alpha_j(),
+        );
+        mu0 = mu0.max(a);
+        l_mu = l_mu.max(b);
+        c_j = c_j.max(c);
+        alpha_j = alpha_j.max(e);
+        factor = factor.max(a * e + c * b);
+    }
+    let (gamma, iterations) = if coulomb {
+        (None, 0)
+    } else {
+        let (g, it) = trace_constant(problem)?;
+        (Some(g), it)
+    };
+    let lhs = gamma.map_or(f64::NAN, |g| factor * g * g);
+    let note = if coulomb {
+        Some("Theorem 4 covers Tresca-type friction bounds F = μ(‖u_τ‖); a Coulomb-type bound F = μ p(u_ν) is not covered".to_string())
+    } else {
+        None
+    };
+    Ok(Uniqueness {
+        applies: !coulomb,
+        note,
+        m_a,
+        mu0,
+        l_mu,
+        c_j,
+        alpha_j,
+        trace_constant: gamma,
+        iterations,
+        lhs,
+        margin: m_a - lhs,
+        holds: !coulomb && lhs < m_a,
+    })
+}

@@ -1,0 +1,89 @@
+//! The uniqueness check of the paper's Theorem 4: the discrete trace constant ‖γ‖ against
+//! a hand bound and under mesh refinement, and the condition's bookkeeping.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use hemicontact::scenario::{builtin, Scenario};
+use hemicontact::solver::uniqueness::{check, trace_constant};
+
+fn problem(text: &str) -> hemicontact::problem::Problem {
+    Scenario::from_str(text, "test")
+        .unwrap()
+        .into_problem()
+        .unwrap()
+}
+
+fn block_with_top_contact(n: usize) -> String {
+    format!(
+        r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [{n}, {n}]
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "bottom"
+[[contact]]
+part = "top"
+gap = 0.0
+c_nu = 1.0e3
+[contact.friction]
+bound = "tresca"
+mu = {{ law = "constant", mu = 1.0 }}
+"#
+    )
+}
+
+/// Unit square clamped at the bottom, Γ_C = top. The P1 field v = (y, 0) has
+/// ‖ε(v)‖² = ∫ 2 (½)² = ½ and ‖v‖²_{Γ_C} = 1 (lumped weights integrate constants exactly),
+/// so ‖γ‖² ≥ 2 on every mesh; the discrete constant also converges under refinement.
+#[test]
+fn trace_constant_respects_hand_bound_and_converges() {
+    let mut values = Vec::new();
+    for n in [4, 8, 16, 32] {
+        let (g, it) = trace_constant(&problem(&block_with_top_contact(n))).unwrap();
+        assert!(it < 2000, "power iteration did not converge");
+        assert!(
+            g * g >= 2.0 - 1e-9,
+            "n = {n}: ‖γ‖² = {} below the hand bound 2",
+            g * g
+        );
+        values.push(g);
+    }
+    eprintln!("‖γ‖ for n = 4, 8, 16, 32: {values:?}");
+    let d: Vec<f64> = values.windows(2).map(|w| (w[1] - w[0]).abs()).collect();
+    assert!(d[1] < d[0] && d[2] < d[1], "differences must shrink: {d:?}");
+    assert!(d[2] < 0.02 * values[3]);
+}
+
+/// The condition `(μ₀ α_j + c_j L_μ) ‖γ‖² < m_A` with the constants of the laws: for the
+/// paper's slip-weakening μ (a = 0.4, b = 0.1, β = 100) with a Tresca-type bound and
+/// j = ‖·‖, `α_j = 0`, `c_j = 1`, `L_μ = (a − b) β = 30`, `m_A = 2G` (λ ≥ 0).
+#[test]
+fn condition_uses_the_constants_of_the_laws() {
+    let text = builtin::paper(8, 1.0e4).replace("bound = \"coulomb\"", "bound = \"tresca\"");
+    let u = check(&problem(&text)).unwrap();
+    assert!(u.applies);
+    let g = 2000.0 / 2.6;
+    assert!((u.m_a - 2.0 * g).abs() < 1e-9);
+    assert!((u.l_mu - 30.0).abs() < 1e-12 && u.alpha_j == 0.0 && u.c_j == 1.0);
+    let gamma = u.trace_constant.unwrap();
+    assert!((u.lhs - 30.0 * gamma * gamma).abs() < 1e-9 * u.lhs);
+    assert_eq!(u.holds, u.lhs < u.m_a);
+    assert!((u.margin - (u.m_a - u.lhs)).abs() < 1e-9);
+    // The nonconvex potential (17) adds μ₀ α_j with α_j = (1 − a)/a.
+    let text = text.replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
+    let u2 = check(&problem(&text)).unwrap();
+    assert!((u2.alpha_j - 1.0).abs() < 1e-12);
+    assert!((u2.lhs - (0.4 * 1.0 + 30.0) * gamma * gamma).abs() < 1e-9 * u2.lhs);
+}
+
+/// Coulomb-type bounds are outside the theorem: the check says so and computes nothing.
+#[test]
+fn coulomb_bound_is_reported_as_not_covered() {
+    let u = check(&problem(&builtin::paper(8, 1.0e4))).unwrap();
+    assert!(!u.applies && !u.holds);
+    assert!(u.note.unwrap().contains("Coulomb"));
+    assert!(u.trace_constant.is_none());
+}
