@@ -145,7 +145,7 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
         } else {
-            (1e-2 * change).clamp(final_tol, 1e-6_f64.max(final_tol))
+            (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
         };
         last = newton::minimize(
             &mut system,

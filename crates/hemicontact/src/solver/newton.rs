@@ -102,9 +102,14 @@ pub fn minimize(
     let mut trial = u.to_vec();
     let f_scale = norm(&system.f_ext);
     let mut steps = 0;
+    // Energy of an evaluation (with Hessian) at `u` left by the line search, if any.
+    let mut evaluated: Option<f64> = None;
     loop {
         let t = Instant::now();
-        let energy = system.evaluate(problem, u, frozen, true);
+        let energy = match evaluated.take() {
+            Some(e) => e,
+            None => system.evaluate(problem, u, frozen, true),
+        };
         report.timings.assembly += t.elapsed().as_secs_f64();
         system.reduce(&system.grad, &mut r);
         let res = norm(&r);
@@ -152,11 +157,17 @@ pub fn minimize(
                     trial[dof] = u[dof] + step * delta[eq as usize];
                 }
             }
-            let e_trial = system.evaluate(problem, &trial, frozen, false);
+            // The full step is almost always accepted: evaluate it with the Hessian, so
+            // that the next Newton step can reuse this evaluation.
+            let full = step == 1.0;
+            let e_trial = system.evaluate(problem, &trial, frozen, full);
             // Below round-off of the energy, the Armijo test is meaningless: accept.
             let negligible = -slope <= 1e-14 * energy.abs();
             if e_trial <= energy + settings.armijo * step * slope || negligible {
                 accepted = true;
+                if full {
+                    evaluated = Some(e_trial);
+                }
                 break;
             }
             step *= 0.5;
