@@ -16,7 +16,7 @@
 //!   fails to drop by 5 % over two iterations, three times in a row) and cured by halving
 //!   the relaxation factor ω (down to 1/8); the report records it.
 //! - **Inexact inner solves**: early convex problems need not be solved to full accuracy.
-//!   The Newton tolerance of iteration k is `clamp(10⁻² δ_{k−1}, tol_N, 10⁻⁶)` with
+//!   The Newton tolerance of iteration k is `clamp(10⁻² δ_{k−1}, tol_N, 10⁻³)` with
 //!   `δ_{k−1}` the last relative change; convergence is only declared after a solve at the
 //!   final Newton tolerance `tol_N`.
 //!
