@@ -4,7 +4,7 @@ use anyhow::Result;
 use hemicontact::assembly::global::Want;
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
 use hemicontact::linalg::{Cholesky, Ordering};
-use hemicontact::scenario::{builtin, Scenario};
+use hemicontact::scenario::builtin;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -29,7 +29,7 @@ pub fn run(sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
         "asm+num+solve"
     );
     for &n in sizes {
-        let scenario = Scenario::from_str(&builtin::paper_elastic(n), "<bench>")?;
+        let scenario = crate::parse_scenario(&builtin::paper_elastic(n), "<bench>")?;
         let problem = scenario.into_problem()?;
         let mesh = &problem.mesh;
         let dofs = problem.dof_map();
@@ -138,8 +138,9 @@ pub fn run_paper(sizes: &[usize], repeat: usize) -> Result<()> {
         "peak MiB"
     );
     for &n in sizes {
-        let linear = Scenario::from_str(&builtin::paper_elastic(n), "<bench>")?.into_problem()?;
-        let paper = Scenario::from_str(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?;
+        let linear =
+            crate::parse_scenario(&builtin::paper_elastic(n), "<bench>")?.into_problem()?;
+        let paper = crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?;
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

@@ -1,8 +1,9 @@
 //! `hemicontact`: the command-line program over the hemicontact library.
 //!
 //! Commands: `check FILE`, `solve FILE [--out DIR]`, `paper [--n N] [--out DIR]`,
-//! `bench [--n LIST]`. Exit codes: 0 success, 1 invalid input or failed solve, 2 usage
-//! error, 3 solve did not converge (results are still written, marked as not converged).
+//! `bench [--n LIST]`, `convergence FILE`. Exit codes: 0 success, 1 invalid input or failed
+//! solve, 2 usage error, 3 solve did not converge (results are still written, marked as not
+//! converged), 130 interrupted by Ctrl-C (no partial files are left).
 
 mod bench;
 mod study;
@@ -19,7 +20,6 @@ macro_rules! say {
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use hemicontact::io::atomic::prepare_dir;
 use hemicontact::io::summary::{write_results, Summary};
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
@@ -33,6 +33,9 @@ use std::process::ExitCode;
 #[derive(Parser, Debug)]
 #[command(name = "hemicontact", version, about)]
 struct Cli {
+    /// Skip the check of the estimated memory of a solve against the available memory.
+    #[arg(long, global = true)]
+    ignore_memory_limit: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -117,8 +120,68 @@ enum Outcome {
     NotConverged,
 }
 
+/// Set from `--ignore-memory-limit`.
+static IGNORE_MEMORY_LIMIT: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
+fn apply_memory_flag(mut s: Scenario) -> Scenario {
+    if IGNORE_MEMORY_LIMIT.get().copied().unwrap_or(false) {
+        s.memory_limit = None;
+    }
+    s
+}
+
+/// Reads a scenario file, honouring `--ignore-memory-limit`.
+pub fn read_scenario(file: &Path) -> Result<Scenario> {
+    Ok(apply_memory_flag(Scenario::from_file(file)?))
+}
+
+/// Parses scenario text, honouring `--ignore-memory-limit`.
+pub fn parse_scenario(text: &str, source: &str) -> Result<Scenario> {
+    Ok(apply_memory_flag(Scenario::from_str(text, source)?))
+}
+
+/// Output folders of this run: on Ctrl-C their temporary files are removed.
+static OUTPUT_DIRS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+/// Creates an output folder (failing before any solve if it cannot be written) and
+/// registers it for clean-up on interruption.
+pub fn prepare_output(dir: &Path) -> Result<()> {
+    hemicontact::io::atomic::prepare_dir(dir)?;
+    if let Ok(mut dirs) = OUTPUT_DIRS.lock() {
+        dirs.push(dir.to_path_buf());
+    }
+    Ok(())
+}
+
+/// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, the shell convention).
+const INTERRUPTED: i32 = 130;
+
+/// On Ctrl-C: remove this process's temporary files (every result is written to a temporary
+/// file and renamed, so no partial result exists under a final name) and exit with 130.
+fn install_interrupt_handler() {
+    let _ = ctrlc::set_handler(|| {
+        let suffix = format!(".tmp-{}", std::process::id());
+        if let Ok(dirs) = OUTPUT_DIRS.lock() {
+            for dir in dirs.iter() {
+                let Ok(entries) = std::fs::read_dir(dir) else {
+                    continue;
+                };
+                for e in entries.flatten() {
+                    if e.file_name().to_string_lossy().ends_with(&suffix) {
+                        let _ = std::fs::remove_file(e.path());
+                    }
+                }
+            }
+        }
+        eprintln!("interrupted: no partial result files were left");
+        std::process::exit(INTERRUPTED);
+    });
+}
+
 fn main() -> ExitCode {
+    install_interrupt_handler();
     let cli = Cli::parse();
+    let _ = IGNORE_MEMORY_LIMIT.set(cli.ignore_memory_limit);
     let result = match cli.command {
         Command::Check { file } => check(&file).map(|_| Outcome::Done),
         Command::Solve { file, out } => solve(&file, out.as_deref()),
@@ -165,7 +228,7 @@ fn main() -> ExitCode {
 }
 
 fn check(file: &Path) -> Result<()> {
-    let scenario = Scenario::from_file(file)?;
+    let scenario = read_scenario(file)?;
     let problem = scenario.into_problem()?;
     print_problem(&problem, &scenario.source);
     if !problem.contact.is_empty() {
@@ -263,7 +326,7 @@ fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
 }
 
 fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
-    let scenario = Scenario::from_file(file)?;
+    let scenario = read_scenario(file)?;
     let problem = scenario.into_problem()?;
     let settings = scenario.output();
     let dir = match (out, &settings.dir) {
@@ -307,7 +370,7 @@ fn run_and_write(
     label: &str,
 ) -> Result<Case> {
     // Fail before the solve if the results could not be written.
-    prepare_dir(dir)?;
+    prepare_output(dir)?;
     let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
     let summary = Summary::new(
         &problem,
@@ -401,7 +464,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         ("C_kappa = 10000", 10000.0, "locking"),
         ("C_kappa = 0", 0.0, "no-locking"),
     ] {
-        let scenario = Scenario::from_str(
+        let scenario = parse_scenario(
             &builtin::paper(n, c_kappa),
             &format!("<built-in paper, {label}>"),
         )?;
@@ -430,7 +493,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
 fn paper_study(levels: &[usize], reference: usize, out: &Path) -> Result<Outcome> {
     let mut cases = Vec::new();
     for (label, c_kappa) in [("C_kappa = 10000", 10000.0), ("C_kappa = 0", 0.0)] {
-        let scenario = Scenario::from_str(
+        let scenario = parse_scenario(
             &builtin::paper(reference, c_kappa),
             &format!("<built-in paper, {label}>"),
         )?;
@@ -458,7 +521,7 @@ fn convergence(
     out: Option<&Path>,
     nested: bool,
 ) -> Result<Outcome> {
-    let scenario = Scenario::from_file(file)?;
+    let scenario = read_scenario(file)?;
     // Validate once, at the coarsest level, before any long solve.
     scenario
         .with_resolution(levels.first().copied().unwrap_or(reference))?

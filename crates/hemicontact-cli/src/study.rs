@@ -2,7 +2,7 @@
 //! progress bar (drawn only on a terminal) and their outputs.
 
 use anyhow::Result;
-use hemicontact::io::atomic::{prepare_dir, write};
+use hemicontact::io::atomic::write;
 use hemicontact::plot::convergence;
 use hemicontact::scenario::Scenario;
 use hemicontact::study::{self, Progress, Study, StudySettings};
@@ -18,7 +18,7 @@ pub fn run(
     out: &Path,
     title: &str,
 ) -> Result<Vec<Study>> {
-    prepare_dir(out)?;
+    crate::prepare_output(out)?;
     let solves = cases.len() * (settings.levels.len() + 1);
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(solves as u64)

@@ -80,6 +80,7 @@ pub mod mesh;
 pub mod norms;
 pub mod plot;
 pub mod problem;
+pub mod resources;
 pub mod scenario;
 pub mod solver;
 pub mod study;

@@ -26,6 +26,10 @@ pub struct Scenario {
     pub source: String,
     /// The file's content.
     pub file: ScenarioFile,
+    /// Memory budget (bytes) checked against the estimate of [`crate::resources`] before
+    /// the mesh is built; set from the memory available when the scenario is read, `None`
+    /// to skip the check (the CLI's `--ignore-memory-limit`).
+    pub memory_limit: Option<u64>,
 }
 
 /// Output settings resolved from a scenario.
@@ -63,6 +67,7 @@ impl Scenario {
         Ok(Scenario {
             source: source.to_string(),
             file,
+            memory_limit: crate::resources::available_memory(),
         })
     }
 
@@ -154,6 +159,21 @@ impl Scenario {
                     }
                 }
                 let origin = self.finite("mesh.origin", &m.origin, 2)?;
+                let need = crate::resources::estimate_rectangle(m.n[0], m.n[1]);
+                if let Some(limit) = self.memory_limit {
+                    if need > limit {
+                        return Err(self.err(
+                            "mesh.n",
+                            format!("{:?}", m.n),
+                            &format!(
+                                "a mesh whose solve fits in memory: this one needs about {} (estimate), {} are available; \
+                                 use --ignore-memory-limit to try anyway",
+                                crate::resources::gib(need),
+                                crate::resources::gib(limit)
+                            ),
+                        ));
+                    }
+                }
                 if m.pattern == generate::CutPattern::Symmetric && !m.n[0].is_multiple_of(2) {
                     return Err(self.err(
                         "mesh.n[0]",
