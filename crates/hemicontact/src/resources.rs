@@ -35,3 +35,20 @@ pub fn estimate_rectangle(nx: u64, ny: u64) -> u64 {
 pub fn gib(bytes: u64) -> String {
     format!("{:.2} GiB", bytes as f64 / (1u64 << 30) as f64)
 }
+
+/// Estimated peak memory (bytes) of a solve on a generated `nx × ny × nz` box (3D).
+///
+/// Provisional (not yet calibrated against a 3D benchmark): a nested-dissection factor of
+/// about `25 N^{4/3}` entries for N DOFs, the matrix about `40 N` entries stored four
+/// times, 312 bytes of scatter slots per tetrahedron, ten DOF vectors, and a 20 % margin.
+pub fn estimate_box(nx: u64, ny: u64, nz: u64) -> u64 {
+    let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0) * (nz as f64 + 1.0);
+    let cells = 6.0 * nx as f64 * ny as f64 * nz as f64;
+    let n = 3.0 * nodes;
+    let factor = 25.0 * n.powf(4.0 / 3.0) * 8.0;
+    let matrix = 40.0 * n * 32.0;
+    let slots = 312.0 * cells;
+    let vectors = 10.0 * 8.0 * n + 40.0 * nodes + 16.0 * cells;
+    let total = 1.2 * (factor + matrix + slots + vectors);
+    total.min(u64::MAX as f64) as u64
+}

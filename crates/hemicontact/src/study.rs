@@ -25,7 +25,7 @@ use std::time::Instant;
 pub struct Level {
     /// Squares along x.
     pub n: usize,
-    /// Element area (the paper's h).
+    /// Element area (the paper's h; the element volume in 3D).
     pub h_area: f64,
     /// Element edge (square side along x).
     pub h_edge: f64,
@@ -180,10 +180,9 @@ pub fn run(
         let error =
             energy_norm(&reference.mesh, &hooke, &diff) / reference_norm.max(f64::MIN_POSITIVE);
         let (lo, hi) = problem.mesh.bounding_box();
-        let geometry = scenario.file.mesh.n.clone();
-        let ny = geometry.get(1).copied().unwrap_or(1) as f64 * n as f64 / geometry[0] as f64;
         let h_edge = (hi[0] - lo[0]) / n as f64;
-        let h_area = (hi[0] - lo[0]) * (hi[1] - lo[1]) / (2.0 * n as f64 * ny);
+        // Element measure (area in 2D, volume in 3D): all cells of a generated mesh are equal.
+        let h_area = problem.mesh.measure() / problem.mesh.n_cells() as f64;
         let (order_area, order_edge) = match levels.last() {
             Some(p) => (
                 Some(order(p.error, error, p.h_area, h_area)),

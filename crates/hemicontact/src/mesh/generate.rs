@@ -184,3 +184,162 @@ mod tests {
         assert!(matches!(rectangle(&r), Err(Error::Mesh(_))));
     }
 }
+
+/// Geometry of a generated box: origin, side lengths and subdivisions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BoxSpec {
+    /// Corner with the smallest coordinates (m).
+    pub origin: [f64; 3],
+    /// Side lengths `(lx, ly, lz)` (m).
+    pub size: [f64; 3],
+    /// Cubes per side `(nx, ny, nz)`.
+    pub n: [usize; 3],
+    /// Pattern: `Uniform` (every cube split the same way) or `Symmetric` (mirrored about
+    /// the plane `x = x0 + lx/2`).
+    pub pattern: CutPattern,
+}
+
+/// Generates the box mesh described by `b`: `nx × ny × nz` cuboids, each cut into 6
+/// tetrahedra along its main diagonal (Kuhn's triangulation: the tetrahedra
+/// `[v₀, v₀ + e_a, v₀ + e_a + e_b, v₀ + e_x + e_y + e_z]` for the 6 orderings `(a, b, c)` of
+/// the axes), which is conforming and nested under refinement by two. With the symmetric
+/// pattern the cuboids right of the centre plane use the mirror image of the diagonal.
+/// Nodes are numbered `n = (k (ny+1) + j) (nx+1) + i`. The six faces are the boundary parts
+/// `left` (x = x0), `right`, `front` (y = y0), `back`, `bottom` (z = z0), `top`.
+///
+/// # Errors
+/// [`Error::Mesh`] on non-positive sides, subdivisions out of `1 ..= MAX_SUBDIVISIONS`, or
+/// the symmetric pattern with an odd `nx`.
+pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
+    let [nx, ny, nz] = b.n;
+    if b.size.iter().any(|&s| !(s.is_finite() && s > 0.0))
+        || b.origin.iter().any(|x| !x.is_finite())
+    {
+        return Err(Error::Mesh(format!(
+            "box sides must be positive and finite, got {:?}",
+            b.size
+        )));
+    }
+    if b.n.iter().any(|&k| k == 0 || k > MAX_SUBDIVISIONS) {
+        return Err(Error::Mesh(format!(
+            "subdivisions must be between 1 and {MAX_SUBDIVISIONS}, got {:?}",
+            b.n
+        )));
+    }
+    if b.pattern == CutPattern::Symmetric && nx % 2 != 0 {
+        return Err(Error::Mesh(format!(
+            "the symmetric cut pattern needs an even number of cubes along x, got {nx}"
+        )));
+    }
+    let id = |i: usize, j: usize, k: usize| ((k * (ny + 1) + j) * (nx + 1) + i) as u32;
+    let mut coords = Vec::with_capacity(3 * (nx + 1) * (ny + 1) * (nz + 1));
+    for k in 0..=nz {
+        for j in 0..=ny {
+            for i in 0..=nx {
+                coords.push(b.origin[0] + b.size[0] * (i as f64 / nx as f64));
+                coords.push(b.origin[1] + b.size[1] * (j as f64 / ny as f64));
+                coords.push(b.origin[2] + b.size[2] * (k as f64 / nz as f64));
+            }
+        }
+    }
+    let orders = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    let mut cells = Vec::with_capacity(24 * nx * ny * nz);
+    for k in 0..nz {
+        for j in 0..ny {
+            for i in 0..nx {
+                let mirrored = b.pattern == CutPattern::Symmetric && i >= nx / 2;
+                // Local corner (a, b, c) ∈ {0,1}³ → global node; mirroring flips a.
+                let corner = |p: [usize; 3]| {
+                    let a = if mirrored { 1 - p[0] } else { p[0] };
+                    id(i + a, j + p[1], k + p[2])
+                };
+                for ord in orders {
+                    let mut p = [0usize; 3];
+                    let mut tet = [corner(p); 4];
+                    for (s, &axis) in ord.iter().enumerate() {
+                        p[axis] = 1;
+                        tet[s + 1] = corner(p);
+                    }
+                    // Mirroring (and half of the orderings) reverse the orientation.
+                    let x: Vec<[f64; 3]> = tet
+                        .iter()
+                        .map(|&v| {
+                            let o = 3 * v as usize;
+                            [coords[o], coords[o + 1], coords[o + 2]]
+                        })
+                        .collect();
+                    let vol = crate::fem::simplex::signed_measure(3, &[x[0], x[1], x[2], x[3]]);
+                    if vol < 0.0 {
+                        tet.swap(2, 3);
+                    }
+                    cells.extend_from_slice(&tet);
+                }
+            }
+        }
+    }
+    // Boundary facets: the two triangles of every boundary square, from the cells' faces.
+    let mut facets = Vec::new();
+    let mut part = Vec::new();
+    let on = |v: u32, axis: usize, side: usize| {
+        let v = v as usize;
+        let c = [
+            v % (nx + 1),
+            (v / (nx + 1)) % (ny + 1),
+            v / ((nx + 1) * (ny + 1)),
+        ];
+        c[axis] == if side == 0 { 0 } else { b.n[axis] }
+    };
+    for c in cells.chunks(4) {
+        for skip in 0..4 {
+            let f: Vec<u32> = (0..4).filter(|&a| a != skip).map(|a| c[a]).collect();
+            for axis in 0..3 {
+                for side in 0..2 {
+                    if f.iter().all(|&v| on(v, axis, side)) {
+                        facets.extend_from_slice(&f);
+                        // Part order: left, right, front, back, bottom, top.
+                        part.push((2 * axis + side) as u16);
+                    }
+                }
+            }
+        }
+    }
+    let names = ["left", "right", "front", "back", "bottom", "top"]
+        .map(String::from)
+        .to_vec();
+    Mesh::try_new(3, coords, cells, facets, part, names)
+}
+
+#[cfg(test)]
+mod box_tests {
+    use super::*;
+
+    #[test]
+    fn box_volume_counts_and_parts() {
+        for pattern in [CutPattern::Uniform, CutPattern::Symmetric] {
+            let b = BoxSpec {
+                origin: [0.0; 3],
+                size: [4.0, 2.0, 3.0],
+                n: [4, 2, 3],
+                pattern,
+            };
+            let m = cuboid(&b).unwrap();
+            assert_eq!(m.n_nodes(), 5 * 3 * 4);
+            assert_eq!(m.n_cells(), 6 * 24);
+            assert!((m.measure() - 24.0).abs() < 1e-12);
+            // Two triangles per boundary square.
+            assert_eq!(m.n_facets(), 2 * 2 * (4 * 2 + 4 * 3 + 2 * 3));
+            let area: f64 = m
+                .part_facets(m.part_index("bottom").unwrap())
+                .map(|f| m.facet_measure_normal(f).0)
+                .sum();
+            assert!((area - 8.0).abs() < 1e-12);
+        }
+    }
+}

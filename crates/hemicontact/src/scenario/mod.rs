@@ -116,7 +116,15 @@ impl Scenario {
             ));
         }
         let mut out = self.clone();
-        out.file.mesh.n = vec![n64, n64 * ny / nx];
+        let scaled: Vec<u64> = m.n.iter().map(|&k| n64 * k / nx).collect();
+        if m.n.iter().any(|&k| !(n64 * k).is_multiple_of(nx)) {
+            return Err(self.err(
+                "mesh.n",
+                format!("{:?} scaled to {n} along x", m.n),
+                "a resolution for which every count scales to an integer",
+            ));
+        }
+        out.file.mesh.n = scaled;
         Ok(out)
     }
 
@@ -132,62 +140,79 @@ impl Scenario {
 
     fn build_mesh(&self) -> Result<Mesh> {
         let m = &self.file.mesh;
-        match m.kind {
-            MeshKind::Rectangle => {
-                for (k, &s) in m.size.iter().enumerate() {
-                    if !(s.is_finite() && s > 0.0) {
-                        return Err(self.err(&format!("mesh.size[{k}]"), s, "a positive length"));
-                    }
-                }
-                if m.size.len() != 2 {
-                    return Err(self.err(
-                        "mesh.size",
-                        format!("{:?}", m.size),
-                        "two lengths [lx, ly]",
-                    ));
-                }
-                if m.n.len() != 2 {
-                    return Err(self.err("mesh.n", format!("{:?}", m.n), "two counts [nx, ny]"));
-                }
-                for (k, &n) in m.n.iter().enumerate() {
-                    if n == 0 || n > generate::MAX_SUBDIVISIONS as u64 {
-                        return Err(self.err(
-                            &format!("mesh.n[{k}]"),
-                            n,
-                            &format!("an integer from 1 to {}", generate::MAX_SUBDIVISIONS),
-                        ));
-                    }
-                }
-                let origin = self.finite("mesh.origin", &m.origin, 2)?;
-                let need = crate::resources::estimate_rectangle(m.n[0], m.n[1]);
-                if let Some(limit) = self.memory_limit {
-                    if need > limit {
-                        return Err(self.err(
-                            "mesh.n",
-                            format!("{:?}", m.n),
-                            &format!(
-                                "a mesh whose solve fits in memory: this one needs about {} (estimate), {} are available; \
-                                 use --ignore-memory-limit to try anyway",
-                                crate::resources::gib(need),
-                                crate::resources::gib(limit)
-                            ),
-                        ));
-                    }
-                }
-                if m.pattern == generate::CutPattern::Symmetric && !m.n[0].is_multiple_of(2) {
-                    return Err(self.err(
-                        "mesh.n[0]",
-                        m.n[0],
-                        "an even number with pattern = \"symmetric\" (mirror symmetry about the centre line)",
-                    ));
-                }
-                generate::rectangle(&Rectangle {
-                    origin: [origin[0], origin[1]],
-                    size: [m.size[0], m.size[1]],
-                    n: [m.n[0] as usize, m.n[1] as usize],
-                    pattern: m.pattern,
-                })
+        let dim = match m.kind {
+            MeshKind::Rectangle => 2,
+            MeshKind::Box => 3,
+        };
+        let axes = if dim == 2 { "[lx, ly]" } else { "[lx, ly, lz]" };
+        if m.size.len() != dim {
+            return Err(self.err(
+                "mesh.size",
+                format!("{:?}", m.size),
+                &format!("{dim} lengths {axes}"),
+            ));
+        }
+        if m.n.len() != dim {
+            return Err(self.err("mesh.n", format!("{:?}", m.n), &format!("{dim} counts")));
+        }
+        for (k, &s) in m.size.iter().enumerate() {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(self.err(&format!("mesh.size[{k}]"), s, "a positive length"));
             }
+        }
+        for (k, &n) in m.n.iter().enumerate() {
+            if n == 0 || n > generate::MAX_SUBDIVISIONS as u64 {
+                return Err(self.err(
+                    &format!("mesh.n[{k}]"),
+                    n,
+                    &format!("an integer from 1 to {}", generate::MAX_SUBDIVISIONS),
+                ));
+            }
+        }
+        let origin = match &m.origin {
+            None => [0.0; 3],
+            Some(o) => self.finite("mesh.origin", o, dim)?,
+        };
+        if m.pattern == generate::CutPattern::Symmetric && m.n[0] % 2 != 0 {
+            return Err(self.err(
+                "mesh.n[0]",
+                m.n[0],
+                "an even number with pattern = \"symmetric\" (mirror symmetry about the centre plane)",
+            ));
+        }
+        let need = if dim == 2 {
+            crate::resources::estimate_rectangle(m.n[0], m.n[1])
+        } else {
+            crate::resources::estimate_box(m.n[0], m.n[1], m.n[2])
+        };
+        if let Some(limit) = self.memory_limit {
+            if need > limit {
+                return Err(self.err(
+                    "mesh.n",
+                    format!("{:?}", m.n),
+                    &format!(
+                        "a mesh whose solve fits in memory: this one needs about {} (estimate), {} are available; \
+                         use --ignore-memory-limit to try anyway",
+                        crate::resources::gib(need),
+                        crate::resources::gib(limit)
+                    ),
+                ));
+            }
+        }
+        let n = |k: usize| m.n[k] as usize;
+        match m.kind {
+            MeshKind::Rectangle => generate::rectangle(&Rectangle {
+                origin: [origin[0], origin[1]],
+                size: [m.size[0], m.size[1]],
+                n: [n(0), n(1)],
+                pattern: m.pattern,
+            }),
+            MeshKind::Box => generate::cuboid(&generate::BoxSpec {
+                origin,
+                size: [m.size[0], m.size[1], m.size[2]],
+                n: [n(0), n(1), n(2)],
+                pattern: m.pattern,
+            }),
         }
     }
 

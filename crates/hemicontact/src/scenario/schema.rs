@@ -3,6 +3,8 @@
 //! ```toml
 //! [mesh]
 //! kind = "rectangle"        # built-in generator; parts: bottom, right, top, left
+//!                           # ("box": 3D, size/n/origin of length 3, parts left, right,
+//!                           #  front, back, bottom, top)
 //! origin = [0.0, 0.0]       # m (default)
 //! size = [4.0, 4.0]         # m
 //! n = [16, 16]              # squares per side, each cut into two triangles
@@ -93,12 +95,11 @@ pub struct ScenarioFile {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MeshKind {
-    /// Built-in rectangle generator.
+    /// Built-in rectangle generator (2D): parts bottom, right, top, left.
     Rectangle,
-}
-
-fn default_origin() -> Vec<f64> {
-    vec![0.0, 0.0]
+    /// Built-in box generator (3D, 6 tetrahedra per cube): parts left, right, front, back,
+    /// bottom, top.
+    Box,
 }
 
 fn default_pattern() -> CutPattern {
@@ -111,9 +112,9 @@ fn default_pattern() -> CutPattern {
 pub struct MeshSpec {
     /// Mesh source.
     pub kind: MeshKind,
-    /// Lower-left corner (m).
-    #[serde(default = "default_origin")]
-    pub origin: Vec<f64>,
+    /// Corner with the smallest coordinates (m); zero by default.
+    #[serde(default)]
+    pub origin: Option<Vec<f64>>,
     /// Side lengths (m).
     pub size: Vec<f64>,
     /// Subdivisions per side.
