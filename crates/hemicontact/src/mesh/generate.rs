@@ -67,7 +67,7 @@ pub fn rectangle(r: &Rectangle) -> Result<Mesh> {
             "subdivisions must be between 1 and {MAX_SUBDIVISIONS}, got {nx} × {ny}"
         )));
     }
-    if r.pattern == CutPattern::Symmetric && nx % 2 != 0 {
+    if r.pattern == CutPattern::Symmetric && !nx.is_multiple_of(2) {
         return Err(Error::Mesh(format!(
             "the symmetric cut pattern needs an even number of squares along x, got {nx}"
         )));
@@ -226,7 +226,7 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
             b.n
         )));
     }
-    if b.pattern == CutPattern::Symmetric && nx % 2 != 0 {
+    if b.pattern == CutPattern::Symmetric && !nx.is_multiple_of(2) {
         return Err(Error::Mesh(format!(
             "the symmetric cut pattern needs an even number of cubes along x, got {nx}"
         )));

@@ -173,7 +173,7 @@ impl Scenario {
             None => [0.0; 3],
             Some(o) => self.finite("mesh.origin", o, dim)?,
         };
-        if m.pattern == generate::CutPattern::Symmetric && m.n[0] % 2 != 0 {
+        if m.pattern == generate::CutPattern::Symmetric && !m.n[0].is_multiple_of(2) {
             return Err(self.err(
                 "mesh.n[0]",
                 m.n[0],
