@@ -215,7 +215,7 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         }
         report.outer.push(step);
     }
-    if !report.converged && report.message.is_empty() || report.message == "not started" {
+    if !report.converged && report.message == "not started" {
         report.message = format!(
             "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
             report.outer.len(),
