@@ -147,7 +147,8 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         } else {
             (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
         };
-        last = newton::minimize(
+        let steps_before = report.newton.len();
+        last = match newton::minimize(
             &mut system,
             problem,
             &mut u,
@@ -156,7 +157,21 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             tol,
             k,
             &mut report,
-        )?;
+        ) {
+            Ok(outcome) => outcome,
+            // Before any step succeeded there is no iterate worth keeping: the problem
+            // itself is at fault (e.g. rigid motions not blocked).
+            Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
+            // Later, a breakdown keeps the last good iterate (Newton only updates `u`
+            // after an accepted step), reported as not converged with where it happened.
+            Err(e) => {
+                report.message = format!(
+                    "not converged: numerical breakdown in outer iteration {k}, Newton step {}: {e}",
+                    report.newton.len() - steps_before + 1
+                );
+                break;
+            }
+        };
         let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
         let norm_u = energy_norm(&problem.mesh, &hooke, &u);
         change = if k == 0 {
