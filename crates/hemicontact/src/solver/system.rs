@@ -91,7 +91,8 @@ impl System {
         // ratio is about nnz(L)/(12 n): 6 at n = 128 (30 ms vs 5 ms), 9 at n = 512 (1.1 s vs
         // 0.12 s). A count-based model, not a timer, keeps the solver's decisions — and so
         // its results — deterministic.
-        let factor_cost = (cholesky.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0);
+        let factor_cost =
+            (cholesky.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0);
         let f_ext = problem.external_forces();
         let n = dofs.n_dofs();
         let hess = vec![0.0; pattern.nnz()];
