@@ -231,8 +231,25 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
             "the symmetric cut pattern needs an even number of cubes along x, got {nx}"
         )));
     }
+    // Node indices are u32 and the 6 tetrahedra per cube must be addressable: refuse
+    // sizes beyond that before allocating anything.
+    let nodes = (nx as u64 + 1) * (ny as u64 + 1) * (nz as u64 + 1);
+    let tets = 6 * nx as u64 * ny as u64 * nz as u64;
+    if nodes > u32::MAX as u64 / 2 || tets > u32::MAX as u64 {
+        return Err(Error::Mesh(format!(
+            "{nx} × {ny} × {nz} cubes give {nodes} nodes and {tets} tetrahedra, more than supported"
+        )));
+    }
     let id = |i: usize, j: usize, k: usize| ((k * (ny + 1) + j) * (nx + 1) + i) as u32;
-    let mut coords = Vec::with_capacity(3 * (nx + 1) * (ny + 1) * (nz + 1));
+    let mut coords = Vec::new();
+    let mut cells = Vec::new();
+    if coords.try_reserve_exact(3 * nodes as usize).is_err()
+        || cells.try_reserve_exact(4 * tets as usize).is_err()
+    {
+        return Err(Error::OutOfMemory(format!(
+            "a box mesh of {nodes} nodes and {tets} tetrahedra"
+        )));
+    }
     for k in 0..=nz {
         for j in 0..=ny {
             for i in 0..=nx {
@@ -250,7 +267,6 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
         [2, 0, 1],
         [2, 1, 0],
     ];
-    let mut cells = Vec::with_capacity(24 * nx * ny * nz);
     for k in 0..nz {
         for j in 0..ny {
             for i in 0..nx {

@@ -130,7 +130,14 @@ impl Mesh {
                     h = h.max(e.sqrt());
                 }
             }
-            if m.abs() <= DEGENERATE_TOL * h.powi(self.dim as i32) {
+            if !m.is_finite() || !h.is_finite() {
+                return Err(Error::Mesh(format!(
+                    "cell {c} (vertices {:?}) has a non-finite measure: coordinates too large",
+                    self.cell(c)
+                )));
+            }
+            // Written so that a NaN measure counts as degenerate too.
+            if !(m.abs() > DEGENERATE_TOL * h.powi(self.dim as i32)) {
                 return Err(Error::Mesh(format!(
                     "cell {c} (vertices {:?}) is degenerate: measure {m:e}",
                     self.cell(c)

@@ -103,27 +103,31 @@ impl Scenario {
     /// [`Error::Scenario`] if `n` is zero or the y count would not be an integer.
     pub fn with_resolution(&self, n: usize) -> Result<Scenario> {
         let m = &self.file.mesh;
-        let (nx, ny) = (
-            m.n.first().copied().unwrap_or(1),
-            m.n.get(1).copied().unwrap_or(1),
-        );
-        let n64 = n as u64;
-        if n == 0 || nx == 0 || !(n64 * ny).is_multiple_of(nx) {
-            return Err(self.err(
-                "mesh.n",
-                format!("{:?} scaled to {n} squares along x", m.n),
-                "a resolution for which n · ny / nx is an integer",
-            ));
-        }
-        let mut out = self.clone();
-        let scaled: Vec<u64> = m.n.iter().map(|&k| n64 * k / nx).collect();
-        if m.n.iter().any(|&k| !(n64 * k).is_multiple_of(nx)) {
-            return Err(self.err(
+        let nx = m.n.first().copied().unwrap_or(0);
+        let allowed = "a resolution for which every count scales to an integer from 1 to the generator's maximum";
+        let bad = || {
+            self.err(
                 "mesh.n",
                 format!("{:?} scaled to {n} along x", m.n),
-                "a resolution for which every count scales to an integer",
-            ));
+                allowed,
+            )
+        };
+        if n == 0 || nx == 0 {
+            return Err(bad());
         }
+        let n64 = n as u64;
+        let mut scaled = Vec::with_capacity(m.n.len());
+        for &k in &m.n {
+            let product = n64.checked_mul(k).ok_or_else(bad)?;
+            if !product.is_multiple_of(nx)
+                || product / nx == 0
+                || product / nx > generate::MAX_SUBDIVISIONS as u64
+            {
+                return Err(bad());
+            }
+            scaled.push(product / nx);
+        }
+        let mut out = self.clone();
         out.file.mesh.n = scaled;
         Ok(out)
     }
@@ -200,7 +204,7 @@ impl Scenario {
             }
         }
         let n = |k: usize| m.n[k] as usize;
-        match m.kind {
+        let generated = match m.kind {
             MeshKind::Rectangle => generate::rectangle(&Rectangle {
                 origin: [origin[0], origin[1]],
                 size: [m.size[0], m.size[1]],
@@ -213,7 +217,16 @@ impl Scenario {
                 n: [n(0), n(1), n(2)],
                 pattern: m.pattern,
             }),
-        }
+        };
+        // A generated mesh can only be invalid through the numbers of [mesh]: name them.
+        generated.map_err(|e| match e {
+            Error::Mesh(msg) => self.err(
+                "mesh.size / mesh.origin / mesh.n",
+                format!("size {:?}, origin {:?}, n {:?}", m.size, m.origin, m.n),
+                &format!("sizes and an origin for which the cells are representable ({msg})"),
+            ),
+            other => other,
+        })
     }
 
     fn part(&self, mesh: &Mesh, field: &str, name: &str) -> Result<usize> {
@@ -295,6 +308,36 @@ impl Scenario {
                 })
             }
         };
+        // Finite, positive inputs can still give unusable derived constants (λ → ∞ as ν → ½
+        // in floating point, G = 0 for a subnormal E, s₀ = e₀² = 0): check what is used.
+        let usable = |v: f64| v.is_finite() && v > 0.0;
+        let base = elasticity.small_strain_hooke(dim);
+        if !(base.lambda.is_finite() && usable(base.mu) && usable(elasticity.monotonicity(dim))) {
+            return Err(self.err(
+                "material.young",
+                format!(
+                    "{} (with poisson = {}: λ = {:e}, G = {:e})",
+                    m.young, m.poisson, base.lambda, base.mu
+                ),
+                "values giving finite Lamé constants and a positive shear modulus",
+            ));
+        }
+        if let Elasticity::Hencky(h) = &elasticity {
+            if !usable(h.s0) {
+                return Err(self.err(
+                    "material.reference_strain",
+                    format!("{:?} (s₀ = e₀² = {:e})", m.reference_strain, h.s0),
+                    "a strain whose square is a positive normal number",
+                ));
+            }
+            if !usable(h.shear_inf) || !usable(h.bulk) {
+                return Err(self.err(
+                    "material.stiffening",
+                    format!("{:?} (G_∞ = {:e})", m.stiffening, h.shear_inf),
+                    "a ratio giving a finite large-strain shear modulus",
+                ));
+            }
+        }
         let l = &self.file.locking;
         let set = match l.set {
             LockingSetKind::None => LockingSet::None,
@@ -494,12 +537,26 @@ impl Scenario {
         if !(nw.armijo > 0.0 && nw.armijo < 0.5) {
             return Err(self.err("solver.newton.armijo", nw.armijo, "a number in (0, 0.5)"));
         }
+        if !(nw.pcg_tolerance >= 1e-12 && nw.pcg_tolerance < 1.0) {
+            return Err(self.err(
+                "solver.newton.pcg_tolerance",
+                nw.pcg_tolerance,
+                "a number in [1e-12, 1)",
+            ));
+        }
         if nw.max_iterations == 0 {
             return Err(self.err("solver.newton.max_iterations", 0, "a positive integer"));
         }
         let o = &solver.outer;
         if !(o.tolerance.is_finite() && o.tolerance > 0.0 && o.tolerance < 1.0) {
             return Err(self.err("solver.outer.tolerance", o.tolerance, "a number in (0, 1)"));
+        }
+        if o.depth == 0 || o.depth > 50 {
+            return Err(self.err(
+                "solver.outer.depth",
+                o.depth,
+                "an Anderson depth from 1 to 50",
+            ));
         }
         if o.max_iterations == 0 {
             return Err(self.err("solver.outer.max_iterations", 0, "a positive integer"));

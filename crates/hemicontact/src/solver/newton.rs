@@ -127,7 +127,7 @@ pub fn minimize(
         report.residual_tolerance = tol;
         if !energy.is_finite() || !res.is_finite() {
             return Err(Error::Breakdown(format!(
-                "energy {energy} / residual {res} at Newton step {}",
+                "energy {energy:e} / residual {res:e} at Newton step {}",
                 report.newton.len()
             )));
         }
