@@ -136,8 +136,8 @@ impl Mesh {
                     self.cell(c)
                 )));
             }
-            // Written so that a NaN measure counts as degenerate too.
-            if !(m.abs() > DEGENERATE_TOL * h.powi(self.dim as i32)) {
+            // (NaN measures were rejected just above.)
+            if m.abs() <= DEGENERATE_TOL * h.powi(self.dim as i32) {
                 return Err(Error::Mesh(format!(
                     "cell {c} (vertices {:?}) is degenerate: measure {m:e}",
                     self.cell(c)
