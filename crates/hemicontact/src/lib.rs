@@ -4,7 +4,7 @@
 //! unilateral contact and nonmonotone, slip-dependent friction (variational–hemivariational
 //! inequalities, Barboteu–Han–Migórski 2018).
 //!
-//! An elastic body `Ω ⊂ R^d` (P1 triangles) is clamped on Γ_D, loaded on Γ_N and may touch
+//! An elastic body `Ω ⊂ R^d` (P1 triangles or tetrahedra) is clamped on Γ_D, loaded on Γ_N and may touch
 //! rigid foundations on Γ_C (normal compliance) with slip-dependent (nonmonotone) friction;
 //! the material may *lock* (its strain is confined to a convex set B, here through the
 //! nearly-locking penalty). The solver ([`solver::solve`]) is the convexification method of
@@ -60,8 +60,8 @@
 //!
 //! ## Current state / limitations
 //!
-//! - 2D (triangles) on generated rectangles; 3D tetrahedra and Gmsh meshes are not yet
-//!   available.
+//! - Generated meshes only: rectangles (triangles) and boxes (tetrahedra); no Gmsh reader
+//!   yet. Figures are drawn for 2D problems.
 //! - Locking by the nearly-locking penalty and contact by normal compliance; the exact
 //!   constraints (ideal locking, Signorini) are not yet available.
 //! - The norm `‖·‖` of the friction potential is regularized numerically by
