@@ -36,10 +36,7 @@ pub fn run(sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
         let t = Instant::now();
         let pattern = SystemPattern::new(mesh, &dofs)?;
         let t_pattern = t.elapsed().as_secs_f64();
-        let bulk = BulkAssembler {
-            mesh,
-            material: &problem.material,
-        };
+        let bulk = BulkAssembler::new(mesh, &problem.material);
         let u = problem.prescribed_displacement();
         let mut grad = vec![0.0; u.len()];
         let mut hess = vec![0.0; pattern.nnz()];

@@ -254,7 +254,9 @@ fn print_problem(problem: &Problem, source: &str) {
     let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
     say!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
     let lock = &problem.material.locking;
-    if lock.c_kappa > 0.0 {
+    if let Some(set) = &problem.material.ideal_locking {
+        say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)");
+    } else if lock.c_kappa > 0.0 {
         say!(
             "locking    {:?}, penalty C_κ = {:e} Pa",
             lock.set,
@@ -267,15 +269,23 @@ fn print_problem(problem: &Problem, source: &str) {
         let friction = match &c.friction {
             None => "frictionless".to_string(),
             Some(f) => format!(
-                "{:?}-type bound, μ = {:?}, j = {:?}",
-                f.bound, f.mu, f.potential
+                "{:?}-type bound, μ = {:?}, j = {:?}{}",
+                f.bound,
+                f.mu,
+                f.potential,
+                if f.exact { ", exact stick/slip" } else { "" }
             ),
         };
+        let normal = match c.normal {
+            hemicontact::contact::NormalLaw::Compliance(n) => {
+                format!("normal compliance c_ν = {:e}", n.c_nu)
+            }
+            hemicontact::contact::NormalLaw::Signorini => "Signorini (rigid)".to_string(),
+        };
         say!(
-            "contact[{k}] part `{}`: gap {} m, normal compliance c_ν = {:e}, {friction}",
+            "contact[{k}] part `{}`: gap {} m, {normal}, {friction}",
             mesh.part_names()[c.part],
             c.gap,
-            c.normal.c_nu
         );
     }
     say!("contact points {}", problem.contact_nodes().len());

@@ -16,10 +16,7 @@ fn parallel_assembly_matches_serial() {
         .unwrap();
     let dofs = problem.dof_map();
     let pattern = SystemPattern::new(&problem.mesh, &dofs).unwrap();
-    let bulk = BulkAssembler {
-        mesh: &problem.mesh,
-        material: &problem.material,
-    };
+    let bulk = BulkAssembler::new(&problem.mesh, &problem.material);
     // A displacement that activates the locking penalty in part of the body.
     let u: Vec<f64> = (0..2 * problem.mesh.n_nodes())
         .map(|k| {

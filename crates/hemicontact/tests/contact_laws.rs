@@ -38,7 +38,7 @@ use hemicontact::contact::friction::regularized_norm;
 use hemicontact::contact::nodes::tangent_basis;
 use hemicontact::contact::{
     ContactBoundary, ContactNodes, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,
-    NormalCompliance,
+    NormalCompliance, NormalLaw,
 };
 use hemicontact::scenario::Scenario;
 
@@ -534,12 +534,23 @@ fn energy(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64]) -> f64 {
     energy_grad(asm, frozen, u).0
 }
 
-/// Whether every contact point is at least `margin` away from the kink `u_ν = g`.
-fn off_kink(asm: &ContactAssembler<'_>, u: &[f64], margin: f64) -> bool {
+/// Whether every contact point is at least `margin` away from its kinks: `u_ν = g` (for a
+/// Signorini point the augmented Lagrangian's `u_ν = g − λ/r`), and for exact friction the
+/// stick/slip switch `‖τ + r u_τ‖ = F`.
+fn off_kink(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64], margin: f64) -> bool {
+    let m = asm.dim - 1;
     (0..asm.nodes.len()).all(|i| {
-        let gap = asm.boundaries[asm.nodes.boundary[i] as usize].gap;
-        let (u_nu, _) = asm.nodes.kinematics(asm.dim, u, i);
-        (u_nu - gap).abs() > margin
+        let cb = &asm.boundaries[asm.nodes.boundary[i] as usize];
+        let r = asm.penalty[i];
+        let (_, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+        let (u_nu, xi) = asm.nodes.kinematics(asm.dim, u, i);
+        let tau = frozen.traction[i];
+        let nz = (0..m)
+            .map(|a| (tau[a] + r * xi[a]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let exact = cb.friction.as_ref().is_some_and(|f| f.exact);
+        (u_nu - gap).abs() > margin && (!exact || (nz - frozen.bound[i]).abs() > r * margin)
     })
 }
 
@@ -562,12 +573,12 @@ fn check_assembler(
     while done < samples {
         let scale = rng.log_uniform(3e-4, 0.02);
         let u: Vec<f64> = (0..ndof).map(|_| rng.uniform(-scale, scale)).collect();
-        if !off_kink(asm, &u, 1e-5) {
+        if !off_kink(asm, frozen, &u, 1e-5) {
             continue;
         }
         done += 1;
         for i in 0..n {
-            let s = asm.state(&u, i);
+            let s = asm.state(&u, i, frozen);
             if s.pressure > 0.0 {
                 pen += 1;
             } else {
@@ -696,7 +707,9 @@ fn random_frozen(rng: &mut Rng, n: usize, m: usize, nonnegative: bool) -> Frozen
         };
         for a in 0..m {
             f.linear[i][a] = rng.uniform(-1.0, 1.0);
+            f.traction[i][a] = rng.uniform(-1.0, 1.0);
         }
+        f.pressure[i] = rng.uniform(0.0, 1.0);
     }
     f
 }
@@ -716,11 +729,13 @@ fn assembled_contact_terms_2d_match_finite_differences() {
     let dofs = problem.dof_map();
     let pattern = SystemPattern::new(&problem.mesh, &dofs).unwrap();
     let slots = contact_slots(&nodes, d, dofs.equations(), &pattern);
+    let penalty = vec![500.0; nodes.len()];
     let asm = ContactAssembler {
         dim: d,
         nodes: &nodes,
         boundaries: &problem.contact,
         rho_num: RHO_NUM,
+        penalty: &penalty,
     };
     let equations = dofs.equations().to_vec();
     let mut rng = Rng::new(40);
@@ -771,41 +786,89 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 0,
             gap: 0.001,
-            normal: NormalCompliance { c_nu: 1e4 },
+            normal: NormalLaw::Compliance(NormalCompliance { c_nu: 1e4 }),
             friction: Some(Friction {
                 bound: FrictionBound::Tresca,
                 mu: FrictionCoefficient::Constant { mu: 0.5 },
                 potential: FrictionPotential::Norm,
+                exact: false,
             }),
         },
         ContactBoundary {
             part: 1,
             gap: 0.0,
-            normal: NormalCompliance { c_nu: 5e3 },
+            normal: NormalLaw::Compliance(NormalCompliance { c_nu: 5e3 }),
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: paper_exponential(),
                 potential: FrictionPotential::Nonconvex { a: A_J },
+                exact: false,
             }),
         },
         ContactBoundary {
             part: 2,
             gap: 0.0005,
-            normal: NormalCompliance { c_nu: 2e4 },
+            normal: NormalLaw::Compliance(NormalCompliance { c_nu: 2e4 }),
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: table(),
                 potential: FrictionPotential::Regularized { rho: 0.005 },
+                exact: false,
             }),
         },
         ContactBoundary {
             part: 3,
             gap: 0.0,
-            normal: NormalCompliance { c_nu: 1e4 },
+            normal: NormalLaw::Compliance(NormalCompliance { c_nu: 1e4 }),
             friction: None,
         },
+        // Exact constraints: the augmented Lagrangian terms of Signorini contact and exact
+        // friction (with the random multipliers of `random_frozen`).
+        ContactBoundary {
+            part: 4,
+            gap: 0.001,
+            normal: NormalLaw::Signorini,
+            friction: Some(Friction {
+                bound: FrictionBound::Tresca,
+                mu: FrictionCoefficient::Constant { mu: 0.5 },
+                potential: FrictionPotential::Norm,
+                exact: true,
+            }),
+        },
+        ContactBoundary {
+            part: 5,
+            gap: 0.0,
+            normal: NormalLaw::Signorini,
+            friction: Some(Friction {
+                bound: FrictionBound::Coulomb,
+                mu: paper_exponential(),
+                potential: FrictionPotential::Nonconvex { a: A_J },
+                exact: true,
+            }),
+        },
+        ContactBoundary {
+            part: 6,
+            gap: 0.0005,
+            normal: NormalLaw::Compliance(NormalCompliance { c_nu: 2e4 }),
+            friction: Some(Friction {
+                bound: FrictionBound::Coulomb,
+                mu: table(),
+                potential: FrictionPotential::Norm,
+                exact: true,
+            }),
+        },
     ];
-    let layout: [(u32, u16); 6] = [(0, 0), (1, 1), (2, 1), (2, 2), (3, 3), (0, 2)];
+    let layout: [(u32, u16); 9] = [
+        (0, 0),
+        (1, 1),
+        (2, 1),
+        (2, 2),
+        (3, 3),
+        (0, 2),
+        (1, 4),
+        (3, 5),
+        (2, 6),
+    ];
     let mut nodes = ContactNodes::default();
     for &(v, b) in &layout {
         let mut n = [
@@ -833,11 +896,13 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         nodes.normal.push(n);
         nodes.tangent.push(t);
     }
+    let penalty = vec![500.0; nodes.len()];
     let asm = ContactAssembler {
         dim: d,
         nodes: &nodes,
         boundaries: &boundaries,
         rho_num: RHO_NUM,
+        penalty: &penalty,
     };
     let np = nodes.len();
     let ndof = 12;

@@ -147,14 +147,11 @@ body_force = [{:?}, {:?}]
 
 /// Per-cell constant strains `[e_xx, e_yy, e_xy]` of a P1 field.
 fn p1_strains(problem: &Problem, v: &[f64]) -> Vec<[f64; 3]> {
-    BulkAssembler {
-        mesh: &problem.mesh,
-        material: &problem.material,
-    }
-    .cell_strains(v)
-    .into_iter()
-    .map(|e| [e.c[0], e.c[1], e.c[2] / SQRT2])
-    .collect()
+    BulkAssembler::new(&problem.mesh, &problem.material)
+        .cell_strains(v)
+        .into_iter()
+        .map(|e| [e.c[0], e.c[1], e.c[2] / SQRT2])
+        .collect()
 }
 
 /// `‖u − v_h‖_E²` for the exact `u` and a P1 field with cell strains `eh`: on each

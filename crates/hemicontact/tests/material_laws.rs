@@ -29,7 +29,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::material::{
-    Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, StrainEnergy,
+    AugmentedLocking, Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, StrainEnergy,
 };
 use hemicontact::tensor::{apply, mandel_len, Sym, Tangent};
 
@@ -239,6 +239,7 @@ fn penalty_only(set: LockingSet) -> Material {
             set,
             c_kappa: C_KAPPA,
         },
+        ideal_locking: None,
     }
 }
 
@@ -301,6 +302,7 @@ fn combined_materials_match_finite_differences() {
             let law = Material {
                 elasticity,
                 locking: penalty,
+                ideal_locking: None,
             };
             for dim in [2, 3] {
                 let seed = 500 + 10 * k as u64 + dim as u64 + if ename == "hooke" { 0 } else { 5 };
@@ -591,5 +593,65 @@ fn hencky_is_strongly_monotone_and_lipschitz() {
             expected <= l_a && expected >= 0.8 * l_a,
             "{expected} vs L_A = {l_a}"
         );
+    }
+}
+
+/// The augmented Lagrangian term of ideal locking, `(1/2r)[(λ + rQ)_+² − λ²]`: stress and
+/// tangent match finite differences in both states, for all three sets in 2D and 3D; with
+/// λ = 0 it is the penalty with C_κ = r; and its stress magnitude is the updated multiplier.
+#[test]
+fn augmented_locking_matches_finite_differences_and_the_penalty() {
+    for (k, (name, set)) in locking_sets().into_iter().enumerate() {
+        let q_ref = match set {
+            LockingSet::LimitedCompressibility { theta } => theta,
+            LockingSet::Prager { kappa } => kappa * kappa,
+            LockingSet::Ball { r } => r,
+            LockingSet::None => 1.0,
+        };
+        let r = C_KAPPA;
+        // λ < r q_ref / 2 keeps the active region away from the kinks of ∂Q (tr ε = 0, ε = 0).
+        let al = AugmentedLocking {
+            set,
+            r,
+            lambda: 0.3 * r * q_ref,
+        };
+        for dim in [2, 3] {
+            let seed = 700 + 10 * k as u64 + dim as u64;
+            check_derivatives(name, &al, None, dim, seed, 24, (0.05, 0.6));
+            let mut rng = Rng::new(seed + 3);
+            let (mut active, mut inactive) = (0, 0);
+            let zero = AugmentedLocking { lambda: 0.0, ..al };
+            let pen = LockingPenalty { set, c_kappa: r };
+            for _ in 0..200 {
+                let scale = rng.log_uniform(0.05, 0.6);
+                let eps = random_strain(&mut rng, dim, scale);
+                let m = al.multiplier(&eps);
+                let q = set.q(&eps);
+                assert!((m - (al.lambda + r * q).max(0.0)).abs() <= 1e-12 * (m + al.lambda));
+                if m > 0.0 {
+                    active += 1;
+                    // Stress = (λ + rQ)_+ ∂Q.
+                    let expect = set.dq(&eps).scaled(m);
+                    assert!(sym_diff_norm(&al.stress(&eps), &expect) <= 1e-12 * expect.norm());
+                } else {
+                    inactive += 1;
+                    assert_eq!(al.stress(&eps).norm(), 0.0);
+                }
+                // λ = 0: the penalty (energy, stress).
+                let (e1, e2) = (zero.energy(&eps), pen.energy(&eps));
+                assert!(
+                    (e1 - e2).abs() <= 1e-12 * e2.abs().max(1e-300),
+                    "{name}: {e1} vs {e2}"
+                );
+                assert!(
+                    sym_diff_norm(&zero.stress(&eps), &pen.stress(&eps))
+                        <= 1e-9 * (1.0 + pen.stress(&eps).norm())
+                );
+            }
+            assert!(
+                active > 10 && inactive > 10,
+                "{name} d={dim}: {active} active, {inactive} inactive"
+            );
+        }
     }
 }

@@ -39,10 +39,7 @@ const POISSON: f64 = 0.3;
 
 /// Cell strains and stresses of the displacement `u`.
 fn cell_fields(problem: &Problem, u: &[f64]) -> Vec<(Sym, Sym)> {
-    let bulk = BulkAssembler {
-        mesh: &problem.mesh,
-        material: &problem.material,
-    };
+    let bulk = BulkAssembler::new(&problem.mesh, &problem.material);
     bulk.cell_strains(u)
         .into_iter()
         .map(|e| (e, problem.material.stress(&e)))

@@ -59,7 +59,7 @@ fn patch_test_3d() {
             }
         }
         let mut report = SolveReport::new(&system);
-        let frozen = system.contact_assembler(&p).freeze(&u);
+        let frozen = system.initial_frozen(&p, &u);
         let out = minimize(
             &mut system,
             &p,

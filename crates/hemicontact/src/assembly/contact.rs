@@ -6,28 +6,64 @@
 //! difference-of-convex step) taken from the previous outer iterate (see [`Frozen`]).
 //! `j_cvx` is the (regularized) convex part of the friction potential. The term is convex in
 //! u whenever `F_i^k ≥ 0`.
+//!
+//! Exact constraints (see [`crate::solver::constraints`]) replace two of these terms by
+//! their augmented Lagrangians, with multipliers frozen like F and b, and a penalty `r_i`:
+//!
+//! - Signorini (`u_ν ≤ g`, multiplier λ_i = contact pressure): `P` becomes
+//!   `(1/2r) [(λ + r(u_ν − g))_+² − λ²]`, i.e. normal compliance of stiffness r at the gap
+//!   `g − λ/r` ([`NormalLaw::effective`]);
+//! - exact friction (multiplier τ_i = −σ_τ, the friction traction): `F j_cvx(ξ) = F‖ξ‖`
+//!   becomes the Moreau envelope `(1/r) [H_F(τ + rξ) − ‖τ‖²/2]` with the Huber function
+//!   `H_F(z) = ‖z‖²/2` (‖z‖ ≤ F), `F‖z‖ − F²/2` (‖z‖ > F), whose gradient is the projection
+//!   `proj_{B_F}(τ + rξ)` onto the ball of radius F.
 
 use super::pattern::{SystemPattern, FIXED_SLOT};
 use crate::contact::friction::regularized_norm;
 use crate::contact::{ContactBoundary, ContactNodes};
 
-/// The quantities frozen at the contact points for one convex subproblem.
+/// The quantities frozen for one convex subproblem: the friction data of the
+/// convexification and the multipliers of the exact constraints.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Frozen {
     /// Friction bound F_i^k ≥ 0 per point (Pa, or N/m in 2D).
     pub bound: Vec<f64>,
     /// Linear term `b_i^k = F_i^k ∇h(u_τ,i^k)` per point, tangential coordinates.
     pub linear: Vec<[f64; 2]>,
+    /// Signorini multiplier λ_i ≥ 0 (the contact pressure, Pa) per point; unused (zero) at
+    /// normal-compliance points.
+    pub pressure: Vec<f64>,
+    /// Exact-friction multiplier τ_i = −σ_τ per point (Pa, tangential coordinates);
+    /// unused (zero) where friction is regularized.
+    pub traction: Vec<[f64; 2]>,
+    /// Ideal-locking multiplier λ_T ≥ 0 per cell (Pa); empty without ideal locking.
+    pub locking: Vec<f64>,
 }
 
 impl Frozen {
-    /// No friction at any of `n` points (the first outer iteration of a Coulomb problem
-    /// from an unloaded contact zone).
+    /// No friction and zero multipliers at any of `n` points, no locking multipliers (the
+    /// first outer iteration of a Coulomb problem from an unloaded contact zone).
     pub fn zero(n: usize) -> Self {
         Frozen {
             bound: vec![0.0; n],
             linear: vec![[0.0; 2]; n],
+            pressure: vec![0.0; n],
+            traction: vec![[0.0; 2]; n],
+            locking: Vec::new(),
         }
+    }
+}
+
+/// Projection of the `m`-vector `z` onto the ball of radius `f ≥ 0`; returns it with
+/// whether `z` was inside (stick).
+#[inline]
+pub fn project_ball(z: &[f64; 2], m: usize, f: f64) -> ([f64; 2], bool) {
+    let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
+    if nz <= f {
+        (*z, true)
+    } else {
+        let s = f / nz;
+        ([z[0] * s, z[1] * s], false)
     }
 }
 
@@ -57,17 +93,23 @@ pub struct ContactAssembler<'a> {
     pub boundaries: &'a [ContactBoundary],
     /// Numerical regularization ρ_num of the norm in j_cvx (m).
     pub rho_num: f64,
+    /// Augmented-Lagrangian penalty r_i per point (Pa/m) of the exact constraints.
+    pub penalty: &'a [f64],
 }
 
 impl<'a> ContactAssembler<'a> {
     /// State of point `i` at displacement `u`, with the friction bound evaluated at that
-    /// state (SPEC §1).
+    /// state (SPEC §1). At a Signorini point the pressure is the updated multiplier
+    /// `(λ_i + r_i (u_ν − g))_+` of the frozen multiplier λ_i in `frozen`.
     #[inline]
-    pub fn state(&self, u: &[f64], i: usize) -> PointState {
+    pub fn state(&self, u: &[f64], i: usize, frozen: &Frozen) -> PointState {
         let cb = &self.boundaries[self.nodes.boundary[i] as usize];
         let (u_nu, u_tau) = self.nodes.kinematics(self.dim, u, i);
         let slip = (u_tau[0] * u_tau[0] + u_tau[1] * u_tau[1]).sqrt();
-        let pressure = cb.normal.pressure(u_nu, cb.gap);
+        let (law, gap) = cb
+            .normal
+            .effective(cb.gap, frozen.pressure[i], self.penalty[i]);
+        let pressure = law.pressure(u_nu, gap);
         let bound = cb
             .friction
             .as_ref()
@@ -81,19 +123,44 @@ impl<'a> ContactAssembler<'a> {
         }
     }
 
-    /// The frozen quantities at displacement `u` (the convexification step of SPEC §4).
-    pub fn freeze(&self, u: &[f64]) -> Frozen {
+    /// The frozen quantities at displacement `u` (the convexification step of SPEC §4)
+    /// and the multiplier updates of the exact constraints, from the current ones in
+    /// `current`: `λ_i ← (λ_i + r_i(u_ν − g))_+`, `τ_i ← proj_{B_F}(τ_i + r_i u_τ)` with the
+    /// frozen bound F of `current` (so that τ_i is the friction traction of the subproblem
+    /// just solved). Cell multipliers are copied; [`crate::solver::constraints`] updates them.
+    /// At Signorini points, a Coulomb bound uses the current multiplier as the pressure.
+    pub fn freeze(&self, u: &[f64], current: &Frozen) -> Frozen {
         let n = self.nodes.len();
+        let m = self.dim - 1;
         let mut frozen = Frozen::zero(n);
+        frozen.locking.clone_from(&current.locking);
         for i in 0..n {
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
+            let s = self.state(u, i, current);
+            if cb.normal.is_exact() {
+                frozen.pressure[i] = s.pressure;
+            }
             let Some(fr) = &cb.friction else { continue };
-            let s = self.state(u, i);
-            frozen.bound[i] = s.bound;
+            if fr.exact {
+                let r = self.penalty[i];
+                let tau = current.traction[i];
+                let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
+                frozen.traction[i] = project_ball(&z, m, current.bound[i]).0;
+            }
+            // At a Signorini point a Coulomb bound takes the pressure from the current
+            // multiplier, not from the update `(λ + r(u_ν − g))_+`: the two agree at the
+            // fixed point, but the update amplifies the error of an inexact solve by the
+            // large penalty r, which would put a floor under the fixed-point residual.
+            let bound = if cb.normal.is_exact() {
+                fr.bound_value(s.slip, current.pressure[i])
+            } else {
+                s.bound
+            };
+            frozen.bound[i] = bound;
             let hs = fr.potential.h_slope(s.slip);
             if hs != 0.0 && s.slip > 0.0 {
                 for a in 0..2 {
-                    frozen.linear[i][a] = s.bound * hs * s.u_tau[a] / s.slip;
+                    frozen.linear[i][a] = bound * hs * s.u_tau[a] / s.slip;
                 }
             }
         }
@@ -120,14 +187,51 @@ impl<'a> ContactAssembler<'a> {
             let (u_nu, xi) = self.nodes.kinematics(d, u, i);
             let n = &self.nodes.normal[i];
             let t = &self.nodes.tangent[i];
-            // Normal part: w P(u_ν), gradient w p ν, Hessian w p' ν νᵀ.
-            energy += w * cb.normal.energy(u_nu, cb.gap);
-            let p = cb.normal.pressure(u_nu, cb.gap);
-            let kn = cb.normal.stiffness(u_nu, cb.gap);
+            // Normal part: w P(u_ν), gradient w p ν, Hessian w p' ν νᵀ (for Signorini the
+            // augmented Lagrangian, a compliance law at a shifted gap, minus λ²/2r).
+            let r = self.penalty[i];
+            let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+            energy += w * law.energy(u_nu, gap);
+            if cb.normal.is_exact() {
+                energy -= w * frozen.pressure[i] * frozen.pressure[i] / (2.0 * r);
+            }
+            let p = law.pressure(u_nu, gap);
+            let kn = law.stiffness(u_nu, gap);
             // Tangential part: w [F φ(ξ) − b·ξ].
             let mut gt = [0.0; 2];
             let mut ht = [[0.0; 2]; 2];
-            if let Some(fr) = &cb.friction {
+            if cb.friction.as_ref().is_some_and(|f| f.exact) {
+                // Moreau envelope of F‖·‖ at τ + rξ (see the module documentation).
+                let f = frozen.bound[i];
+                let b = frozen.linear[i];
+                let tau = frozen.traction[i];
+                let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
+                let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
+                let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
+                let (g, _) = project_ball(&z, m, f);
+                let huber = if f > 0.0 && nz <= f {
+                    for a in 0..m {
+                        ht[a][a] = r;
+                    }
+                    0.5 * nz * nz
+                } else if nz == 0.0 {
+                    // F = 0 and z = 0: the envelope is flat (zero curvature).
+                    0.0
+                } else {
+                    for a in 0..m {
+                        for c in 0..m {
+                            let delta = if a == c { 1.0 } else { 0.0 };
+                            ht[a][c] = r * f / nz * (delta - z[a] * z[c] / (nz * nz));
+                        }
+                    }
+                    f * nz - 0.5 * f * f
+                };
+                energy +=
+                    w * ((huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
+                for a in 0..m {
+                    gt[a] = g[a] - b[a];
+                }
+            } else if let Some(fr) = &cb.friction {
                 let f = frozen.bound[i];
                 let b = frozen.linear[i];
                 let rho = fr.potential.convex_rho(self.rho_num);

@@ -4,7 +4,7 @@
 use super::element;
 use super::pattern::{SystemPattern, FIXED_SLOT};
 use crate::fem::simplex;
-use crate::material::StrainEnergy;
+use crate::material::{AugmentedLocking, LockingSet, StrainEnergy};
 use crate::mesh::Mesh;
 use crate::tensor::Sym;
 
@@ -41,6 +41,30 @@ impl Workspace {
 /// One parallel assembly task: a cell range and its output buffers.
 type Job<'b> = (std::ops::Range<usize>, &'b mut [f64], Option<&'b mut [f64]>);
 
+/// Ideal locking in the cell loop: the augmented Lagrangian term [`AugmentedLocking`] of
+/// every cell, with its frozen multiplier.
+#[derive(Clone, Copy, Debug)]
+pub struct IdealLocking<'a> {
+    /// The locking set B.
+    pub set: LockingSet,
+    /// Penalty r > 0 (Pa per unit of Q²).
+    pub r: f64,
+    /// Multiplier λ_T ≥ 0 per cell (Pa).
+    pub multipliers: &'a [f64],
+}
+
+impl IdealLocking<'_> {
+    /// The augmented Lagrangian law of cell `c`.
+    #[inline]
+    pub fn cell(&self, c: usize) -> AugmentedLocking {
+        AugmentedLocking {
+            set: self.set,
+            r: self.r,
+            lambda: self.multipliers[c],
+        }
+    }
+}
+
 /// Assembles the bulk energy of a mesh and a material.
 #[derive(Clone, Copy, Debug)]
 pub struct BulkAssembler<'a, M: StrainEnergy> {
@@ -48,6 +72,19 @@ pub struct BulkAssembler<'a, M: StrainEnergy> {
     pub mesh: &'a Mesh,
     /// The material law.
     pub material: &'a M,
+    /// Ideal locking (exact constraint), if any.
+    pub ideal: Option<IdealLocking<'a>>,
+}
+
+impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
+    /// The assembler of `material` on `mesh` without ideal locking.
+    pub fn new(mesh: &'a Mesh, material: &'a M) -> Self {
+        BulkAssembler {
+            mesh,
+            material,
+            ideal: None,
+        }
+    }
 }
 
 impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
@@ -184,8 +221,13 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
+            let al = self.ideal.map(|l| l.cell(c));
             energy += geo.measure * self.material.energy(&eps);
-            let sigma = self.material.stress(&eps);
+            let mut sigma = self.material.stress(&eps);
+            if let Some(al) = &al {
+                energy += geo.measure * al.energy(&eps);
+                sigma = sigma.add_scaled(1.0, &al.stress(&eps));
+            }
             let ge = element::gradient(&b, &sigma, geo.measure);
             for (a, &v) in mesh.cell(c).iter().enumerate() {
                 for i in 0..d {
@@ -193,7 +235,16 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
                 }
             }
             if let Some(h) = hess.as_deref_mut() {
-                let ke = element::hessian(&b, &self.material.tangent(&eps), geo.measure);
+                let mut tangent = self.material.tangent(&eps);
+                if let Some(al) = al.filter(|al| al.multiplier(&eps) > 0.0) {
+                    let t = al.tangent(&eps);
+                    for (row, trow) in tangent.iter_mut().zip(t.iter()) {
+                        for (a, b) in row.iter_mut().zip(trow.iter()) {
+                            *a += b;
+                        }
+                    }
+                }
+                let ke = element::hessian(&b, &tangent, geo.measure);
                 let slots = pattern.cell_slots(c);
                 let mut k = 0;
                 for p in 0..LD {

@@ -200,6 +200,12 @@ impl FrictionPotential {
         }
     }
 
+    /// Whether the convex part `j_cvx` is the (nonsmooth) norm, so that it can be imposed
+    /// exactly; false for the smooth law (19).
+    pub fn is_nonsmooth(&self) -> bool {
+        !matches!(self, FrictionPotential::Regularized { .. })
+    }
+
     /// Bound `c_j` of `∂j` (`|ζ| ≤ c_j` for `ζ ∈ ∂j(ξ)`): 1 for all three potentials.
     pub fn c_j(&self) -> f64 {
         1.0
@@ -225,6 +231,12 @@ pub struct Friction {
     pub mu: FrictionCoefficient,
     /// The potential j.
     pub potential: FrictionPotential,
+    /// Exact stick/slip: the nonsmooth convex part `F ‖·‖` of the potential is imposed by
+    /// an augmented Lagrangian with the friction traction as multiplier (sticking points
+    /// then have zero slip to round-off, slipping points carry exactly the bound), instead
+    /// of the numerical regularization ρ_num. Only for the potentials whose convex part is
+    /// the norm (`norm`, `nonconvex`); the regularized law (19) is smooth already.
+    pub exact: bool,
 }
 
 impl Friction {

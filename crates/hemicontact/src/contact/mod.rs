@@ -13,7 +13,7 @@ pub mod normal;
 
 pub use friction::{Friction, FrictionBound, FrictionCoefficient, FrictionPotential};
 pub use nodes::ContactNodes;
-pub use normal::NormalCompliance;
+pub use normal::{NormalCompliance, NormalLaw};
 
 /// One contact boundary: a part of the mesh facing a rigid foundation, with its laws.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,8 +22,8 @@ pub struct ContactBoundary {
     pub part: usize,
     /// Initial gap g ≥ 0 along the normal (m).
     pub gap: f64,
-    /// Normal compliance law.
-    pub normal: NormalCompliance,
+    /// Normal law: normal compliance or the Signorini constraint.
+    pub normal: NormalLaw,
     /// Friction law, or `None` for frictionless contact.
     pub friction: Option<Friction>,
 }

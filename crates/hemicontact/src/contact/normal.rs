@@ -32,3 +32,34 @@ impl NormalCompliance {
         }
     }
 }
+
+/// The normal contact law of a contact boundary.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NormalLaw {
+    /// Normal compliance `p = c_ν (u_ν − g)_+` (deformable asperities, SPEC §1).
+    Compliance(NormalCompliance),
+    /// The Signorini condition of a rigid foundation: `u_ν ≤ g`, `p ≥ 0`, `p (u_ν − g) = 0`,
+    /// the contact pressure p being the Lagrange multiplier of the constraint (imposed by
+    /// the augmented Lagrangian of [`crate::solver::constraints`]).
+    Signorini,
+}
+
+impl NormalLaw {
+    /// Whether the law is the exact (Signorini) constraint.
+    #[inline]
+    pub fn is_exact(&self) -> bool {
+        matches!(self, NormalLaw::Signorini)
+    }
+
+    /// The compliance law that the augmented Lagrangian term of a Signorini point with
+    /// multiplier `lambda` (Pa) and penalty `r` (Pa/m) amounts to, with the gap it applies
+    /// at: `(λ + r (u_ν − g))_+ = r (u_ν − (g − λ/r))_+`. For a compliance law, the law and
+    /// `gap` themselves.
+    #[inline]
+    pub fn effective(&self, gap: f64, lambda: f64, r: f64) -> (NormalCompliance, f64) {
+        match *self {
+            NormalLaw::Compliance(c) => (c, gap),
+            NormalLaw::Signorini => (NormalCompliance { c_nu: r }, gap - lambda / r),
+        }
+    }
+}

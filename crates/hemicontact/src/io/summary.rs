@@ -84,11 +84,7 @@ impl Summary {
             total_reaction[k % d] += r;
         }
         let h = &problem.material.elasticity.small_strain_hooke(d);
-        let strains = BulkAssembler {
-            mesh,
-            material: &problem.material,
-        }
-        .cell_strains(&solution.u);
+        let strains = BulkAssembler::new(mesh, &problem.material).cell_strains(&solution.u);
         let locked_cells = strains
             .iter()
             .filter(|e| problem.material.locking.is_active(e))
@@ -168,10 +164,7 @@ pub fn write_results(
 pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
     let mesh = &problem.mesh;
     let d = mesh.dim();
-    let bulk = BulkAssembler {
-        mesh,
-        material: &problem.material,
-    };
+    let bulk = BulkAssembler::new(mesh, &problem.material);
     let strains = bulk.cell_strains(&solution.u);
     let n_cells = strains.len();
     let mut eps9 = Vec::with_capacity(9 * n_cells);

@@ -158,3 +158,59 @@ impl StrainEnergy for LockingPenalty {
         t
     }
 }
+
+/// The augmented Lagrangian term of *ideal* locking in one cell (SPEC §1, the constraint
+/// `ε_T ∈ B`): with multiplier `λ ≥ 0` (Pa) and penalty `r > 0` (Pa per unit of Q²),
+///
+/// `Ψ_λ(ε) = (1/2r) [ (λ + r Q(ε))_+² − λ² ]`,
+///
+/// stress `(λ + r Q)_+ ∂Q`, tangent `r H(λ + rQ) ∂Q⊗∂Q + (λ + rQ)_+ ∂²Q`. It is the
+/// nearly-locking penalty with `C_κ = r` and Q shifted by `λ/r` (plus a constant), so with
+/// `λ = 0` it *is* the penalty; the multiplier update `λ ← (λ + r Q(ε_T))_+` of
+/// [`crate::solver::constraints`] drives `Q(ε_T)_+` to zero while the penalty stays finite.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AugmentedLocking {
+    /// The locking set B.
+    pub set: LockingSet,
+    /// Penalty r > 0.
+    pub r: f64,
+    /// Multiplier λ of the cell.
+    pub lambda: f64,
+}
+
+impl AugmentedLocking {
+    /// `(λ + r Q(ε))_+`: the updated multiplier, and the magnitude of the locking stress.
+    #[inline]
+    pub fn multiplier(&self, eps: &Sym) -> f64 {
+        (self.lambda + self.r * self.set.q(eps)).max(0.0)
+    }
+}
+
+impl StrainEnergy for AugmentedLocking {
+    #[inline]
+    fn energy(&self, eps: &Sym) -> f64 {
+        let m = self.multiplier(eps);
+        (m * m - self.lambda * self.lambda) / (2.0 * self.r)
+    }
+
+    #[inline]
+    fn stress(&self, eps: &Sym) -> Sym {
+        let m = self.multiplier(eps);
+        if m <= 0.0 {
+            return Sym::zero(eps.dim);
+        }
+        self.set.dq(eps).scaled(m)
+    }
+
+    #[inline]
+    fn tangent(&self, eps: &Sym) -> Tangent {
+        let mut t = zero_tangent();
+        let m = self.multiplier(eps);
+        if m > 0.0 {
+            let dq = self.set.dq(eps);
+            add_outer(&mut t, self.r, &dq, &dq);
+            self.set.add_d2q(&mut t, eps, m);
+        }
+        t
+    }
+}

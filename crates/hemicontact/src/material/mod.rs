@@ -11,7 +11,7 @@ pub mod locking;
 
 pub use hencky::Hencky;
 pub use hooke::{Hooke, Plane};
-pub use locking::{LockingPenalty, LockingSet};
+pub use locking::{AugmentedLocking, LockingPenalty, LockingSet};
 
 use crate::tensor::{Sym, Tangent};
 
@@ -86,8 +86,12 @@ impl StrainEnergy for Elasticity {
 pub struct Material {
     /// Elasticity operator A = ∂W.
     pub elasticity: Elasticity,
-    /// Nearly-locking penalty Ψ ([`LockingPenalty::NONE`] without locking).
+    /// Nearly-locking penalty Ψ ([`LockingPenalty::NONE`] without locking or with ideal
+    /// locking).
     pub locking: LockingPenalty,
+    /// Ideal locking: the exact constraint `ε_T ∈ B` in every cell, imposed by an augmented
+    /// Lagrangian ([`AugmentedLocking`]); `None` for no or nearly locking.
+    pub ideal_locking: Option<LockingSet>,
 }
 
 impl Material {
@@ -96,6 +100,7 @@ impl Material {
         Material {
             elasticity,
             locking: LockingPenalty::NONE,
+            ideal_locking: None,
         }
     }
 }

@@ -8,14 +8,15 @@
 pub mod builtin;
 pub mod schema;
 
-use crate::contact::{ContactBoundary, Friction, FrictionPotential, NormalCompliance};
+use crate::contact::{ContactBoundary, Friction, FrictionPotential, NormalCompliance, NormalLaw};
 use crate::error::{Error, Result};
 use crate::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane};
 use crate::mesh::generate::{self, Rectangle};
 use crate::mesh::Mesh;
 use crate::problem::{Dirichlet, Problem, Traction};
 use schema::{
-    ElasticityModel, LockingSetKind, MeshKind, NormalLawKind, PotentialKind, ScenarioFile,
+    ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, PotentialKind,
+    ScenarioFile,
 };
 use std::path::{Path, PathBuf};
 
@@ -355,6 +356,27 @@ impl Scenario {
                 r: self.positive("locking.radius", l.radius, "a strain radius r")?,
             },
         };
+        if l.treatment == LockingTreatment::Exact {
+            if set == LockingSet::None {
+                return Err(self.err(
+                    "locking.treatment",
+                    "\"exact\"",
+                    "\"exact\" only with a locking set (locking.set)",
+                ));
+            }
+            if let Some(c) = l.c_kappa {
+                return Err(self.err(
+                    "locking.c_kappa",
+                    c,
+                    "no compliance with treatment = \"exact\" (ideal locking has none)",
+                ));
+            }
+            return Ok(Material {
+                elasticity,
+                locking: LockingPenalty::NONE,
+                ideal_locking: Some(set),
+            });
+        }
         let c_kappa = match (set, l.c_kappa) {
             (LockingSet::None, None) => 0.0,
             (LockingSet::None, Some(c)) => {
@@ -379,6 +401,7 @@ impl Scenario {
         Ok(Material {
             elasticity,
             locking: LockingPenalty { set, c_kappa },
+            ideal_locking: None,
         })
     }
 
@@ -391,13 +414,23 @@ impl Scenario {
                 return Err(self.err(&f("gap"), c.gap, "a gap g ≥ 0 (m)"));
             }
             let normal = match c.law {
-                NormalLawKind::NormalCompliance => NormalCompliance {
+                NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
                     c_nu: self.positive(
                         &f("c_nu"),
                         c.c_nu,
                         "a normal compliance stiffness c_ν (Pa/m)",
                     )?,
-                },
+                }),
+                NormalLawKind::Signorini => {
+                    if let Some(c_nu) = c.c_nu {
+                        return Err(self.err(
+                            &f("c_nu"),
+                            c_nu,
+                            "no stiffness with law = \"signorini\" (a rigid foundation)",
+                        ));
+                    }
+                    NormalLaw::Signorini
+                }
             };
             let friction = match &c.friction {
                 None => None,
@@ -440,10 +473,19 @@ impl Scenario {
                     fs.mu
                         .validate()
                         .map_err(|msg| self.err(&f("friction.mu"), format!("{:?}", fs.mu), &msg))?;
+                    if fs.exact && !potential.is_nonsmooth() {
+                        return Err(self.err(
+                            &f("friction.exact"),
+                            true,
+                            "exact = true only with potential = \"norm\" or \"nonconvex\" \
+                             (the regularized law (19) is smooth)",
+                        ));
+                    }
                     Some(Friction {
                         bound: fs.bound,
                         mu: fs.mu.clone(),
                         potential,
+                        exact: fs.exact,
                     })
                 }
             };

@@ -31,13 +31,14 @@
 //! [locking]                 # optional (default: none)
 //! set = "limited-compressibility"   # or "prager" (kappa), "ball" (radius), "none"
 //! theta = 0.16
-//! treatment = "penalty"     # nearly locking, paper eq. (40)
+//! treatment = "penalty"     # nearly locking, paper eq. (40); or "exact" (ideal locking,
+//!                           # no c_kappa)
 //! c_kappa = 10000.0         # Pa
 //!
 //! [[contact]]               # optional, one per contact part
 //! part = "left"
 //! gap = 0.4                 # m
-//! law = "normal-compliance"
+//! law = "normal-compliance" # or "signorini" (rigid foundation u_ν ≤ g, no c_nu)
 //! c_nu = 10000.0            # Pa/m
 //! [contact.friction]        # optional (default: frictionless)
 //! bound = "coulomb"         # or "tresca"
@@ -45,9 +46,12 @@
 //! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 //! # mu = { law = "constant", mu = 0.3 }
 //! # mu = { law = "table", points = [[0.0, 0.4], [0.01, 0.1]] }
+//! exact = false             # true: exact stick/slip (potentials norm and nonconvex)
 //!
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
+//! [solver.constraints]      # exact constraints (augmented Lagrangian)
+//! penalty = 1000.0          # dimensionless factor γ
 //!
 //! [output]
 //! dir = "out/example"       # default: given on the command line
@@ -183,6 +187,9 @@ pub enum LockingTreatment {
     /// Nearly locking: the penalty `(C_κ/2) Q_+²` (paper eq. (40)).
     #[default]
     Penalty,
+    /// Ideal locking: the exact constraint `ε_T ∈ B` in every cell (augmented Lagrangian,
+    /// see `solver::constraints`).
+    Exact,
 }
 
 /// `[locking]`.
@@ -201,10 +208,10 @@ pub struct LockingSpec {
     /// Radius r (ball).
     #[serde(default)]
     pub radius: Option<f64>,
-    /// Treatment (penalty).
+    /// Treatment: penalty (nearly locking) or exact (ideal locking).
     #[serde(default)]
     pub treatment: LockingTreatment,
-    /// Penalty compliance C_κ ≥ 0 (Pa).
+    /// Penalty compliance C_κ ≥ 0 (Pa), with `treatment = "penalty"` only.
     #[serde(default)]
     pub c_kappa: Option<f64>,
 }
@@ -216,6 +223,8 @@ pub enum NormalLawKind {
     /// `p = c_ν (u_ν − g)_+`.
     #[default]
     NormalCompliance,
+    /// The Signorini condition `u_ν ≤ g` of a rigid foundation (exact constraint).
+    Signorini,
 }
 
 /// `[[contact]]`.
@@ -230,7 +239,7 @@ pub struct ContactSpec {
     /// Normal law.
     #[serde(default)]
     pub law: NormalLawKind,
-    /// Normal compliance stiffness c_ν > 0 (Pa/m).
+    /// Normal compliance stiffness c_ν > 0 (Pa/m), with `law = "normal-compliance"` only.
     #[serde(default)]
     pub c_nu: Option<f64>,
     /// Friction; frictionless if absent.
@@ -268,6 +277,10 @@ pub struct FrictionSpec {
     pub rho: Option<f64>,
     /// The coefficient μ(r).
     pub mu: FrictionCoefficient,
+    /// Exact stick/slip (augmented Lagrangian) instead of the numerically regularized norm;
+    /// potentials `norm` and `nonconvex` only. Default false.
+    #[serde(default)]
+    pub exact: bool,
 }
 
 /// `[[dirichlet]]`.

@@ -22,9 +22,11 @@
 //! reaction.
 //!
 //! Residuals are forces (N, or N/m in 2D), reported relative to the force scale `S` =
-//! the largest nodal external force or contact force. `r_stick = 10³ ρ_num`.
+//! the largest nodal external force or contact force, at least the force unit of the
+//! prescribed displacements ([`super::System::force_floor`]). `r_stick = 10³ ρ_num`.
 
-use crate::assembly::contact::ContactAssembler;
+use super::constraints::KktCertificate;
+use crate::assembly::contact::{ContactAssembler, Frozen};
 use crate::contact::{FrictionBound, FrictionPotential};
 use serde::Serialize;
 
@@ -106,11 +108,16 @@ pub struct Certificate {
     pub n_contact: usize,
     /// Number of slipping points.
     pub n_slip: usize,
+    /// KKT residuals of the exact constraints, if the problem has any.
+    pub kkt: Option<KktCertificate>,
 }
 
 /// Evaluates the contact results and the certificate at `u`. `grad_bulk` is `∇W(u) − f`
 /// (DOF order, so it is the interface force at contact nodes) and `f_ext` the external
-/// forces.
+/// forces; `frozen` the quantities of the last convex problem (its multipliers give the
+/// pressure at Signorini points and the stick/slip classification of exact friction:
+/// stick where `‖τ + r u_τ‖ ≤ F`, i.e. the projection defining the friction force is
+/// inactive).
 pub fn evaluate(
     ca: &ContactAssembler<'_>,
     u: &[f64],
@@ -118,17 +125,28 @@ pub fn evaluate(
     f_ext: &[f64],
     fixed: &dyn Fn(usize) -> bool,
     equilibrium: f64,
+    frozen: &Frozen,
+    force_floor: f64,
 ) -> (Vec<ContactResult>, Certificate) {
     let d = ca.dim;
     let m = d - 1;
     let stick_threshold = 1e3 * ca.rho_num;
+    let u_scale = u
+        .chunks(d)
+        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let mut kkt = KktCertificate::default();
+    let mut max_pressure = 0.0f64;
+    let mut min_pressure = f64::INFINITY;
+    let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     let mut scale = f_ext
         .chunks(d)
         .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
         .fold(0.0, f64::max);
     for i in 0..ca.nodes.len() {
-        let s = ca.state(u, i);
+        let s = ca.state(u, i, frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
@@ -170,7 +188,20 @@ pub fn evaluate(
             Some(fr) => {
                 let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
                 let wf = w * s.bound;
-                if s.slip > stick_threshold || smooth {
+                let slipping = if fr.exact {
+                    let (r, tau) = (ca.penalty[i], frozen.traction[i]);
+                    let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
+                    let stick = frozen.bound[i] > 0.0
+                        && crate::assembly::contact::project_ball(&z, m, frozen.bound[i]).1;
+                    if stick {
+                        kkt.stick_slip = kkt.stick_slip.max(s.slip / u_scale);
+                    }
+                    kkt.n_constraints.2 += 1;
+                    !stick && s.slip > 0.0
+                } else {
+                    s.slip > stick_threshold
+                };
+                if slipping || smooth {
                     // R_τ = −w F j'(r) u_τ/r.
                     let slope = if s.slip > 0.0 {
                         fr.potential.slope(s.slip) / s.slip
@@ -180,7 +211,7 @@ pub fn evaluate(
                     let r2: f64 = (0..m)
                         .map(|a| (ft[a] + wf * slope * s.u_tau[a]).powi(2))
                         .sum();
-                    let st = if s.slip > stick_threshold {
+                    let st = if slipping {
                         Status::Slip
                     } else {
                         Status::Stick
@@ -200,6 +231,16 @@ pub fn evaluate(
             0.0
         };
         scale = scale.max(w * s.pressure).max(w * s.bound);
+        if cb.normal.is_exact() {
+            exact_any = true;
+            kkt.n_constraints.1 += 1;
+            max_pressure = max_pressure.max(s.pressure);
+            min_pressure = min_pressure.min(s.pressure);
+            kkt.contact_violation = kkt
+                .contact_violation
+                .max((s.u_nu - cb.gap).max(0.0) / u_scale);
+        }
+        exact_any |= cb.friction.as_ref().is_some_and(|f| f.exact);
         results.push(ContactResult {
             node: ca.nodes.node[i],
             boundary: ca.nodes.boundary[i] as usize,
@@ -218,8 +259,21 @@ pub fn evaluate(
             friction_residual,
         });
     }
-    let scale = scale.max(f64::MIN_POSITIVE);
+    let scale = scale.max(force_floor).max(f64::MIN_POSITIVE);
+    if max_pressure > 0.0 {
+        kkt.contact_min_multiplier = min_pressure / max_pressure;
+        for (r, cb) in results
+            .iter()
+            .map(|r| (r, &ca.boundaries[r.boundary]))
+            .filter(|(_, cb)| cb.normal.is_exact())
+        {
+            kkt.contact_complementarity = kkt
+                .contact_complementarity
+                .max(r.pressure * (cb.gap - r.u_nu).abs() / (max_pressure * u_scale));
+        }
+    }
     let mut cert = Certificate {
+        kkt: exact_any.then_some(kkt),
         equilibrium,
         force_scale: scale,
         stick_threshold,

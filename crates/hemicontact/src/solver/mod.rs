@@ -8,6 +8,7 @@
 //! evaluates the certificate and returns the solution with its report.
 
 pub mod certificate;
+pub mod constraints;
 pub mod newton;
 pub mod outer;
 pub mod report;
@@ -15,6 +16,7 @@ pub mod system;
 pub mod uniqueness;
 
 pub use certificate::{Certificate, ContactResult, Status};
+pub use constraints::{ConstraintSettings, KktCertificate};
 pub use newton::NewtonSettings;
 pub use outer::{Acceleration, OuterSettings};
 pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
@@ -49,6 +51,8 @@ pub struct SolverSettings {
     pub newton: NewtonSettings,
     /// Outer (convexification) loop settings.
     pub outer: OuterSettings,
+    /// Exact constraints (augmented Lagrangian) settings.
+    pub constraints: ConstraintSettings,
 }
 
 impl Default for SolverSettings {
@@ -59,6 +63,7 @@ impl Default for SolverSettings {
             factorization_threads: 1,
             newton: NewtonSettings::default(),
             outer: OuterSettings::default(),
+            constraints: ConstraintSettings::default(),
         }
     }
 }
@@ -74,6 +79,9 @@ pub struct Solution {
     pub energy: f64,
     /// Results at the contact points.
     pub contact: Vec<ContactResult>,
+    /// Ideal-locking multiplier λ_T per cell (Pa; the magnitude of the locking stress
+    /// `λ_T ∂Q`), empty without ideal locking.
+    pub locking_multiplier: Vec<f64>,
     /// The frozen quantities of the last convex problem.
     pub frozen: Frozen,
     /// What the solver did; `report.converged` says whether `u` is a solution.
@@ -81,18 +89,19 @@ pub struct Solution {
 }
 
 /// Whether the outer loop is needed: some friction law has a slip-dependent coefficient, a
-/// Coulomb-type bound, or a nonconvex potential. Otherwise one convex problem is the whole
-/// problem.
+/// Coulomb-type bound, or a nonconvex potential, or there are exact constraints (whose
+/// multipliers are iterated). Otherwise one convex problem is the whole problem.
 pub fn needs_outer_loop(problem: &Problem) -> bool {
-    problem
-        .contact
-        .iter()
-        .filter_map(|c| c.friction.as_ref())
-        .any(|f| {
-            f.bound == crate::contact::FrictionBound::Coulomb
-                || f.mu.lipschitz() > 0.0
-                || f.potential.alpha_j() > 0.0
-        })
+    constraints::has_exact_constraints(problem)
+        || problem
+            .contact
+            .iter()
+            .filter_map(|c| c.friction.as_ref())
+            .any(|f| {
+                f.bound == crate::contact::FrictionBound::Coulomb
+                    || f.mu.lipschitz() > 0.0
+                    || f.potential.alpha_j() > 0.0
+            })
 }
 
 /// Solves the problem from the prescribed displacement (zero elsewhere).
@@ -126,9 +135,10 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
     let n_points = system.contact.len();
+    let n_locking = problem.mesh.n_cells() * usize::from(problem.material.ideal_locking.is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
-    let mut frozen = system.contact_assembler(problem).freeze(&u);
+    let mut frozen = system.initial_frozen(problem, &u);
     let mut z = outer::flatten(&frozen);
     let mut mixer = outer::Mixer::new(&settings.outer);
     let mut u_prev = u.clone();
@@ -180,19 +190,9 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
         };
         u_prev.copy_from_slice(&u);
-        let g = outer::flatten(&system.contact_assembler(problem).freeze(&u));
-        let fp: f64 = g
-            .iter()
-            .zip(&z)
-            .map(|(a, b)| (a - b).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        let g_norm = g.iter().map(|a| a * a).sum::<f64>().sqrt();
-        let fp_rel = if fp == 0.0 {
-            0.0
-        } else {
-            fp / g_norm.max(f64::MIN_POSITIVE)
-        };
+        let next = system.freeze(problem, &u, &frozen);
+        let g = outer::flatten(&next);
+        let fp_rel = residual(problem, &system, &frozen, &next, &u);
         let mut step = report::OuterStep {
             change,
             fixed_point_residual: fp_rel,
@@ -226,7 +226,7 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             let (next, note) = mixer.next(&z, &g);
             step.mixing = note;
             z = next;
-            frozen = outer::unflatten(&z, n_points);
+            frozen = outer::unflatten(&z, n_points, n_locking);
         }
         report.outer.push(step);
     }
@@ -243,16 +243,24 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, false);
     let reactions = system.reactions();
+    // The multipliers consistent with the last convex problem (its forces).
+    let updated = system.freeze(problem, &u, &frozen);
     let ca = system.contact_assembler(problem);
     let equilibrium = last.residual / last.force_scale;
-    let (contact, certificate) = certificate::evaluate(
+    let (contact, mut certificate) = certificate::evaluate(
         &ca,
         &u,
         &system.grad_bulk,
         &system.f_ext,
         &|k| system.dofs.is_fixed(k),
         equilibrium,
+        &frozen,
+        system.force_floor,
     );
+    if let Some(set) = problem.material.ideal_locking {
+        let kkt = certificate.kkt.get_or_insert_with(Default::default);
+        constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
+    }
     report.certificate = certificate;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
@@ -260,9 +268,60 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         reactions,
         energy,
         contact,
+        locking_multiplier: updated.locking,
         frozen,
         report,
     })
+}
+
+/// The relative fixed-point residual of the outer loop between the frozen quantities `z`
+/// of the last convex problem and their image `g = G(z)` at its solution `u`: the larger of
+///
+/// - `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the friction data of the convexification, and
+/// - the multiplier changes divided by their penalty — `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i`
+///   relative to `max|u|`, `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). This is the
+///   standard primal stopping test of the augmented Lagrangian method: for an active
+///   constraint `Δλ/r` *is* the constraint violation, for a sticking point `Δτ/r` the slip.
+///   (Measured in force units instead, the multiplier change has a floor of r times the
+///   Newton tolerance, far above the tolerance for the large penalties used.)
+fn residual(problem: &Problem, system: &System, z: &Frozen, g: &Frozen, u: &[f64]) -> f64 {
+    let n = z.bound.len();
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for i in 0..n {
+        diff += (g.bound[i] - z.bound[i]).powi(2);
+        norm += g.bound[i].powi(2);
+        for a in 0..2 {
+            diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
+            norm += g.linear[i][a].powi(2);
+        }
+    }
+    let mut fp = if diff == 0.0 {
+        0.0
+    } else {
+        (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
+    };
+    let d = problem.mesh.dim();
+    let u_scale = u
+        .chunks(d)
+        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    for i in 0..n {
+        let r = system.contact_penalty[i] * u_scale;
+        let dt = ((g.traction[i][0] - z.traction[i][0]).powi(2)
+            + (g.traction[i][1] - z.traction[i][1]).powi(2))
+        .sqrt();
+        fp = fp
+            .max((g.pressure[i] - z.pressure[i]).abs() / r)
+            .max(dt / r);
+    }
+    if let Some(set) = &problem.material.ideal_locking {
+        let r = system.locking_penalty * constraints::q_scale(set);
+        for (a, b) in g.locking.iter().zip(&z.locking) {
+            fp = fp.max((a - b).abs() / r);
+        }
+    }
+    fp
 }
 
 /// Builds the faer parallelism for `threads` (0: all available cores).

@@ -5,9 +5,10 @@
 //! used as a PCG preconditioner when it changed a little, and refactorized otherwise), and takes the largest step `t ∈
 //! {1, ½, ¼, …}` that satisfies the Armijo condition `Π(u + tΔ) ≤ Π(u) + c t ∇Π·Δ`.
 //! It stops when the residual (gradient on the free DOFs) is below `residual_tolerance`
-//! times the force scale `max(‖f_ext‖, ‖∇W‖)` (‖∇W‖: internal forces over all DOFs,
-//! reactions included), so the criterion is dimensionless and meaningful for load-driven
-//! and displacement-driven problems alike.
+//! times the force scale `max(‖f_ext‖, ‖∇W‖, f_D)` (‖∇W‖: internal forces over all DOFs,
+//! reactions included; f_D the force unit of the prescribed displacements, see
+//! [`System::force_floor`]), so the criterion is dimensionless and meaningful for
+//! load-driven and displacement-driven problems alike, including stress-free ones.
 
 use super::report::{NewtonStep, SolveReport};
 use super::System;
@@ -121,7 +122,10 @@ pub fn minimize(
             .map(|(g, f)| (g + f).powi(2))
             .sum::<f64>()
             .sqrt();
-        let force_scale = f_scale.max(internal).max(f64::MIN_POSITIVE);
+        let force_scale = f_scale
+            .max(internal)
+            .max(system.force_floor)
+            .max(f64::MIN_POSITIVE);
         let tol = tolerance * force_scale;
         report.residual = res;
         report.residual_tolerance = tol;

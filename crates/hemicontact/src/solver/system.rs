@@ -4,7 +4,7 @@
 //! gradient and generalized Hessian for given frozen contact quantities.
 
 use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};
-use crate::assembly::global::{Want, Workspace};
+use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
 use crate::error::Result;
@@ -28,8 +28,19 @@ pub struct System {
     pub contact_slots: Vec<u32>,
     /// Numerical regularization ρ_num of the norm in the friction potential (m).
     pub rho_num: f64,
+    /// Augmented-Lagrangian penalty r_i per contact point (Pa/m), see
+    /// [`super::constraints`].
+    pub contact_penalty: Vec<f64>,
+    /// Augmented-Lagrangian penalty r_T of ideal locking (0 without).
+    pub locking_penalty: f64,
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
+    /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
+    /// P-wave modulus): the floor of the force scales of the Newton criterion and the
+    /// certificate, so that a displacement-driven solution without stress (a prescribed
+    /// rigid motion) is measured against the forces its data could cause, not against
+    /// zero.
+    pub force_floor: f64,
     /// Gradient of the total energy at the last evaluation, DOF order.
     pub grad: Vec<f64>,
     /// Gradient of the bulk energy minus external forces at the last evaluation (the
@@ -76,6 +87,10 @@ impl System {
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
         let contact = problem.contact_nodes();
+        let contact_penalty = super::constraints::contact_penalties(problem, &contact.weight);
+        let locking_penalty = problem.material.ideal_locking.map_or(0.0, |set| {
+            super::constraints::locking_penalty(problem, &set)
+        });
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
         let cholesky = Cholesky::analyze(
@@ -94,6 +109,15 @@ impl System {
         let factor_cost =
             (cholesky.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0);
         let f_ext = problem.external_forces();
+        let force_floor = {
+            let d = problem.mesh.dim();
+            let h = problem.material.elasticity.small_strain_hooke(d);
+            let u_d = problem
+                .prescribed_displacement()
+                .iter()
+                .fold(0.0f64, |m, x| m.max(x.abs()));
+            (h.lambda + 2.0 * h.mu) * u_d * problem.diameter().powi(d as i32 - 2)
+        };
         let n = dofs.n_dofs();
         let hess = vec![0.0; pattern.nnz()];
         Ok(System {
@@ -103,7 +127,10 @@ impl System {
             contact,
             contact_slots,
             rho_num: problem.solver.outer.friction_regularization * problem.diameter(),
+            contact_penalty,
+            locking_penalty,
             f_ext,
+            force_floor,
             grad: vec![0.0; n],
             grad_bulk: vec![0.0; n],
             hess,
@@ -127,7 +154,44 @@ impl System {
             nodes: &self.contact,
             boundaries: &problem.contact,
             rho_num: self.rho_num,
+            penalty: &self.contact_penalty,
         }
+    }
+
+    /// The ideal-locking term of `problem` with the cell multipliers of `frozen`.
+    fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
+        problem.material.ideal_locking.map(|set| IdealLocking {
+            set,
+            r: self.locking_penalty,
+            multipliers: &frozen.locking,
+        })
+    }
+
+    /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
+    /// all multipliers zero (so the first problem is the penalty problem).
+    pub fn initial_frozen(&self, problem: &Problem, u: &[f64]) -> Frozen {
+        let mut zero = Frozen::zero(self.contact.len());
+        let ideal = problem.material.ideal_locking.is_some();
+        super::constraints::zero_multipliers(&mut zero, problem.mesh.n_cells(), ideal);
+        let mut frozen = self.contact_assembler(problem).freeze(u, &zero);
+        super::constraints::zero_multipliers(&mut frozen, problem.mesh.n_cells(), ideal);
+        frozen
+    }
+
+    /// The map G of the outer fixed point: frozen friction data at `u` and the multiplier
+    /// updates from `current` (see [`super::constraints`]).
+    pub fn freeze(&self, problem: &Problem, u: &[f64], current: &Frozen) -> Frozen {
+        let mut next = self.contact_assembler(problem).freeze(u, current);
+        if let Some(set) = problem.material.ideal_locking {
+            next.locking = super::constraints::update_locking(
+                &problem.mesh,
+                &set,
+                self.locking_penalty,
+                u,
+                &current.locking,
+            );
+        }
+        next
     }
 
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
@@ -143,6 +207,7 @@ impl System {
         let bulk = BulkAssembler {
             mesh: &problem.mesh,
             material: &problem.material,
+            ideal: self.ideal_locking(problem, frozen),
         };
         let want = if hessian {
             Want::Hessian
@@ -173,6 +238,7 @@ impl System {
             nodes: &self.contact,
             boundaries: &problem.contact,
             rho_num: self.rho_num,
+            penalty: &self.contact_penalty,
         };
         let hc = if hessian {
             Some((self.hess.as_mut_slice(), self.contact_slots.as_slice()))

@@ -72,10 +72,7 @@ pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
         lambda: 0.0,
         mu: 0.5,
     }));
-    let bulk = BulkAssembler {
-        mesh: &problem.mesh,
-        material: &material,
-    };
+    let bulk = BulkAssembler::new(&problem.mesh, &material);
     let u = vec![0.0; d * problem.mesh.n_nodes()];
     let mut grad = vec![0.0; u.len()];
     let mut k = vec![0.0; system.pattern.nnz()];

@@ -93,7 +93,7 @@ pub fn solve_with_prescribed_field(
             }
         }
     }
-    let frozen = system.contact_assembler(problem).freeze(&u);
+    let frozen = system.initial_frozen(problem, &u);
     let mut report = SolveReport::new(&system);
     let settings = &problem.solver.newton;
     let outcome = newton::minimize(

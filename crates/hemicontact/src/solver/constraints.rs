@@ -1,0 +1,216 @@
+//! Exact constraints by the augmented Lagrangian method: ideal locking `ε_T(u) ∈ B`,
+//! Signorini contact `u_ν ≤ g`, and exact stick/slip for `j = ‖·‖` (the paper's Problem 5,
+//! which the paper itself only computed in regularized form).
+//!
+//! # Method, and why
+//! Each constraint gets a multiplier — the locking stress magnitude λ_T per cell, the
+//! contact pressure λ_i and the friction traction τ_i per contact point — and its term of the
+//! energy is replaced by the augmented Lagrangian with penalty r:
+//!
+//! | constraint | term | multiplier update |
+//! |------------|------|-------------------|
+//! | `Q(ε_T) ≤ 0` | `|T| (1/2r)[(λ_T + rQ)_+² − λ_T²]` | `λ_T ← (λ_T + rQ(ε_T))_+` |
+//! | `u_ν ≤ g` | `w_i (1/2r)[(λ_i + r(u_ν − g))_+² − λ_i²]` | `λ_i ← (λ_i + r(u_ν − g))_+` |
+//! | `F‖u_τ‖` | `w_i (1/r)[H_F(τ_i + r u_τ) − ‖τ_i‖²/2]` | `τ_i ← proj_{B_F}(τ_i + r u_τ)` |
+//!
+//! (H_F the Huber function, see [`crate::assembly::contact`].) For fixed multipliers every
+//! term is convex and C¹ with a piecewise smooth gradient — exactly the structure the
+//! existing semismooth Newton solver with line search minimizes, on the same sparsity
+//! pattern and symbolic factorization; with zero multipliers it *is* the nearly-locking
+//! penalty and normal compliance with stiffness r. The multiplier updates are proximal-point
+//! steps on the dual problem, which converge for every r > 0 (Rockafellar 1976), at a linear
+//! rate that improves as r grows; they join the frozen vector of the convexification loop
+//! ([`super::outer`]), so one Newton solve per outer iteration serves both the
+//! convexification and the multipliers, and Anderson acceleration speeds up both.
+//!
+//! A primal–dual active-set method would converge in fewer iterations when it converges, but
+//! it can cycle between active sets (the classic failure for friction), and needs an
+//! indefinite saddle-point solve. Here every inner problem is the minimization of a convex
+//! energy, globalized by the line search: the active sets inside a solve are found by a
+//! descent method and cannot cycle, and the outer iteration is a contraction.
+//!
+//! # The penalty
+//! r balances the constraint stiffness against the elastic one, `r = γ · S` with
+//! `S = λ + 2G` (the P-wave modulus, Pa) and the dimensionless factor γ
+//! ([`ConstraintSettings::penalty`], default 10³): per cell `r_T = γ S / |∂Q|²` at the
+//! boundary of B (1 for limited compressibility per unit trace, `2κ²` for Prager, 1 for the
+//! ball), per contact point `r_i = γ S / h_i` with `h_i = w_i^{1/(d−1)}` the local mesh size,
+//! so that the penalty adds γ times the stiffness of the node or cell. Each outer iteration
+//! then reduces the constraint violation about γ-fold: large enough for a few iterations,
+//! small enough (10³ on top of the elastic condition number) not to hurt the direct solver.
+//!
+//! # Certificate
+//! At convergence the KKT conditions are checked ([`KktCertificate`]): violation
+//! `max Q(ε_T)_+` relative to the size of B, `max (u_ν − g)_+` relative to the largest
+//! displacement, signs of the multipliers, complementarity, and (in
+//! [`super::certificate`]) equilibrium and the friction law with the multipliers as forces.
+
+use crate::assembly::contact::Frozen;
+use crate::assembly::element;
+use crate::material::LockingSet;
+use crate::mesh::Mesh;
+use crate::problem::Problem;
+use serde::{Deserialize, Serialize};
+
+/// Settings of the exact-constraint (augmented Lagrangian) method.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ConstraintSettings {
+    /// Dimensionless penalty factor γ > 0: the augmented Lagrangian penalty is γ times the
+    /// elastic stiffness of a cell or node (see the module documentation). Default 10³.
+    pub penalty: f64,
+}
+
+impl Default for ConstraintSettings {
+    fn default() -> Self {
+        ConstraintSettings { penalty: 1e3 }
+    }
+}
+
+/// Whether the problem has exact constraints (and so multipliers to iterate on).
+pub fn has_exact_constraints(problem: &Problem) -> bool {
+    problem.material.ideal_locking.is_some()
+        || problem
+            .contact
+            .iter()
+            .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.exact))
+}
+
+/// P-wave modulus `S = λ + 2G` of the small-strain Hooke law of the problem (Pa).
+fn stiffness_scale(problem: &Problem) -> f64 {
+    let h = problem
+        .material
+        .elasticity
+        .small_strain_hooke(problem.mesh.dim());
+    (h.lambda + 2.0 * h.mu).max(h.mu)
+}
+
+/// Penalty r_T of the ideal-locking set `set` (Pa per unit of Q²).
+pub fn locking_penalty(problem: &Problem, set: &LockingSet) -> f64 {
+    let gamma = problem.solver.constraints.penalty;
+    let s = stiffness_scale(problem);
+    match *set {
+        LockingSet::Prager { kappa } => gamma * s / (2.0 * kappa * kappa),
+        _ => gamma * s,
+    }
+}
+
+/// Penalty r_i (Pa/m) of every contact point of weight `weight[i]`.
+pub fn contact_penalties(problem: &Problem, weight: &[f64]) -> Vec<f64> {
+    let gamma = problem.solver.constraints.penalty;
+    let s = stiffness_scale(problem);
+    let d = problem.mesh.dim();
+    weight
+        .iter()
+        .map(|&w| {
+            let h = if d == 2 { w } else { w.sqrt() };
+            gamma * s / h.max(f64::MIN_POSITIVE)
+        })
+        .collect()
+}
+
+/// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+`.
+pub fn update_locking(
+    mesh: &Mesh,
+    set: &LockingSet,
+    r: f64,
+    u: &[f64],
+    current: &[f64],
+) -> Vec<f64> {
+    (0..mesh.n_cells())
+        .map(|c| {
+            let (_, eps) = element::cell_strain(mesh, u, c);
+            (current[c] + r * set.q(&eps)).max(0.0)
+        })
+        .collect()
+}
+
+/// The scale of Q for a set: θ, κ² or r (so that `Q/scale` is a relative violation).
+pub fn q_scale(set: &LockingSet) -> f64 {
+    match *set {
+        LockingSet::None => 1.0,
+        LockingSet::LimitedCompressibility { theta } => theta,
+        LockingSet::Prager { kappa } => kappa * kappa,
+        LockingSet::Ball { r } => r,
+    }
+}
+
+/// KKT residuals of the exact constraints at a solution (all dimensionless).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct KktCertificate {
+    /// Ideal locking: `max_T Q(ε_T)_+ / q` with q = θ, κ² or r (the size of B).
+    pub locking_violation: f64,
+    /// Smallest locking multiplier divided by the largest (≥ 0: signs correct).
+    pub locking_min_multiplier: f64,
+    /// `max_T λ_T |Q(ε_T)| / (max λ · q)`.
+    pub locking_complementarity: f64,
+    /// Cells where the locking constraint is active (λ_T > 0).
+    pub n_locked: usize,
+    /// Signorini: `max_i (u_ν − g)_+ / max|u|`.
+    pub contact_violation: f64,
+    /// Smallest Signorini multiplier (pressure) divided by the largest.
+    pub contact_min_multiplier: f64,
+    /// `max_i λ_i |g − u_ν,i| / (max λ · max|u|)`.
+    pub contact_complementarity: f64,
+    /// Exact friction: largest slip of a sticking point relative to max|u| (zero to
+    /// round-off when stick is exact).
+    pub stick_slip: f64,
+    /// Number of constraints of each kind checked: (cells, Signorini points, exact-friction
+    /// points).
+    pub n_constraints: (usize, usize, usize),
+}
+
+impl KktCertificate {
+    /// The largest violation or complementarity residual (the number to compare with the
+    /// 1e-8 target).
+    pub fn worst(&self) -> f64 {
+        [
+            self.locking_violation,
+            self.locking_complementarity,
+            self.contact_violation,
+            self.contact_complementarity,
+            self.stick_slip,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+}
+
+/// Evaluates the locking part of the KKT certificate for the multipliers `lambda` (the
+/// updated ones) at `u`.
+pub fn locking_kkt(
+    mesh: &Mesh,
+    set: &LockingSet,
+    u: &[f64],
+    lambda: &[f64],
+    kkt: &mut KktCertificate,
+) {
+    let q_ref = q_scale(set);
+    let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
+    let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
+    kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
+    kkt.n_locked = lambda.iter().filter(|&&l| l > 0.0).count();
+    kkt.n_constraints.0 = mesh.n_cells();
+    for (c, &l) in lambda.iter().enumerate() {
+        let (_, eps) = element::cell_strain(mesh, u, c);
+        let q = set.q(&eps);
+        kkt.locking_violation = kkt.locking_violation.max(q.max(0.0) / q_ref);
+        if lmax > 0.0 {
+            kkt.locking_complementarity = kkt
+                .locking_complementarity
+                .max(l * q.abs() / (lmax * q_ref));
+        }
+    }
+}
+
+/// The initial frozen vector's multipliers: zero (the first convex problem is the penalty
+/// problem with penalty r).
+pub fn zero_multipliers(frozen: &mut Frozen, n_cells: usize, ideal: bool) {
+    frozen.pressure.iter_mut().for_each(|p| *p = 0.0);
+    frozen.traction.iter_mut().for_each(|t| *t = [0.0; 2]);
+    frozen.locking = if ideal {
+        vec![0.0; n_cells]
+    } else {
+        Vec::new()
+    };
+}
