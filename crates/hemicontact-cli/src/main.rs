@@ -432,7 +432,11 @@ fn print_table(cases: &[Case]) {
     for c in cases {
         let r = &c.solution.report;
         let cert = &r.certificate;
-        let worst = cert.equilibrium.max(cert.normal_law).max(cert.friction_law);
+        let worst = cert
+            .equilibrium
+            .max(cert.normal_law)
+            .max(cert.friction_law)
+            .max(cert.kkt.as_ref().map_or(0.0, |k| k.worst()));
         say!(
             "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>6} {:>12} {:>10.6} {:>10.1e}{}",
             c.label,
@@ -447,6 +451,35 @@ fn print_table(cases: &[Case]) {
             worst,
             if r.converged { "" } else { "  NOT CONVERGED" }
         );
+    }
+    for c in cases {
+        if let Some(k) = &c.solution.report.certificate.kkt {
+            let (cells, points, friction) = k.n_constraints;
+            say!("KKT ({}): exact constraints, relative residuals", c.label);
+            if cells > 0 {
+                say!(
+                    "  ideal locking  {cells} cells, {} locked: violation {:.1e}, complementarity {:.1e}, min multiplier/max {:.1e}",
+                    k.n_locked,
+                    k.locking_violation,
+                    k.locking_complementarity,
+                    k.locking_min_multiplier
+                );
+            }
+            if points > 0 {
+                say!(
+                    "  Signorini      {points} points: violation {:.1e}, complementarity {:.1e}, min pressure/max {:.1e}",
+                    k.contact_violation,
+                    k.contact_complementarity,
+                    k.contact_min_multiplier
+                );
+            }
+            if friction > 0 {
+                say!(
+                    "  exact friction {friction} points: largest slip of a sticking point {:.1e} (relative to max |u|)",
+                    k.stick_slip
+                );
+            }
+        }
     }
 }
 

@@ -85,10 +85,18 @@ impl Summary {
         }
         let h = &problem.material.elasticity.small_strain_hooke(d);
         let strains = BulkAssembler::new(mesh, &problem.material).cell_strains(&solution.u);
-        let locked_cells = strains
-            .iter()
-            .filter(|e| problem.material.locking.is_active(e))
-            .count();
+        let locked_cells = if problem.material.ideal_locking.is_some() {
+            solution
+                .locking_multiplier
+                .iter()
+                .filter(|&&l| l > 0.0)
+                .count()
+        } else {
+            strains
+                .iter()
+                .filter(|e| problem.material.locking.is_active(e))
+                .count()
+        };
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
         let cert = &solution.report.certificate;
         Summary {
@@ -158,9 +166,14 @@ pub fn write_results(
 ///
 /// Contact point data (for nodes that are not contact nodes: status −1, zeros elsewhere):
 /// `contact_status` (0 separated, 1 stick, 2 slip), `contact_pressure`, `slip`,
-/// `interface_force` (the force of the foundation on the node, N). Where a node is on two
+/// `interface_force` (the force of the foundation on the node, N), and the contact
+/// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
+/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is on two
 /// contact boundaries, the last one's values are shown and the forces are summed.
-/// Cell data `locking_active` is 1 where `Q(ε) > 0` (the penalty acts), `locking_q` is Q(ε).
+/// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
+/// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
+/// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
+/// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
 pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
     let mesh = &problem.mesh;
     let d = mesh.dim();
@@ -173,15 +186,32 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
     let mut tr = Vec::with_capacity(n_cells);
     let mut active = Vec::with_capacity(n_cells);
     let mut q = Vec::with_capacity(n_cells);
+    let mut multiplier = Vec::with_capacity(n_cells);
     let locking = &problem.material.locking;
-    for e in &strains {
-        let s = problem.material.stress(e);
+    let ideal = problem.material.ideal_locking;
+    let set = ideal.unwrap_or(locking.set);
+    for (c, e) in strains.iter().enumerate() {
+        let mut s = problem.material.stress(e);
+        let (act, lambda) = match ideal {
+            Some(set) => {
+                let l = solution.locking_multiplier.get(c).copied().unwrap_or(0.0);
+                if l > 0.0 {
+                    s = s.add_scaled(l, &set.dq(e));
+                }
+                (l > 0.0, l)
+            }
+            None => (
+                locking.is_active(e),
+                locking.c_kappa * locking.set.q(e).max(0.0),
+            ),
+        };
         eps9.extend(e.to_matrix().iter().flatten());
         sig9.extend(s.to_matrix().iter().flatten());
         vm.push(s.von_mises());
         tr.push(e.trace());
-        active.push(i32::from(locking.is_active(e)));
-        let qv = locking.set.q(e);
+        active.push(i32::from(act));
+        multiplier.push(if lambda.is_finite() { lambda } else { 0.0 });
+        let qv = set.q(e);
         q.push(if qv.is_finite() { qv } else { 0.0 });
     }
     let n = mesh.n_nodes();
@@ -189,6 +219,7 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
     let mut pressure = vec![0.0; n];
     let mut slip = vec![0.0; n];
     let mut force = vec![0.0; 3 * n];
+    let mut traction = vec![0.0; 3 * n];
     for c in &solution.contact {
         let v = c.node as usize;
         status[v] = c.status.code();
@@ -196,13 +227,16 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         slip[v] = c.slip;
         for k in 0..3 {
             force[3 * v + k] += c.force[k];
+            traction[3 * v + k] = c.friction_traction[k];
         }
     }
     let mut w = VtuWriter::new(mesh);
     w.point_f64("displacement", 3, pad_vector(d, &solution.u))
         .point_f64("reaction", 3, pad_vector(d, &solution.reactions))
         .point_i32("contact_status", status)
-        .point_f64("contact_pressure", 1, pressure)
+        .point_f64("contact_pressure", 1, pressure.clone())
+        .point_f64("contact_multiplier", 1, pressure)
+        .point_f64("friction_traction", 3, traction)
         .point_f64("slip", 1, slip)
         .point_f64("interface_force", 3, force)
         .cell_f64("strain", 9, eps9)
@@ -210,7 +244,8 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         .cell_f64("von_mises", 1, vm)
         .cell_f64("trace_strain", 1, tr)
         .cell_i32("locking_active", active)
-        .cell_f64("locking_q", 1, q);
+        .cell_f64("locking_q", 1, q)
+        .cell_f64("locking_multiplier", 1, multiplier);
     w
 }
 

@@ -80,6 +80,9 @@ pub struct ContactResult {
     pub force_tangential: [f64; 2],
     /// Interface force in global coordinates (N).
     pub force: [f64; 3],
+    /// Friction traction `−σ_τ = −R_τ / w` in global coordinates (Pa, N/m in 2D): the
+    /// friction multiplier of exact friction, recovered from equilibrium.
+    pub friction_traction: [f64; 3],
     /// Status.
     pub status: Status,
     /// Normal-law residual (N).
@@ -230,6 +233,12 @@ pub fn evaluate(
         } else {
             0.0
         };
+        let mut friction_traction = [0.0; 3];
+        for a in 0..m {
+            for k in 0..d {
+                friction_traction[k] -= ft[a] * t[a][k] / w;
+            }
+        }
         scale = scale.max(w * s.pressure).max(w * s.bound);
         if cb.normal.is_exact() {
             exact_any = true;
@@ -254,6 +263,7 @@ pub fn evaluate(
             force_normal: fn_,
             force_tangential: ft,
             force,
+            friction_traction,
             status,
             normal_residual,
             friction_residual,

@@ -38,6 +38,11 @@
 //! so that the penalty adds γ times the stiffness of the node or cell. Each outer iteration
 //! then reduces the constraint violation about γ-fold: large enough for a few iterations,
 //! small enough (10³ on top of the elastic condition number) not to hurt the direct solver.
+//! The penalty is reached by continuation: the first outer iteration uses `γ₀ = 1`, each
+//! next one ten times more (the multipliers carry over, as the method of multipliers allows
+//! any nondecreasing penalty sequence). Starting at the full penalty from the unloaded state
+//! costs tens of damped Newton steps: the Hessian at a point cannot see the cells and nodes
+//! that a step would push deep into the stiff penalty.
 //!
 //! # Certificate
 //! At convergence the KKT conditions are checked ([`KktCertificate`]): violation
@@ -59,11 +64,44 @@ pub struct ConstraintSettings {
     /// Dimensionless penalty factor γ > 0: the augmented Lagrangian penalty is γ times the
     /// elastic stiffness of a cell or node (see the module documentation). Default 10³.
     pub penalty: f64,
+    /// Penalty factor γ₀ ∈ (0, γ] of the first outer iteration; the factor grows tenfold
+    /// per outer iteration up to γ (continuation). Default 1: the first problem is then as
+    /// soft as the paper's nearly-locking one, which Newton solves in a few steps from the
+    /// unloaded state, whereas with the full penalty at once it needs tens of damped steps.
+    pub initial_penalty: f64,
 }
 
 impl Default for ConstraintSettings {
     fn default() -> Self {
-        ConstraintSettings { penalty: 1e3 }
+        ConstraintSettings {
+            penalty: 1e3,
+            initial_penalty: 1.0,
+        }
+    }
+}
+
+impl ConstraintSettings {
+    /// Number of continuation stages K: outer iteration k < K uses the penalty factor
+    /// `γ · 10^{k−K}`, k ≥ K the full γ.
+    pub fn stages(&self) -> usize {
+        if self.initial_penalty >= self.penalty || self.initial_penalty <= 0.0 {
+            0
+        } else {
+            (self.penalty / self.initial_penalty)
+                .log10()
+                .ceil()
+                .clamp(0.0, 30.0) as usize
+        }
+    }
+
+    /// The factor by which the full penalties are scaled in outer iteration `k`.
+    pub fn scale(&self, k: usize) -> f64 {
+        let stages = self.stages();
+        if k >= stages {
+            1.0
+        } else {
+            10f64.powi(k as i32 - stages as i32)
+        }
     }
 }
 

@@ -151,7 +151,13 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         force_scale: f64::NAN,
     };
     report.converged = false;
+    let stages = if constraints::has_exact_constraints(problem) {
+        settings.constraints.stages()
+    } else {
+        0
+    };
     for k in 0..settings.outer.max_iterations.max(1) {
+        system.set_penalty_scale(settings.constraints.scale(k));
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
         } else {
@@ -212,7 +218,8 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         }
         let at_final = tol == final_tol && last.converged;
         let tol_outer = settings.outer.tolerance;
-        if at_final && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer)) {
+        if at_final && k >= stages && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer))
+        {
             report.outer.push(step);
             report.converged = true;
             report.message = format!(
@@ -222,10 +229,18 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             );
             break;
         }
-        if outer_loop {
-            let (next, note) = mixer.next(&z, &g);
+        if outer_loop && k + 1 < stages {
+            // Penalty continuation: the map changes with the penalty, so no mixing yet.
+            step.mixing = format!(
+                "penalty continuation: factor {:e} next",
+                settings.constraints.scale(k + 1) * settings.constraints.penalty
+            );
+            z = g;
+            frozen = next;
+        } else if outer_loop {
+            let (mixed, note) = mixer.next(&z, &g);
             step.mixing = note;
-            z = next;
+            z = mixed;
             frozen = outer::unflatten(&z, n_points, n_locking);
         }
         report.outer.push(step);

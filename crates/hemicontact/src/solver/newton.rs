@@ -2,8 +2,10 @@
 //!
 //! Each step assembles gradient and Hessian, solves for the Newton direction Δ (see
 //! [`System::linear_solve`]: the last factorization is reused when the Hessian is unchanged,
-//! used as a PCG preconditioner when it changed a little, and refactorized otherwise), and takes the largest step `t ∈
-//! {1, ½, ¼, …}` that satisfies the Armijo condition `Π(u + tΔ) ≤ Π(u) + c t ∇Π·Δ`.
+//! used as a PCG preconditioner when it changed a little, and refactorized otherwise), and
+//! takes the full step if it satisfies the Armijo condition `Π(u + tΔ) ≤ Π(u) + c t ∇Π·Δ`,
+//! else a step found by a bracketing secant search on the directional derivative that
+//! satisfies the Armijo and the weak Wolfe curvature conditions.
 //! It stops when the residual (gradient on the free DOFs) is below `residual_tolerance`
 //! times the force scale `max(‖f_ext‖, ‖∇W‖, f_D)` (‖∇W‖: internal forces over all DOFs,
 //! reactions included; f_D the force unit of the prescribed displacements, see
@@ -30,7 +32,7 @@ pub struct NewtonSettings {
     pub residual_tolerance: f64,
     /// Armijo sufficient-decrease constant in (0, ½). Default 1e-4 (Nocedal–Wright).
     pub armijo: f64,
-    /// Maximum number of step halvings per line search. Default 40 (t ≥ 1e-12).
+    /// Maximum number of trial steps per line search beyond the full step. Default 40.
     pub max_backtracks: usize,
     /// Maximum conjugate-gradient iterations preconditioned by the last factorization
     /// before the Hessian is refactorized. Default 8: one triangular solve costs about a
@@ -56,6 +58,18 @@ impl Default for NewtonSettings {
             pcg_tolerance: 1e-3,
         }
     }
+}
+
+/// `∇Π·Δ` on the free DOFs, from the gradient of the last evaluation.
+fn directional_derivative(system: &System, delta: &[f64]) -> f64 {
+    system
+        .dofs
+        .equations()
+        .iter()
+        .zip(&system.grad)
+        .filter(|(&eq, _)| eq != crate::fem::dofs::FIXED)
+        .map(|(&eq, g)| g * delta[eq as usize])
+        .sum()
 }
 
 fn norm(x: &[f64]) -> f64 {
@@ -153,28 +167,82 @@ pub fn minimize(
         let linear = system.linear_solve(&r_neg, &mut delta, eta, settings, &mut report.timings)?;
         let slope: f64 = r.iter().zip(&delta).map(|(a, b)| a * b).sum();
         let t = Instant::now();
+        // Line search on φ(t) = Π(u + tΔ), convex and piecewise smooth: the full step with
+        // the Hessian (so the next Newton step can reuse the evaluation), else a bracketing
+        // secant search (Illinois) on φ'(t) — exact for the piecewise quadratic energies here
+        // once the kinks on the line are passed — for a step with sufficient decrease
+        // (Armijo) that is no longer steeply descending (weak Wolfe curvature condition
+        // φ'(t) ≥ 0.9 φ'(0)). Halving would stop at the first power of two below the kink
+        // where a stiff penalty or contact term switches on, one Newton step per halving.
+        let negligible = -slope <= 1e-14 * energy.abs();
         let mut step = 1.0;
         let mut accepted = false;
-        for _ in 0..=settings.max_backtracks {
+        let (mut a, mut da) = (0.0, slope);
+        let (mut b, mut db) = (1.0, f64::NAN);
+        let mut side = 0i8;
+        let mut best: Option<f64> = None;
+        for iter in 0..=settings.max_backtracks {
             for (dof, &eq) in system.dofs.equations().iter().enumerate() {
                 if eq != crate::fem::dofs::FIXED {
                     trial[dof] = u[dof] + step * delta[eq as usize];
                 }
             }
-            // The full step is almost always accepted: evaluate it with the Hessian, so
-            // that the next Newton step can reuse this evaluation.
-            let full = step == 1.0;
+            let full = iter == 0;
             let e_trial = system.evaluate(problem, &trial, frozen, full);
+            let armijo = e_trial <= energy + settings.armijo * step * slope;
             // Below round-off of the energy, the Armijo test is meaningless: accept.
-            let negligible = -slope <= 1e-14 * energy.abs();
-            if e_trial <= energy + settings.armijo * step * slope || negligible {
+            if full && (armijo || negligible) {
                 accepted = true;
-                if full {
-                    evaluated = Some(e_trial);
-                }
+                evaluated = Some(e_trial);
                 break;
             }
-            step *= 0.5;
+            let d = directional_derivative(system, &delta);
+            if !e_trial.is_finite() || !d.is_finite() {
+                // Outside the domain of finite energy: shrink blindly.
+                b = step;
+                db = f64::NAN;
+                step = a + 0.5 * (b - a);
+                continue;
+            }
+            if armijo && (d >= 0.9 * slope || negligible) {
+                accepted = true;
+                break;
+            }
+            if armijo {
+                best = Some(best.map_or(step, |s: f64| s.max(step)));
+            }
+            // Update the bracket [a, b] of the zero of φ' (φ'(a) < 0).
+            if d < 0.0 {
+                a = step;
+                da = d;
+                if side == -1 {
+                    db *= 0.5;
+                }
+                side = -1;
+            } else {
+                b = step;
+                db = d;
+                if side == 1 {
+                    da *= 0.5;
+                }
+                side = 1;
+            }
+            step = if db.is_finite() && db > da {
+                let t = a - da * (b - a) / (db - da);
+                t.clamp(a + 1e-3 * (b - a), b - 1e-3 * (b - a))
+            } else {
+                a + 0.5 * (b - a)
+            };
+            if b - a <= 1e-12 {
+                break;
+            }
+        }
+        if !accepted {
+            if let Some(s) = best {
+                // The longest step with sufficient decrease found.
+                step = s;
+                accepted = true;
+            }
         }
         report.timings.line_search += t.elapsed().as_secs_f64();
         steps += 1;
@@ -197,7 +265,7 @@ pub fn minimize(
         }
         for (dof, &eq) in system.dofs.equations().iter().enumerate() {
             if eq != crate::fem::dofs::FIXED {
-                u[dof] = trial[dof];
+                u[dof] += step * delta[eq as usize];
             }
         }
     }

@@ -33,6 +33,9 @@ pub struct System {
     pub contact_penalty: Vec<f64>,
     /// Augmented-Lagrangian penalty r_T of ideal locking (0 without).
     pub locking_penalty: f64,
+    /// The full penalties (contact points, locking) that `contact_penalty` and
+    /// `locking_penalty` are scaled from during continuation.
+    full_penalty: (Vec<f64>, f64),
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
     /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
@@ -127,6 +130,7 @@ impl System {
             contact,
             contact_slots,
             rho_num: problem.solver.outer.friction_regularization * problem.diameter(),
+            full_penalty: (contact_penalty.clone(), locking_penalty),
             contact_penalty,
             locking_penalty,
             f_ext,
@@ -165,6 +169,15 @@ impl System {
             r: self.locking_penalty,
             multipliers: &frozen.locking,
         })
+    }
+
+    /// Scales the augmented-Lagrangian penalties to `scale` times their full values
+    /// (continuation, see [`super::constraints`]).
+    pub fn set_penalty_scale(&mut self, scale: f64) {
+        for (r, full) in self.contact_penalty.iter_mut().zip(&self.full_penalty.0) {
+            *r = scale * full;
+        }
+        self.locking_penalty = scale * self.full_penalty.1;
     }
 
     /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
