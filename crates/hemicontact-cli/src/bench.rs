@@ -117,10 +117,18 @@ fn peak_memory_mib() -> Option<f64> {
     Some(kib / 1024.0)
 }
 
-/// The nonlinear paper solve (C_κ = 10 000) against one linear elastic solve on the same
-/// mesh, measured in the same run: medians of `repeat` end-to-end solves each.
-pub fn run_paper(sizes: &[usize], repeat: usize) -> Result<()> {
+/// The nonlinear paper solve (C_κ = 10 000, or the scenario `file` refined to n) against one
+/// linear elastic solve on the same mesh, measured in the same run: medians of `repeat`
+/// end-to-end solves each.
+pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>) -> Result<()> {
     let repeat = repeat.max(1);
+    let scenario = match file {
+        Some(f) => Some(hemicontact::scenario::Scenario::from_file(f)?),
+        None => None,
+    };
+    if let Some(f) = file {
+        println!("scenario {}", f.display());
+    }
     println!(
         "{:>5} {:>9} {:>10} {:>10} {:>7} {:>6} {:>7} {:>8} {:>10} {:>10}",
         "n",
@@ -137,7 +145,10 @@ pub fn run_paper(sizes: &[usize], repeat: usize) -> Result<()> {
     for &n in sizes {
         let linear =
             crate::parse_scenario(&builtin::paper_elastic(n), "<bench>")?.into_problem()?;
-        let paper = crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?;
+        let paper = match &scenario {
+            Some(s) => s.with_resolution(n)?.into_problem()?,
+            None => crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?,
+        };
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

@@ -111,6 +111,10 @@ enum Command {
         /// solve on the same mesh instead of the linear-algebra phases.
         #[arg(long)]
         paper: bool,
+        /// With --paper: benchmark this scenario (on a generated rectangle, refined to
+        /// each n) instead of the built-in paper example, e.g. scenarios/paper-ideal.toml.
+        #[arg(long, requires = "paper")]
+        scenario: Option<PathBuf>,
     },
 }
 
@@ -210,8 +214,9 @@ fn main() -> ExitCode {
             repeat,
             threads,
             paper,
+            scenario,
         } => if paper {
-            bench::run_paper(&n, repeat)
+            bench::run_paper(&n, repeat, scenario.as_deref())
         } else {
             bench::run(&n, repeat, threads)
         }

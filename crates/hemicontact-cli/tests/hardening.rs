@@ -59,3 +59,50 @@ fn interrupt_exits_130_and_leaves_no_partial_files() {
     }
     assert!(files.is_empty(), "files left behind: {files:?}");
 }
+
+/// A body whose rigid motion is not blocked (rollers in x only: it can translate in y) has
+/// a singular stiffness matrix: the factorization's non-positive pivot is reported, with
+/// the hint, as an error (exit 1), and nothing is written.
+#[test]
+fn singular_stiffness_is_reported_not_panicked() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("floating.toml");
+    std::fs::write(
+        &file,
+        r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [4, 4]
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "bottom"
+components = ["x"]
+[[loads.traction]]
+part = "top"
+value = [0.0, -1.0]
+"#,
+    )
+    .unwrap();
+    let out_dir = dir.path().join("out");
+    let out = bin()
+        .arg("solve")
+        .arg(&file)
+        .arg("--out")
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("not positive definite") && stderr.contains("rigid motion"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    let written: Vec<_> = std::fs::read_dir(&out_dir)
+        .map(|d| d.flatten().map(|e| e.file_name()).collect())
+        .unwrap_or_default();
+    assert!(written.is_empty(), "files written: {written:?}");
+}

@@ -366,3 +366,105 @@ fn paper_example_with_exact_constraints_is_certified() {
         assert!(s.report.certificate.n_contact > 0, "{file}: no contact");
     }
 }
+
+/// Ideal locking for each of the three sets, with Hooke and with the strain-stiffening
+/// Hencky law, on the paper's example (n = 16): certified, with locked cells.
+#[test]
+fn ideal_locking_of_every_set_and_material_is_certified() {
+    let sets = [
+        (
+            "set = \"limited-compressibility\"\ntheta = 0.16",
+            "limited compressibility",
+        ),
+        ("set = \"prager\"\nkappa = 0.1", "Prager"),
+        ("set = \"ball\"\nradius = 0.2", "ball"),
+    ];
+    let materials = [
+        ("poisson = 0.3", "Hooke"),
+        (
+            "poisson = 0.3\nmodel = \"hencky\"\nstiffening = 3.0\nreference_strain = 0.05",
+            "Hencky",
+        ),
+    ];
+    for (set, set_name) in sets {
+        for (mat, mat_name) in materials {
+            let text = paper(
+                "paper-ideal.toml",
+                &[
+                    ("set = \"limited-compressibility\"\ntheta = 0.16", set),
+                    ("poisson = 0.3", mat),
+                ],
+            );
+            let s = solve(&problem(&text)).unwrap();
+            assert_kkt(&s, 1e-8);
+            let kkt = s.report.certificate.kkt.as_ref().unwrap();
+            assert!(kkt.n_locked > 0, "{set_name} + {mat_name}: nothing locked");
+        }
+    }
+}
+
+/// 3D: the paper's cube with ideal locking, Signorini walls (at a gap the coarse cube
+/// reaches) and exact friction: certified, in contact, and mirror symmetric.
+#[test]
+fn cube_with_all_exact_constraints_is_certified_and_symmetric() {
+    let mut text = std::fs::read_to_string(format!(
+        "{}/../../scenarios/paper3d.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace("n = [16, 16, 16]", "n = [4, 4, 4]")
+    .replace(
+        "treatment = \"penalty\"\nc_kappa = 10000.0",
+        "treatment = \"exact\"",
+    )
+    .replace(
+        "law = \"normal-compliance\"\nc_nu = 10000.0",
+        "law = \"signorini\"",
+    )
+    .replace("gap = 0.4", "gap = 0.05")
+    .replace(
+        "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }",
+        "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }\nexact = true",
+    );
+    assert!(text.contains("signorini") && text.contains("exact = true"));
+    text = text.replace("[output]", "[output]\n");
+    let prob = problem(&text);
+    let s = solve(&prob).unwrap();
+    assert_kkt(&s, 1e-8);
+    let cert = &s.report.certificate;
+    assert!(cert.n_contact > 0, "no contact");
+    // Mirror symmetry x ↦ 4 − x: u_x(x) = −u_x(x̄), u_y, u_z equal.
+    let m = &prob.mesh;
+    let scale = s.u.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    for n in 0..m.n_nodes() {
+        let x = m.node(n);
+        let mirror = (0..m.n_nodes())
+            .find(|&k| {
+                let y = m.node(k);
+                (y[0] - (4.0 - x[0])).abs() < 1e-12
+                    && (y[1] - x[1]).abs() < 1e-12
+                    && (y[2] - x[2]).abs() < 1e-12
+            })
+            .unwrap();
+        assert!((s.u[3 * n] + s.u[3 * mirror]).abs() <= 1e-7 * scale);
+        assert!((s.u[3 * n + 1] - s.u[3 * mirror + 1]).abs() <= 1e-7 * scale);
+        assert!((s.u[3 * n + 2] - s.u[3 * mirror + 2]).abs() <= 1e-7 * scale);
+    }
+}
+
+/// A non-finite iterate is caught as a numerical breakdown that names where it happened
+/// (here the starting point: there is no good iterate to keep, so it is an error).
+#[test]
+fn non_finite_start_is_a_reported_breakdown() {
+    let prob = problem(&signorini_block(0.03, 0.01, ""));
+    let mut u = prob.prescribed_displacement();
+    let dofs = prob.dof_map();
+    let free = (0..u.len()).find(|&k| !dofs.is_fixed(k)).unwrap();
+    u[free] = f64::NAN;
+    let err = hemicontact::solver::solve_from(&prob, u).unwrap_err();
+    let msg = err.to_string();
+    assert!(
+        msg.contains("numerical breakdown") && msg.contains("Newton step 0"),
+        "{msg}"
+    );
+}

@@ -178,91 +178,22 @@ impl<'a> ContactAssembler<'a> {
         hess: Option<(&mut [f64], &[u32])>,
     ) -> f64 {
         let d = self.dim;
-        let m = d - 1;
         let mut energy = 0.0;
         let mut hess = hess;
         for i in 0..self.nodes.len() {
-            let cb = &self.boundaries[self.nodes.boundary[i] as usize];
-            let w = self.nodes.weight[i];
-            let (u_nu, xi) = self.nodes.kinematics(d, u, i);
-            let n = &self.nodes.normal[i];
-            let t = &self.nodes.tangent[i];
-            // Normal part: w P(u_ν), gradient w p ν, Hessian w p' ν νᵀ (for Signorini the
-            // augmented Lagrangian, a compliance law at a shifted gap, minus λ²/2r).
-            let r = self.penalty[i];
-            let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
-            energy += w * law.energy(u_nu, gap);
-            if cb.normal.is_exact() {
-                energy -= w * frozen.pressure[i] * frozen.pressure[i] / (2.0 * r);
-            }
-            let p = law.pressure(u_nu, gap);
-            let kn = law.stiffness(u_nu, gap);
-            // Tangential part: w [F φ(ξ) − b·ξ].
-            let mut gt = [0.0; 2];
-            let mut ht = [[0.0; 2]; 2];
-            if cb.friction.as_ref().is_some_and(|f| f.exact) {
-                // Moreau envelope of F‖·‖ at τ + rξ (see the module documentation).
-                let f = frozen.bound[i];
-                let b = frozen.linear[i];
-                let tau = frozen.traction[i];
-                let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
-                let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
-                let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
-                let (g, _) = project_ball(&z, m, f);
-                let huber = if f > 0.0 && nz <= f {
-                    for a in 0..m {
-                        ht[a][a] = r;
-                    }
-                    0.5 * nz * nz
-                } else if nz == 0.0 {
-                    // F = 0 and z = 0: the envelope is flat (zero curvature).
-                    0.0
-                } else {
-                    for a in 0..m {
-                        for c in 0..m {
-                            let delta = if a == c { 1.0 } else { 0.0 };
-                            ht[a][c] = r * f / nz * (delta - z[a] * z[c] / (nz * nz));
-                        }
-                    }
-                    f * nz - 0.5 * f * f
-                };
-                energy +=
-                    w * ((huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
-                for a in 0..m {
-                    gt[a] = g[a] - b[a];
-                }
-            } else if let Some(fr) = &cb.friction {
-                let f = frozen.bound[i];
-                let b = frozen.linear[i];
-                let rho = fr.potential.convex_rho(self.rho_num);
-                let (phi, g, h) = regularized_norm(&xi, m, rho);
-                energy += w * (f * phi - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
-                for a in 0..m {
-                    gt[a] = f * g[a] - b[a];
-                    for c in 0..m {
-                        ht[a][c] = f * h[a][c];
-                    }
-                }
-            }
+            let term = self.point(u, frozen, i);
+            energy += term.energy;
             let v = self.nodes.node[i] as usize;
-            let mut gnode = [0.0; 3];
             for k in 0..d {
-                gnode[k] = w * (p * n[k] + (0..m).map(|a| gt[a] * t[a][k]).sum::<f64>());
-                grad[d * v + k] += gnode[k];
+                grad[d * v + k] += term.gradient[k];
             }
             if let Some((h, slots)) = hess.as_mut() {
                 let s = &slots[i * 6..i * 6 + 6];
                 let mut idx = 0;
                 for k in 0..d {
                     for l in k..d {
-                        let mut val = kn * n[k] * n[l];
-                        for a in 0..m {
-                            for c in 0..m {
-                                val += ht[a][c] * t[a][k] * t[c][l];
-                            }
-                        }
                         if s[idx] != FIXED_SLOT {
-                            h[s[idx] as usize] += w * val;
+                            h[s[idx] as usize] += term.hessian[k][l];
                         }
                         idx += 1;
                     }
@@ -271,6 +202,105 @@ impl<'a> ContactAssembler<'a> {
         }
         energy
     }
+
+    /// The contact term of point `i` at `u`: its energy, its gradient with respect to the
+    /// node's displacement (the force the body exerts on the foundation, N) and its
+    /// (generalized) Hessian node block.
+    pub fn point(&self, u: &[f64], frozen: &Frozen, i: usize) -> PointTerm {
+        let d = self.dim;
+        let m = d - 1;
+        let cb = &self.boundaries[self.nodes.boundary[i] as usize];
+        let w = self.nodes.weight[i];
+        let (u_nu, xi) = self.nodes.kinematics(d, u, i);
+        let n = &self.nodes.normal[i];
+        let t = &self.nodes.tangent[i];
+        // Normal part: w P(u_ν), gradient w p ν, Hessian w p' ν νᵀ (for Signorini the
+        // augmented Lagrangian, a compliance law at a shifted gap, minus λ²/2r).
+        let r = self.penalty[i];
+        let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+        let mut energy = w * law.energy(u_nu, gap);
+        if cb.normal.is_exact() {
+            energy -= w * frozen.pressure[i] * frozen.pressure[i] / (2.0 * r);
+        }
+        let p = law.pressure(u_nu, gap);
+        let kn = law.stiffness(u_nu, gap);
+        // Tangential part: w [F φ(ξ) − b·ξ].
+        let mut gt = [0.0; 2];
+        let mut ht = [[0.0; 2]; 2];
+        if cb.friction.as_ref().is_some_and(|f| f.exact) {
+            // Moreau envelope of F‖·‖ at τ + rξ (see the module documentation).
+            let f = frozen.bound[i];
+            let b = frozen.linear[i];
+            let tau = frozen.traction[i];
+            let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
+            let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
+            let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
+            let (g, _) = project_ball(&z, m, f);
+            let huber = if f > 0.0 && nz <= f {
+                for a in 0..m {
+                    ht[a][a] = r;
+                }
+                0.5 * nz * nz
+            } else if nz == 0.0 {
+                // F = 0 and z = 0: the envelope is flat (zero curvature).
+                0.0
+            } else {
+                for a in 0..m {
+                    for c in 0..m {
+                        let delta = if a == c { 1.0 } else { 0.0 };
+                        ht[a][c] = r * f / nz * (delta - z[a] * z[c] / (nz * nz));
+                    }
+                }
+                f * nz - 0.5 * f * f
+            };
+            energy += w * ((huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
+            for a in 0..m {
+                gt[a] = g[a] - b[a];
+            }
+        } else if let Some(fr) = &cb.friction {
+            let f = frozen.bound[i];
+            let b = frozen.linear[i];
+            let rho = fr.potential.convex_rho(self.rho_num);
+            let (phi, g, h) = regularized_norm(&xi, m, rho);
+            energy += w * (f * phi - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
+            for a in 0..m {
+                gt[a] = f * g[a] - b[a];
+                for c in 0..m {
+                    ht[a][c] = f * h[a][c];
+                }
+            }
+        }
+        let mut gradient = [0.0; 3];
+        let mut hessian = [[0.0; 3]; 3];
+        for k in 0..d {
+            gradient[k] = w * (p * n[k] + (0..m).map(|a| gt[a] * t[a][k]).sum::<f64>());
+            for l in 0..d {
+                let mut val = kn * n[k] * n[l];
+                for a in 0..m {
+                    for c in 0..m {
+                        val += ht[a][c] * t[a][k] * t[c][l];
+                    }
+                }
+                hessian[k][l] = w * val;
+            }
+        }
+        PointTerm {
+            energy,
+            gradient,
+            hessian,
+        }
+    }
+}
+
+/// The contact term of one point; see [`ContactAssembler::point`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PointTerm {
+    /// Energy (J, J/m in 2D).
+    pub energy: f64,
+    /// Gradient with respect to the node's displacement (N), first d entries.
+    pub gradient: [f64; 3],
+    /// Hessian node block (N/m), first d × d entries.
+    pub hessian: [[f64; 3]; 3],
 }
 
 /// Slots of the node blocks of the contact points in `pattern`: 6 entries per point (the

@@ -21,6 +21,10 @@
 //! that involve free components only: along a prescribed one the force is a support
 //! reaction.
 //!
+//! At a node shared by several contact boundaries (an edge or corner between walls), the
+//! equilibrium force is one vector for several points: the force attributed to a point is
+//! what remains after subtracting the model forces of the node's other points.
+//!
 //! Residuals are forces (N, or N/m in 2D), reported relative to the force scale `S` =
 //! the largest nodal external force or contact force, at least the force unit of the
 //! prescribed displacements ([`super::System::force_floor`]). `r_stick = 10³ ρ_num`.
@@ -140,6 +144,18 @@ pub fn evaluate(
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     let mut kkt = KktCertificate::default();
+    // The other points on the node of point i (points are ordered by boundary, so they are
+    // found through a node → points map).
+    let mut by_node: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
+    for (i, &v) in ca.nodes.node.iter().enumerate() {
+        by_node.entry(v).or_default().push(i);
+    }
+    let shared = |i: usize| -> Vec<usize> {
+        by_node
+            .get(&ca.nodes.node[i])
+            .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
+            .unwrap_or_default()
+    };
     let mut max_pressure = 0.0f64;
     let mut min_pressure = f64::INFINITY;
     let mut exact_any = false;
@@ -156,6 +172,15 @@ pub fn evaluate(
         let mut force = [0.0; 3];
         for k in 0..d {
             force[k] = grad_bulk[d * v + k];
+        }
+        // A node on several contact boundaries (an edge between two walls) has one
+        // equilibrium force for all its points: attribute to this point what remains after
+        // the model forces of the node's other points.
+        for j in shared(i) {
+            let g = ca.point(u, frozen, j).gradient;
+            for k in 0..d {
+                force[k] += g[k];
+            }
         }
         let n = &ca.nodes.normal[i];
         let t = &ca.nodes.tangent[i];
