@@ -223,9 +223,17 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             report.outer.push(step);
             report.converged = true;
             report.message = format!(
-                "converged: {} outer iterations, {} Newton steps",
+                "converged: {} outer iterations, {} Newton steps{}",
                 report.outer.len(),
-                report.newton.len()
+                report.newton.len(),
+                if report.round_off_floor > 0.0 {
+                    format!(
+                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
+                        report.round_off_floor
+                    )
+                } else {
+                    String::new()
+                }
             );
             break;
         }

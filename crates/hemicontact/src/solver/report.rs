@@ -85,6 +85,9 @@ pub struct SolveReport {
     pub residual: f64,
     /// Residual tolerance that was applied (N): relative tolerance × force scale.
     pub residual_tolerance: f64,
+    /// Largest relative residual at which a Newton solve stopped at the round-off floor
+    /// above the tolerance (0: never; see [`super::newton`]).
+    pub round_off_floor: f64,
     /// Timings per phase.
     pub timings: Timings,
 }
@@ -105,6 +108,7 @@ impl SolveReport {
             certificate: Default::default(),
             residual: f64::NAN,
             residual_tolerance: f64::NAN,
+            round_off_floor: 0.0,
             timings: Timings {
                 pattern: system.setup_time.0,
                 symbolic: system.setup_time.1,
