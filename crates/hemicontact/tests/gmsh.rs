@@ -697,3 +697,41 @@ fn half_disc_scenario_solves_with_contact_on_the_arc() {
     assert!(r.certificate.n_slip > 0);
     assert!(r.certificate.friction_law < 1e-8 && r.certificate.normal_law < 1e-8);
 }
+
+/// An entity in very many physical groups (here 20 000, all named `side`) costs time in
+/// proportion to the file, not to groups × facets.
+#[test]
+fn many_physical_groups_per_entity_are_read_in_linear_time() {
+    let mesh = rectangle(&Rectangle {
+        origin: [0.0, 0.0],
+        size: [1.0, 1.0],
+        n: [2000, 1],
+        pattern: CutPattern::Uniform,
+    })
+    .unwrap();
+    let text = String::from_utf8(write_msh(&mesh, MshEncoding::Ascii)).unwrap();
+    let groups = 20_000;
+    // Every group of dimension 1 is named `side`; the entity of part 1 (`bottom`) is in all.
+    let mut names = format!("$PhysicalNames\n{}\n", groups + 1);
+    for g in 1..=groups {
+        names.push_str(&format!("1 {g} \"side\"\n"));
+    }
+    names.push_str(&format!("2 {} \"domain\"\n$EndPhysicalNames\n", groups + 1));
+    let start = text.find("$PhysicalNames").unwrap();
+    let end = text.find("$Entities").unwrap();
+    let all: Vec<String> = (1..=groups).map(|g| g.to_string()).collect();
+    let text = format!("{}{names}{}", &text[..start], &text[end..]).replacen(
+        " 1 1 0\n",
+        &format!(" {groups} {} 0\n", all.join(" ")),
+        1,
+    );
+    assert!(
+        text.contains(&format!(" {groups} 1 2 3 ")),
+        "the entity line was not found"
+    );
+    let start = std::time::Instant::now();
+    let g = parse_msh(text.as_bytes(), "many-groups.msh").unwrap();
+    let elapsed = start.elapsed();
+    assert_eq!(g.mesh.part_names(), ["side"]);
+    assert!(elapsed.as_secs_f64() < 1.0, "{elapsed:?}");
+}

@@ -290,7 +290,7 @@ impl<'a> Reader<'a> {
             .and_then(|s| s.parse::<u64>().ok())
             .ok_or_else(|| {
                 self.err(format!(
-                    "malformed {what}: `{}` is not a non-negative integer",
+                    "expected {what} (a non-negative integer), found `{}`",
                     show(t)
                 ))
             })
@@ -303,7 +303,7 @@ impl<'a> Reader<'a> {
             .and_then(|s| s.parse::<i32>().ok())
             .ok_or_else(|| {
                 self.err(format!(
-                    "malformed {what}: `{}` is not a 32-bit integer",
+                    "expected {what} (a 32-bit integer), found `{}`",
                     show(t)
                 ))
             })
@@ -314,7 +314,7 @@ impl<'a> Reader<'a> {
         std::str::from_utf8(t)
             .ok()
             .and_then(|s| s.parse::<f64>().ok())
-            .ok_or_else(|| self.err(format!("malformed {what}: `{}` is not a number", show(t))))
+            .ok_or_else(|| self.err(format!("expected {what} (a number), found `{}`", show(t))))
     }
 
     /// `N` raw bytes of a binary section.
@@ -522,7 +522,7 @@ impl<'a> Reader<'a> {
                      Mesh.MshFileVersion = 4.1)"
                 ))
             } else {
-                self.err(format!("malformed format version `{text}`"))
+                self.err(format!("expected the format version 4.1, found `{text}`"))
             });
         }
         let file_type = self.text_u64("the file type")?;
@@ -603,9 +603,7 @@ impl<'a> Reader<'a> {
                 self.pos = start + i + 1;
                 Ok(name)
             }
-            _ => Err(self.err(format!(
-                "unterminated {what}: no closing double quote on its line"
-            ))),
+            _ => Err(self.err(format!("{what} has no closing double quote on its line"))),
         }
     }
 
@@ -1147,49 +1145,65 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
     let mut tagged: Vec<(usize, [u32; 3])> = Vec::new();
     let mut interior: HashMap<String, usize> = HashMap::new();
     for b in s.blocks.iter().filter(|b| b.dim as usize + 1 == d) {
-        let groups = physical(d - 1, b)?;
+        // The distinct group names of the block's entity (with their smallest tags), once
+        // per block: an entity may be in very many groups.
+        let mut names: Vec<(String, i32)> = Vec::new();
+        let mut seen: HashMap<String, usize> = HashMap::new();
+        for &g in physical(d - 1, b)? {
+            let name = group_name(d - 1, g);
+            match seen.get(&name) {
+                Some(&k) => names[k].1 = names[k].1.min(g),
+                None => {
+                    seen.insert(name.clone(), names.len());
+                    names.push((name, g));
+                }
+            }
+        }
+        let mut part: Option<u32> = None;
+        let mut n_interior = 0usize;
         for (k, &tag) in b.tags.iter().enumerate() {
             let v = &b.conn[k * d..(k + 1) * d];
             let Ok(pos) = boundary.binary_search(&facet_key(v)) else {
-                for &g in groups {
-                    *interior.entry(group_name(d - 1, g)).or_default() += 1;
-                }
+                n_interior += 1;
                 continue;
             };
-            let mut part: Option<u32> = None;
-            for &g in groups {
-                let p = parts.get(group_name(d - 1, g), i64::from(g));
-                let previous = match (part, assigned[pos]) {
-                    (Some(q), _) if q != p => Some((q, tag)),
-                    (_, Some((q, other))) if q != p => Some((q, other)),
-                    _ => None,
-                };
-                if let Some((q, other)) = previous {
-                    let elements = if other == tag {
-                        format!("element {tag}")
-                    } else {
-                        format!("elements {other} and {tag}")
-                    };
-                    return Err(err(
-                        b.at,
-                        format!(
-                            "boundary facet with nodes {:?} ({elements}) is in physical groups \
-                             `{}` and `{}`; a facet may belong to one boundary part",
-                            tags_of(v),
-                            parts.names[q as usize],
-                            parts.names[p as usize]
-                        ),
-                    ));
+            let two = |first: &str, second: &str, elements: String| {
+                err(
+                    b.at,
+                    format!(
+                        "boundary facet with nodes {:?} ({elements}) is in physical groups `{first}` \
+                         and `{second}`; a facet may belong to one boundary part",
+                        tags_of(v)
+                    ),
+                )
+            };
+            let p = match names.as_slice() {
+                [] => continue,
+                [(name, g)] => *part.get_or_insert_with(|| parts.get(name.clone(), i64::from(*g))),
+                [(first, _), (second, _), ..] => {
+                    return Err(two(first, second, format!("element {tag}")))
                 }
-                part = Some(p);
-            }
-            if let Some(p) = part {
-                if assigned[pos].is_none() {
+            };
+            match assigned[pos] {
+                None => {
                     assigned[pos] = Some((p, tag));
                     let mut f = [u32::MAX; 3];
                     f[..d].copy_from_slice(v);
                     tagged.push((pos, f));
                 }
+                Some((q, other)) if q != p => {
+                    return Err(two(
+                        &parts.names[q as usize],
+                        &parts.names[p as usize],
+                        format!("elements {other} and {tag}"),
+                    ))
+                }
+                Some(_) => {}
+            }
+        }
+        if n_interior > 0 {
+            for (name, _) in names {
+                *interior.entry(name).or_default() += n_interior;
             }
         }
     }
@@ -1385,7 +1399,7 @@ impl Out {
 /// (tag k + 1 for part k) in a physical group named after the part (tag k + 1). Node tags are
 /// `1..=n_nodes` in mesh order and element tags number the part facets, then the cells, from
 /// 1; so reading the file back gives the same node, cell and facet arrays and parts (parts
-/// without facets are not read back). Double quotes and line breaks in part names, which
+/// without facets are not read back). Double quotes and line feeds in part names, which
 /// `$PhysicalNames` cannot hold, are written as `'` and spaces.
 pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
     let d = mesh.dim();
@@ -1414,7 +1428,7 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
             .chars()
             .map(|c| match c {
                 '"' => '\'',
-                '\n' | '\r' => ' ',
+                '\n' => ' ',
                 c => c,
             })
             .collect();
@@ -1587,7 +1601,10 @@ mod tests {
         assert_eq!(r.text_i32("b").unwrap(), -2);
         assert_eq!(r.at, FileLocation::Line(3));
         let e = r.text_u64("c").unwrap_err().to_string();
-        assert!(e.starts_with("t:3: malformed c: `x`"), "{e}");
+        assert!(
+            e.starts_with("t:3: expected c (a non-negative integer), found `x`"),
+            "{e}"
+        );
         let e = r.text_u64("d").unwrap_err().to_string();
         assert!(e.contains("unexpected end of file"), "{e}");
     }
