@@ -109,9 +109,17 @@ pub struct GmshMesh {
 /// Reads a Gmsh 4.1 `.msh` file (ASCII or binary); see the module documentation.
 ///
 /// # Errors
-/// [`Error::Io`] if the file cannot be read; [`Error::MeshFile`] if its content is not a
-/// supported mesh (see [`parse_msh`]).
+/// [`Error::Io`] if the file cannot be read or is not a regular file (a folder, a device
+/// such as `/dev/zero`, a pipe: reading it could take without end); [`Error::MeshFile`] if
+/// its content is not a supported mesh (see [`parse_msh`]).
 pub fn read_msh(path: &Path) -> Result<GmshMesh> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if !meta.is_file() {
+        return Err(Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a regular file"),
+        ));
+    }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     parse_msh(&bytes, &path.display().to_string())
 }

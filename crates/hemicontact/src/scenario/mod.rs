@@ -236,7 +236,14 @@ impl Scenario {
                 ),
             )
         };
-        let bytes = std::fs::metadata(&path).map_err(unreadable)?.len();
+        let meta = std::fs::metadata(&path).map_err(unreadable)?;
+        if !meta.is_file() {
+            return Err(unreadable(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file",
+            )));
+        }
+        let bytes = meta.len();
         if let Some(limit) = self.memory_limit {
             let need = crate::resources::estimate_mesh_read(bytes);
             if need > limit {
