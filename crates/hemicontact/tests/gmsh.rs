@@ -735,3 +735,21 @@ fn many_physical_groups_per_entity_are_read_in_linear_time() {
     assert_eq!(g.mesh.part_names(), ["side"]);
     assert!(elapsed.as_secs_f64() < 1.0, "{elapsed:?}");
 }
+
+/// A device or a folder is refused before reading (reading `/dev/zero` would not end).
+#[test]
+fn only_regular_files_are_read() {
+    for path in ["/dev/zero", "/tmp"] {
+        let path = Path::new(path);
+        if path.exists() {
+            let e = read_msh(path).unwrap_err();
+            assert!(
+                matches!(&e, Error::Io { .. }) && e.to_string().contains("not a regular file"),
+                "{e}"
+            );
+        }
+    }
+    let text = SQUARE_SCENARIO.replace("square.msh", "/dev/zero");
+    let msg = scenario_in_data(&text).into_problem().unwrap_err().to_string();
+    assert!(msg.contains("mesh.file") && msg.contains("not a regular file"), "{msg}");
+}
