@@ -750,6 +750,12 @@ fn only_regular_files_are_read() {
         }
     }
     let text = SQUARE_SCENARIO.replace("square.msh", "/dev/zero");
-    let msg = scenario_in_data(&text).into_problem().unwrap_err().to_string();
-    assert!(msg.contains("mesh.file") && msg.contains("not a regular file"), "{msg}");
+    let msg = scenario_in_data(&text)
+        .into_problem()
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("mesh.file") && msg.contains("not a regular file"),
+        "{msg}"
+    );
 }
