@@ -234,8 +234,9 @@ fn main() -> ExitCode {
 
 fn check(file: &Path) -> Result<()> {
     let scenario = read_scenario(file)?;
-    let problem = scenario.into_problem()?;
+    let (problem, notes) = scenario.into_problem_with_notes()?;
     print_problem(&problem, &scenario.source);
+    print_notes(&notes);
     if !problem.contact.is_empty() {
         print_uniqueness(&hemicontact::solver::uniqueness::check(&problem)?);
     }
@@ -317,6 +318,13 @@ fn print_problem(problem: &Problem, source: &str) {
     }
 }
 
+/// Prints the notes of a scenario (warnings that do not stop the run) to standard error.
+fn print_notes(notes: &[String]) {
+    for n in notes {
+        eprintln!("note: {n}");
+    }
+}
+
 fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
     say!(
         "uniqueness (Theorem 4): m_A = {:.6e}, μ₀ = {}, L_μ = {}, c_j = {}, α_j = {}",
@@ -342,7 +350,8 @@ fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
 
 fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
     let scenario = read_scenario(file)?;
-    let problem = scenario.into_problem()?;
+    let (problem, notes) = scenario.into_problem_with_notes()?;
+    print_notes(&notes);
     let settings = scenario.output();
     let dir = match (out, &settings.dir) {
         (Some(d), _) => d.to_path_buf(),
@@ -358,6 +367,7 @@ fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
     let case = run_and_write(
         problem,
         &scenario,
+        notes,
         &dir,
         settings.vtu,
         settings.summary,
@@ -379,6 +389,7 @@ struct Case {
 fn run_and_write(
     problem: Problem,
     scenario: &Scenario,
+    notes: Vec<String>,
     dir: &Path,
     vtu: bool,
     json: bool,
@@ -387,12 +398,13 @@ fn run_and_write(
     // Fail before the solve if the results could not be written.
     prepare_output(dir)?;
     let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
-    let summary = Summary::new(
+    let mut summary = Summary::new(
         &problem,
         &solution,
         scenario.file.title.clone(),
         &scenario.source,
     );
+    summary.notes = notes;
     let mut written = write_results(dir, &problem, &solution, &summary, vtu, json)?;
     if problem.mesh.dim() == 2 {
         let title = scenario
@@ -521,6 +533,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         cases.push(run_and_write(
             problem,
             &scenario,
+            Vec::new(),
             &out.join(sub),
             true,
             true,

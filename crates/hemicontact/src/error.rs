@@ -35,6 +35,17 @@ pub enum Error {
     /// The mesh is invalid (degenerate or inverted cell, untagged boundary facet, …).
     #[error("invalid mesh: {0}")]
     Mesh(String),
+    /// A mesh file could not be read: it is not a Gmsh 4.1 file, it is truncated or
+    /// malformed, or the mesh it describes is not a valid P1 simplicial mesh.
+    #[error("{file}{location}: {message}")]
+    MeshFile {
+        /// The mesh file (as given, or the name passed to the parser).
+        file: String,
+        /// Where in the file the problem is.
+        location: FileLocation,
+        /// What is wrong, and what is expected instead.
+        message: String,
+    },
     /// The linear system is not positive definite (the problem is singular or unstable).
     #[error(
         "the stiffness matrix is not positive definite ({context}); \
@@ -58,6 +69,28 @@ pub enum Error {
         /// The underlying error.
         source: std::io::Error,
     },
+}
+
+/// A position in a file, for error messages: a line of a text file, a byte offset of a
+/// binary file, or the file as a whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileLocation {
+    /// The whole file (no particular position).
+    Whole,
+    /// A line (1-based) of a text file; displayed `file:line`.
+    Line(u64),
+    /// A byte offset (0-based) of a binary file; displayed `file (byte offset)`.
+    Byte(u64),
+}
+
+impl std::fmt::Display for FileLocation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FileLocation::Whole => Ok(()),
+            FileLocation::Line(n) => write!(f, ":{n}"),
+            FileLocation::Byte(n) => write!(f, " (byte {n})"),
+        }
+    }
 }
 
 impl Error {

@@ -55,13 +55,18 @@
 //! |------|---------|
 //! | `solution.vtu` | VTK UnstructuredGrid: displacement, reactions, contact status, pressure, slip, interface force at points; strain, stress, von Mises, tr ε, locking activity per cell |
 //! | `contact.csv` | one row per contact node: kinematics, forces, status, law residuals |
-//! | `summary.json` | sizes, energy norm, max displacement, contact/slip/locked counts, iteration histories, timings, certificate |
+//! | `summary.json` | sizes, energy norm, max displacement, contact/slip/locked counts, iteration histories, timings, certificate, scenario notes |
 //! | `deformed.png/.svg` | the deformed mesh with interface forces (2D) |
 //!
 //! ## Current state / limitations
 //!
-//! - Generated meshes only: rectangles (triangles) and boxes (tetrahedra); no Gmsh reader
-//!   yet. Figures are drawn for 2D problems.
+//! - Meshes: generated rectangles (triangles) and boxes (tetrahedra), or Gmsh `.msh` 4.1
+//!   files ([`mesh::gmsh`]; P1 simplices only, physical groups as boundary parts; cell
+//!   regions are read but one material applies to the whole mesh; read meshes cannot be
+//!   refined for convergence studies). Figures are drawn for 2D problems.
+//! - The contact gap is one number per contact part, measured along the outward normal at
+//!   each contact node: on a curved boundary the foundation is the boundary's offset by the
+//!   gap, not a plane.
 //! - Locking by the nearly-locking penalty and contact by normal compliance; the exact
 //!   constraints (ideal locking, Signorini) are not yet available.
 //! - The norm `‖·‖` of the friction potential is regularized numerically by

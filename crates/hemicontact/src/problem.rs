@@ -124,6 +124,45 @@ impl Problem {
             .collect()
     }
 
+    /// Notes worth telling the user, warnings that do not stop a run: each contact part that
+    /// shares nodes with a Dirichlet part. Nodes with every displacement component
+    /// prescribed are not contact nodes (SPEC §3: a node on Γ_D is never a contact node);
+    /// nodes on a roller keep contact on their free components.
+    pub fn notes(&self) -> Vec<String> {
+        let names = self.mesh.part_names();
+        let full = self.fully_prescribed();
+        let mut notes = Vec::new();
+        for c in &self.contact {
+            let contact = self.mesh.part_nodes(c.part);
+            for b in self.dirichlet.iter().filter(|b| b.part != c.part) {
+                let shared: Vec<u32> = self
+                    .mesh
+                    .part_nodes(b.part)
+                    .into_iter()
+                    .filter(|v| contact.binary_search(v).is_ok())
+                    .collect();
+                if shared.is_empty() {
+                    continue;
+                }
+                let excluded = shared.iter().filter(|&&v| full[v as usize]).count();
+                let others = if excluded < shared.len() {
+                    "; the others keep contact on their free components"
+                } else {
+                    ""
+                };
+                notes.push(format!(
+                    "contact part `{}` shares {} node(s) with Dirichlet part `{}`: {excluded} of \
+                     them, with every displacement component prescribed, are not contact nodes \
+                     (SPEC §3){others}",
+                    names[c.part],
+                    shared.len(),
+                    names[b.part]
+                ));
+            }
+        }
+        notes
+    }
+
     /// The contact points of the problem (SPEC §3).
     pub fn contact_nodes(&self) -> ContactNodes {
         ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())

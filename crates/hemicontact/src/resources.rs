@@ -22,6 +22,11 @@ pub fn available_memory() -> Option<u64> {
 pub fn estimate_rectangle(nx: u64, ny: u64) -> u64 {
     let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0);
     let cells = 2.0 * nx as f64 * ny as f64;
+    estimate_triangles(nodes, cells)
+}
+
+/// [`estimate_rectangle`]'s model for any triangle mesh of `nodes` nodes and `cells` cells.
+fn estimate_triangles(nodes: f64, cells: f64) -> u64 {
     let n = 2.0 * nodes;
     let factor = 6.0 * n * n.max(2.0).log2() * 8.0;
     let matrix = 8.0 * n * 32.0;
@@ -44,6 +49,11 @@ pub fn gib(bytes: u64) -> String {
 pub fn estimate_box(nx: u64, ny: u64, nz: u64) -> u64 {
     let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0) * (nz as f64 + 1.0);
     let cells = 6.0 * nx as f64 * ny as f64 * nz as f64;
+    estimate_tetrahedra(nodes, cells)
+}
+
+/// [`estimate_box`]'s model for any tetrahedral mesh of `nodes` nodes and `cells` cells.
+fn estimate_tetrahedra(nodes: f64, cells: f64) -> u64 {
     let n = 3.0 * nodes;
     let factor = 25.0 * n.powf(4.0 / 3.0) * 8.0;
     let matrix = 40.0 * n * 32.0;
@@ -51,4 +61,25 @@ pub fn estimate_box(nx: u64, ny: u64, nz: u64) -> u64 {
     let vectors = 10.0 * 8.0 * n + 40.0 * nodes + 16.0 * cells;
     let total = 1.2 * (factor + matrix + slots + vectors);
     total.min(u64::MAX as f64) as u64
+}
+
+/// Estimated peak memory (bytes) of a solve on a read mesh of dimension `dim` with `nodes`
+/// nodes and `cells` cells: the models of [`estimate_rectangle`] (d = 2) and
+/// [`estimate_box`] (d = 3) applied to the counts. A rough guide for unstructured meshes,
+/// whose fill-in depends on their shape.
+pub fn estimate_mesh(dim: usize, nodes: u64, cells: u64) -> u64 {
+    if dim == 2 {
+        estimate_triangles(nodes as f64, cells as f64)
+    } else {
+        estimate_tetrahedra(nodes as f64, cells as f64)
+    }
+}
+
+/// Estimated peak memory (bytes) of reading a mesh file of `file_bytes` bytes: the file's
+/// content, plus the node, cell and facet arrays and the facet-matching work space. The
+/// densest case is an ASCII tetrahedral mesh written with one-digit node tags (about 10
+/// bytes per tetrahedron in the file, 64 bytes of facet keys and about 20 of cell data in
+/// memory): nine times the file covers it.
+pub fn estimate_mesh_read(file_bytes: u64) -> u64 {
+    file_bytes.saturating_mul(9)
 }

@@ -12,7 +12,7 @@
 //!
 //! - Signorini (`u_ν ≤ g`, multiplier λ_i = contact pressure): `P` becomes
 //!   `(1/2r) [(λ + r(u_ν − g))_+² − λ²]`, i.e. normal compliance of stiffness r at the gap
-//!   `g − λ/r` ([`NormalLaw::effective`]);
+//!   `g − λ/r` ([`crate::contact::NormalLaw::effective`]);
 //! - exact friction (multiplier τ_i = −σ_τ, the friction traction): `F j_cvx(ξ) = F‖ξ‖`
 //!   becomes the Moreau envelope `(1/r) [H_F(τ + rξ) − ‖τ‖²/2]` with the Huber function
 //!   `H_F(z) = ‖z‖²/2` (‖z‖ ≤ F), `F‖z‖ − F²/2` (‖z‖ > F), whose gradient is the projection

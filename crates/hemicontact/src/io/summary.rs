@@ -60,6 +60,9 @@ pub struct Summary {
     pub max_abs_trace_strain: f64,
     /// The uniqueness condition of the paper's Theorem 4 (SPEC §1).
     pub uniqueness: Option<crate::solver::uniqueness::Uniqueness>,
+    /// Notes raised while resolving the scenario (see
+    /// [`crate::scenario::Scenario::into_problem_with_notes`]); empty from [`Summary::new`].
+    pub notes: Vec<String>,
     /// The solver report (iterations, residuals, timings).
     pub report: SolveReport,
 }
@@ -122,6 +125,7 @@ impl Summary {
             locked_cells,
             max_abs_trace_strain,
             uniqueness: None,
+            notes: Vec::new(),
             report: solution.report.clone(),
         }
     }

@@ -16,6 +16,7 @@
 //! cell is positively oriented and non-degenerate, and every boundary facet carries a part.
 
 pub mod generate;
+pub mod gmsh;
 
 use crate::error::{Error, Result};
 use crate::fem::simplex;
@@ -33,7 +34,7 @@ pub struct Mesh {
 }
 
 /// Relative tolerance below which a cell counts as degenerate: `|T| ≤ tol · h_T^d`.
-const DEGENERATE_TOL: f64 = 1e-12;
+pub(crate) const DEGENERATE_TOL: f64 = 1e-12;
 
 impl Mesh {
     /// Builds and validates a mesh.

@@ -31,6 +31,10 @@ pub struct Scenario {
     /// the mesh is built; set from the memory available when the scenario is read, `None`
     /// to skip the check (the CLI's `--ignore-memory-limit`).
     pub memory_limit: Option<u64>,
+    /// Folder against which relative paths of the file (`mesh.file`) are resolved: the
+    /// scenario file's folder for [`Scenario::from_file`], `None` (the working folder) for
+    /// text parsed with [`Scenario::from_str`].
+    pub dir: Option<PathBuf>,
 }
 
 /// Output settings resolved from a scenario.
@@ -52,7 +56,9 @@ impl Scenario {
     /// unknown field or a wrongly typed value.
     pub fn from_file(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-        Self::from_str(&text, &path.display().to_string())
+        let mut scenario = Self::from_str(&text, &path.display().to_string())?;
+        scenario.dir = path.parent().map(Path::to_path_buf);
+        Ok(scenario)
     }
 
     /// Parses scenario text; `source` names it in error messages.
@@ -69,6 +75,7 @@ impl Scenario {
             source: source.to_string(),
             file,
             memory_limit: crate::resources::available_memory(),
+            dir: None,
         })
     }
 
@@ -101,15 +108,31 @@ impl Scenario {
     /// mesh-refinement studies.
     ///
     /// # Errors
-    /// [`Error::Scenario`] if `n` is zero or the y count would not be an integer.
+    /// [`Error::Scenario`] if the mesh is read from a file (it cannot be refined), if `n` is
+    /// zero or the y count would not be an integer.
     pub fn with_resolution(&self, n: usize) -> Result<Scenario> {
         let m = &self.file.mesh;
-        let nx = m.n.first().copied().unwrap_or(0);
+        if m.kind == MeshKind::Gmsh {
+            return Err(self.err(
+                "mesh.kind",
+                "\"gmsh\"",
+                "a generated mesh (\"rectangle\" or \"box\"): a read mesh cannot be refined; \
+                 use a generated mesh for convergence studies",
+            ));
+        }
+        let Some(counts) = &m.n else {
+            return Err(self.err(
+                "mesh.n",
+                "missing",
+                "subdivisions per side (required for a generated mesh)",
+            ));
+        };
+        let nx = counts.first().copied().unwrap_or(0);
         let allowed = "a resolution for which every count scales to an integer from 1 to the generator's maximum";
         let bad = || {
             self.err(
                 "mesh.n",
-                format!("{:?} scaled to {n} along x", m.n),
+                format!("{counts:?} scaled to {n} along x"),
                 allowed,
             )
         };
@@ -117,8 +140,8 @@ impl Scenario {
             return Err(bad());
         }
         let n64 = n as u64;
-        let mut scaled = Vec::with_capacity(m.n.len());
-        for &k in &m.n {
+        let mut scaled = Vec::with_capacity(counts.len());
+        for &k in counts {
             let product = n64.checked_mul(k).ok_or_else(bad)?;
             if !product.is_multiple_of(nx)
                 || product / nx == 0
@@ -129,7 +152,7 @@ impl Scenario {
             scaled.push(product / nx);
         }
         let mut out = self.clone();
-        out.file.mesh.n = scaled;
+        out.file.mesh.n = Some(scaled);
         Ok(out)
     }
 
@@ -143,29 +166,148 @@ impl Scenario {
         }
     }
 
-    fn build_mesh(&self) -> Result<Mesh> {
+    /// The mesh of `[mesh]`, and the notes of the Gmsh reader.
+    fn build_mesh(&self) -> Result<(Mesh, Vec<String>)> {
         let m = &self.file.mesh;
-        let dim = match m.kind {
-            MeshKind::Rectangle => 2,
-            MeshKind::Box => 3,
+        match m.kind {
+            MeshKind::Gmsh => self.read_mesh(),
+            MeshKind::Rectangle | MeshKind::Box => {
+                if let Some(file) = &m.file {
+                    return Err(self.err(
+                        "mesh.file",
+                        format!("{:?}", file.display().to_string()),
+                        "only with kind = \"gmsh\" (a generated mesh has no file)",
+                    ));
+                }
+                Ok((self.generate_mesh()?, Vec::new()))
+            }
+        }
+    }
+
+    /// Reads the Gmsh file of `[mesh]`, checking the memory needed to read it and to solve
+    /// on it against [`Scenario::memory_limit`].
+    fn read_mesh(&self) -> Result<(Mesh, Vec<String>)> {
+        let m = &self.file.mesh;
+        let given = [
+            ("mesh.origin", m.origin.is_some()),
+            ("mesh.size", m.size.is_some()),
+            ("mesh.n", m.n.is_some()),
+            ("mesh.pattern", m.pattern.is_some()),
+        ];
+        if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(self.err(
+                field,
+                "given",
+                "nothing with kind = \"gmsh\": the mesh comes from mesh.file (origin, size, n \
+                 and pattern are for generated meshes)",
+            ));
+        }
+        let Some(file) = &m.file else {
+            return Err(self.err(
+                "mesh.file",
+                "missing",
+                "the path of a Gmsh .msh file (format 4.1), relative to the scenario file's \
+                 folder (required with kind = \"gmsh\")",
+            ));
         };
+        let path = match &self.dir {
+            Some(dir) if file.is_relative() => dir.join(file),
+            _ => file.clone(),
+        };
+        let shown = format!("{:?}", file.display().to_string());
+        let unreadable = |e: std::io::Error| {
+            self.err(
+                "mesh.file",
+                &shown,
+                &format!(
+                    "a readable Gmsh .msh file, relative to the scenario file's folder ({}: {e})",
+                    path.display()
+                ),
+            )
+        };
+        let too_large = |need: u64, limit: u64, what: String| {
+            self.err(
+                "mesh.file",
+                &shown,
+                &format!(
+                    "a mesh whose {what} fits in memory: it needs about {} (estimate), {} are \
+                     available; use --ignore-memory-limit to try anyway",
+                    crate::resources::gib(need),
+                    crate::resources::gib(limit)
+                ),
+            )
+        };
+        let meta = std::fs::metadata(&path).map_err(unreadable)?;
+        if !meta.is_file() {
+            return Err(unreadable(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file",
+            )));
+        }
+        let bytes = meta.len();
+        if let Some(limit) = self.memory_limit {
+            let need = crate::resources::estimate_mesh_read(bytes);
+            if need > limit {
+                return Err(too_large(need, limit, format!("file ({bytes} bytes)")));
+            }
+        }
+        let read = match crate::mesh::gmsh::read_msh(&path) {
+            Err(Error::Io { source, .. }) => return Err(unreadable(source)),
+            other => other?,
+        };
+        let mesh = read.mesh;
+        if let Some(limit) = self.memory_limit {
+            let need = crate::resources::estimate_mesh(
+                mesh.dim(),
+                mesh.n_nodes() as u64,
+                mesh.n_cells() as u64,
+            );
+            if need > limit {
+                return Err(too_large(
+                    need,
+                    limit,
+                    format!("solve ({} nodes, {} cells)", mesh.n_nodes(), mesh.n_cells()),
+                ));
+            }
+        }
+        Ok((mesh, read.notes))
+    }
+
+    /// Generates the rectangle or box of `[mesh]`.
+    fn generate_mesh(&self) -> Result<Mesh> {
+        let m = &self.file.mesh;
+        let dim = if m.kind == MeshKind::Box { 3 } else { 2 };
         let axes = if dim == 2 { "[lx, ly]" } else { "[lx, ly, lz]" };
-        if m.size.len() != dim {
+        let Some(size) = &m.size else {
             return Err(self.err(
                 "mesh.size",
-                format!("{:?}", m.size),
+                "missing",
+                &format!("{dim} lengths {axes} (required for a generated mesh)"),
+            ));
+        };
+        let Some(counts) = &m.n else {
+            return Err(self.err(
+                "mesh.n",
+                "missing",
+                &format!("{dim} subdivision counts (required for a generated mesh)"),
+            ));
+        };
+        if size.len() != dim {
+            return Err(self.err(
+                "mesh.size",
+                format!("{size:?}"),
                 &format!("{dim} lengths {axes}"),
             ));
         }
-        if m.n.len() != dim {
-            return Err(self.err("mesh.n", format!("{:?}", m.n), &format!("{dim} counts")));
+        if counts.len() != dim {
+            return Err(self.err("mesh.n", format!("{counts:?}"), &format!("{dim} counts")));
         }
-        for (k, &s) in m.size.iter().enumerate() {
+        for (k, &s) in size.iter().enumerate() {
             if !(s.is_finite() && s > 0.0) {
                 return Err(self.err(&format!("mesh.size[{k}]"), s, "a positive length"));
             }
         }
-        for (k, &n) in m.n.iter().enumerate() {
+        for (k, &n) in counts.iter().enumerate() {
             if n == 0 || n > generate::MAX_SUBDIVISIONS as u64 {
                 return Err(self.err(
                     &format!("mesh.n[{k}]"),
@@ -178,23 +320,23 @@ impl Scenario {
             None => [0.0; 3],
             Some(o) => self.finite("mesh.origin", o, dim)?,
         };
-        if m.pattern == generate::CutPattern::Symmetric && !m.n[0].is_multiple_of(2) {
+        if m.pattern() == generate::CutPattern::Symmetric && !counts[0].is_multiple_of(2) {
             return Err(self.err(
                 "mesh.n[0]",
-                m.n[0],
+                counts[0],
                 "an even number with pattern = \"symmetric\" (mirror symmetry about the centre plane)",
             ));
         }
         let need = if dim == 2 {
-            crate::resources::estimate_rectangle(m.n[0], m.n[1])
+            crate::resources::estimate_rectangle(counts[0], counts[1])
         } else {
-            crate::resources::estimate_box(m.n[0], m.n[1], m.n[2])
+            crate::resources::estimate_box(counts[0], counts[1], counts[2])
         };
         if let Some(limit) = self.memory_limit {
             if need > limit {
                 return Err(self.err(
                     "mesh.n",
-                    format!("{:?}", m.n),
+                    format!("{counts:?}"),
                     &format!(
                         "a mesh whose solve fits in memory: this one needs about {} (estimate), {} are available; \
                          use --ignore-memory-limit to try anyway",
@@ -204,26 +346,27 @@ impl Scenario {
                 ));
             }
         }
-        let n = |k: usize| m.n[k] as usize;
-        let generated = match m.kind {
-            MeshKind::Rectangle => generate::rectangle(&Rectangle {
+        let n = |k: usize| counts[k] as usize;
+        let generated = if dim == 2 {
+            generate::rectangle(&Rectangle {
                 origin: [origin[0], origin[1]],
-                size: [m.size[0], m.size[1]],
+                size: [size[0], size[1]],
                 n: [n(0), n(1)],
-                pattern: m.pattern,
-            }),
-            MeshKind::Box => generate::cuboid(&generate::BoxSpec {
+                pattern: m.pattern(),
+            })
+        } else {
+            generate::cuboid(&generate::BoxSpec {
                 origin,
-                size: [m.size[0], m.size[1], m.size[2]],
+                size: [size[0], size[1], size[2]],
                 n: [n(0), n(1), n(2)],
-                pattern: m.pattern,
-            }),
+                pattern: m.pattern(),
+            })
         };
         // A generated mesh can only be invalid through the numbers of [mesh]: name them.
         generated.map_err(|e| match e {
             Error::Mesh(msg) => self.err(
                 "mesh.size / mesh.origin / mesh.n",
-                format!("size {:?}, origin {:?}, n {:?}", m.size, m.origin, m.n),
+                format!("size {size:?}, origin {:?}, n {counts:?}", m.origin),
                 &format!("sizes and an origin for which the cells are representable ({msg})"),
             ),
             other => other,
@@ -502,10 +645,21 @@ impl Scenario {
     /// Resolves and validates the scenario into a [`Problem`].
     ///
     /// # Errors
-    /// [`Error::Scenario`] naming the file, field, value and what is allowed, or
-    /// [`Error::Mesh`] if the mesh cannot be built.
+    /// [`Error::Scenario`] naming the file, field, value and what is allowed,
+    /// [`Error::Mesh`] if the mesh cannot be built, or [`Error::MeshFile`] if a Gmsh file
+    /// cannot be read.
     pub fn into_problem(&self) -> Result<Problem> {
-        let mesh = self.build_mesh()?;
+        self.into_problem_with_notes().map(|(problem, _)| problem)
+    }
+
+    /// [`Scenario::into_problem`], with the notes (warnings that do not stop the run) the
+    /// scenario raised: those of the Gmsh reader (see [`crate::mesh::gmsh::GmshMesh::notes`])
+    /// and of the problem ([`Problem::notes`]).
+    ///
+    /// # Errors
+    /// As [`Scenario::into_problem`].
+    pub fn into_problem_with_notes(&self) -> Result<(Problem, Vec<String>)> {
+        let (mesh, mut notes) = self.build_mesh()?;
         let dim = mesh.dim();
         let material = self.build_material(dim)?;
         let axes = ["x", "y", "z"];
@@ -640,6 +794,7 @@ impl Scenario {
             solver,
         };
         problem.validate()?;
-        Ok(problem)
+        notes.extend(problem.notes());
+        Ok((problem, notes))
     }
 }

@@ -9,6 +9,10 @@
 //! size = [4.0, 4.0]         # m
 //! n = [16, 16]              # squares per side, each cut into two triangles
 //! pattern = "symmetric"     # or "uniform" (default "symmetric")
+//! # kind = "gmsh"           # a Gmsh 4.1 file (ASCII or binary) instead of a generator:
+//! # file = "meshes/half-disc.msh"   # relative to the scenario file's folder; parts are the
+//! #                         # physical groups of dimension d − 1 (see mesh::gmsh); no
+//! #                         # origin/size/n/pattern
 //!
 //! [material]
 //! model = "hooke"           # (default)
@@ -104,28 +108,42 @@ pub enum MeshKind {
     /// Built-in box generator (3D, 6 tetrahedra per cube): parts left, right, front, back,
     /// bottom, top.
     Box,
-}
-
-fn default_pattern() -> CutPattern {
-    CutPattern::Symmetric
+    /// A Gmsh `.msh` file (format 4.1, ASCII or binary; see [`crate::mesh::gmsh`]): parts
+    /// are its physical groups of dimension d − 1.
+    Gmsh,
 }
 
 /// `[mesh]`.
+///
+/// The generators (`rectangle`, `box`) require `size` and `n` and accept `origin` and
+/// `pattern`; `gmsh` requires `file` and accepts none of the generator fields.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// Mesh source.
     pub kind: MeshKind,
-    /// Corner with the smallest coordinates (m); zero by default.
-    #[serde(default)]
+    /// Gmsh only: the `.msh` file, relative to the scenario file's folder.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Generators: corner with the smallest coordinates (m); zero by default.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub origin: Option<Vec<f64>>,
-    /// Side lengths (m).
-    pub size: Vec<f64>,
-    /// Subdivisions per side.
-    pub n: Vec<u64>,
-    /// Diagonal pattern.
-    #[serde(default = "default_pattern")]
-    pub pattern: CutPattern,
+    /// Generators (required): side lengths (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Vec<f64>>,
+    /// Generators (required): subdivisions per side.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub n: Option<Vec<u64>>,
+    /// Generators: diagonal pattern (default `symmetric`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pattern: Option<CutPattern>,
+}
+
+impl MeshSpec {
+    /// The diagonal pattern of a generated mesh: as given, `symmetric` by default.
+    pub fn pattern(&self) -> CutPattern {
+        self.pattern.unwrap_or(CutPattern::Symmetric)
+    }
 }
 
 /// Elasticity model name.

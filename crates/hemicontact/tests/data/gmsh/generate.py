@@ -1,0 +1,115 @@
+"""Generates the Gmsh test meshes of hemicontact (format 4.1, ASCII and binary).
+
+The .msh files are committed: the tests and CI do not need Gmsh. Run this script only to
+regenerate them (the output depends on the Gmsh version; these were made with 4.15):
+
+    python3 -m venv /tmp/gmsh-venv && /tmp/gmsh-venv/bin/pip install gmsh
+    /tmp/gmsh-venv/bin/python crates/hemicontact/tests/data/gmsh/generate.py
+
+(If `import gmsh` fails for missing system libraries: apt-get install libglu1-mesa
+libxcursor1 libxft2 libxinerama1 libxrender1.)
+
+Meshes (all P1: triangles in 2D, tetrahedra in 3D; boundary parts = physical groups of
+dimension d - 1, and one physical group of dimension d for the domain):
+
+- square.msh, square-binary.msh: the square [0,4]^2, physical lines bottom, right, top,
+  left (as the rectangle generator names them) and the surface "domain"; unstructured,
+  element size 1.
+- cube.msh, cube-binary.msh: the cube [0,1]^3, physical surfaces left (x = 0), right
+  (x = 1), front (y = 0), back (y = 1), bottom (z = 0), top (z = 1) (as the box generator)
+  and the volume "body"; element size 0.5.
+- ../../../../../scenarios/meshes/half-disc.msh: the lower half of the disc of radius 1
+  centred at (0, 1): physical lines "contact" (the arc) and "top" (the flat side y = 1), the
+  surface "body"; element size 0.1 (0.05 on the arc). Used by scenarios/half-disc.toml.
+
+The files with errors (bad-*.msh) are hand-written variants of tiny.msh (a unit square of
+two triangles, also hand-written); see tests/gmsh.rs for the error each must give.
+"""
+
+import os
+
+import gmsh
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENARIO_MESHES = os.path.normpath(os.path.join(HERE, "../../../../../scenarios/meshes"))
+
+
+def write(path, binary):
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.option.setNumber("Mesh.Binary", 1 if binary else 0)
+    gmsh.write(path)
+    print(os.path.relpath(path), os.path.getsize(path), "bytes")
+
+
+def square():
+    gmsh.model.add("square")
+    g = gmsh.model.geo
+    p = [g.addPoint(x, y, 0, 1.0) for x, y in [(0, 0), (4, 0), (4, 4), (0, 4)]]
+    lines = [g.addLine(p[i], p[(i + 1) % 4]) for i in range(4)]
+    surface = g.addPlaneSurface([g.addCurveLoop(lines)])
+    g.synchronize()
+    for line, name in zip(lines, ["bottom", "right", "top", "left"]):
+        gmsh.model.addPhysicalGroup(1, [line], name=name)
+    gmsh.model.addPhysicalGroup(2, [surface], name="domain")
+    gmsh.model.mesh.generate(2)
+    write(os.path.join(HERE, "square.msh"), False)
+    write(os.path.join(HERE, "square-binary.msh"), True)
+    gmsh.model.remove()
+
+
+def cube():
+    gmsh.model.add("cube")
+    box = gmsh.model.occ.addBox(0, 0, 0, 1, 1, 1)
+    gmsh.model.occ.synchronize()
+    names = {}
+    for _, s in gmsh.model.getBoundary([(3, box)], oriented=False):
+        x, y, z = gmsh.model.occ.getCenterOfMass(2, s)
+        for name, (axis, value) in {
+            "left": (0, 0.0), "right": (0, 1.0), "front": (1, 0.0),
+            "back": (1, 1.0), "bottom": (2, 0.0), "top": (2, 1.0),
+        }.items():
+            if abs((x, y, z)[axis] - value) < 1e-9:
+                names[name] = s
+    for name in ["left", "right", "front", "back", "bottom", "top"]:
+        gmsh.model.addPhysicalGroup(2, [names[name]], name=name)
+    gmsh.model.addPhysicalGroup(3, [box], name="body")
+    gmsh.model.mesh.setSize(gmsh.model.getEntities(0), 0.5)
+    gmsh.model.mesh.generate(3)
+    write(os.path.join(HERE, "cube.msh"), False)
+    write(os.path.join(HERE, "cube-binary.msh"), True)
+    gmsh.model.remove()
+
+
+def half_disc():
+    gmsh.model.add("half-disc")
+    g = gmsh.model.geo
+    fine, coarse = 0.05, 0.1
+    centre = g.addPoint(0, 1, 0, coarse)
+    right = g.addPoint(1, 1, 0, fine)
+    bottom = g.addPoint(0, 0, 0, fine)
+    left = g.addPoint(-1, 1, 0, fine)
+    arc1 = g.addCircleArc(right, centre, bottom)
+    arc2 = g.addCircleArc(bottom, centre, left)
+    top = g.addLine(left, right)
+    surface = g.addPlaneSurface([g.addCurveLoop([arc1, arc2, top])])
+    g.synchronize()
+    gmsh.model.addPhysicalGroup(1, [arc1, arc2], name="contact")
+    gmsh.model.addPhysicalGroup(1, [top], name="top")
+    gmsh.model.addPhysicalGroup(2, [surface], name="body")
+    gmsh.model.mesh.generate(2)
+    os.makedirs(SCENARIO_MESHES, exist_ok=True)
+    write(os.path.join(SCENARIO_MESHES, "half-disc.msh"), False)
+    gmsh.model.remove()
+
+
+def main():
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    square()
+    cube()
+    half_disc()
+    gmsh.finalize()
+
+
+if __name__ == "__main__":
+    main()
