@@ -143,12 +143,16 @@ pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>)
         "peak MiB"
     );
     for &n in sizes {
-        let linear =
-            crate::parse_scenario(&builtin::paper_elastic(n), "<bench>")?.into_problem()?;
         let paper = match &scenario {
             Some(s) => s.with_resolution(n)?.into_problem()?,
             None => crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?,
         };
+        // The linear elastic reference: the same mesh, material, supports and loads, without
+        // contact and locking.
+        let mut linear = paper.clone();
+        linear.contact.clear();
+        linear.material.locking = hemicontact::material::LockingPenalty::NONE;
+        linear.material.ideal_locking = None;
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

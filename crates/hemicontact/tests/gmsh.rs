@@ -352,6 +352,10 @@ fn bad_files_give_errors_that_say_what_is_wrong() {
             &[":30:", "node tag 30 is defined twice"],
         ),
         (
+            "bad-coincident-nodes.msh",
+            &["nodes 30 and 50 are at the same point", "not merged"],
+        ),
+        (
             "bad-nan.msh",
             &[":33:", "node tag 30 has a non-finite coordinate (NaN)"],
         ),

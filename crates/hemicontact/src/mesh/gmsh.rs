@@ -1259,6 +1259,31 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
             node_tags.push(nodes.tags[i]);
         }
     }
+    // Two used nodes at the same point: an unmerged geometry (the mesh would have a crack
+    // there, its two faces becoming boundary facets).
+    {
+        let n_used = node_tags.len();
+        let mut order: Vec<u32> = (0..n_used as u32).collect();
+        let key = |i: u32| &coords[i as usize * d..(i as usize + 1) * d];
+        order.sort_unstable_by(|&a, &b| {
+            key(a)
+                .iter()
+                .zip(key(b))
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
+        if let Some(w) = order.windows(2).find(|w| key(w[0]) == key(w[1])) {
+            return Err(whole(format!(
+                "nodes {} and {} are at the same point {:?} (duplicate nodes: the geometry is \
+                 not merged, which would cut the body; merge duplicates in Gmsh, e.g. with \
+                 Geometry.Tolerance / `Coherence;`)",
+                node_tags[w[0] as usize],
+                node_tags[w[1] as usize],
+                key(w[0])
+            )));
+        }
+    }
     let dropped = nodes.tags.len() - node_tags.len();
     if dropped > 0 {
         notes.push(format!("{dropped} nodes not used by any cell were dropped"));
