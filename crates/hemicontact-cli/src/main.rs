@@ -406,7 +406,7 @@ fn run_and_write(
     );
     summary.notes = notes;
     let mut written = write_results(dir, &problem, &solution, &summary, vtu, json)?;
-    if problem.mesh.dim() == 2 {
+    {
         let title = scenario
             .file
             .title

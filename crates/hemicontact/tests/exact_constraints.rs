@@ -468,3 +468,41 @@ fn non_finite_start_is_a_reported_breakdown() {
         "{msg}"
     );
 }
+
+/// The figure of a 3D solution is a front view: the deformed front facets, the visible
+/// contact nodes and the foundations seen edge-on (two walls facing x).
+#[test]
+fn three_d_figure_is_a_front_view() {
+    use hemicontact::plot::{deformed, Prim};
+    let text = std::fs::read_to_string(format!(
+        "{}/../../scenarios/paper3d.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace("n = [16, 16, 16]", "n = [4, 4, 4]")
+    .replace("gap = 0.4", "gap = 0.05");
+    let prob = problem(&text);
+    let s = solve(&prob).unwrap();
+    assert!(s.report.converged);
+    let fig = deformed::figure(&prob, &s, "3D");
+    // Front facets (y = 0): 4 × 4 squares, 2 triangles each, 3 edges each.
+    let segments: Vec<usize> = fig
+        .prims
+        .iter()
+        .filter_map(|p| match p {
+            Prim::Segments { segments, .. } => Some(segments.len()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(segments[0], 4 * 4 * 2 * 3, "{segments:?}");
+    // Foundations of the left and right walls (facets seen edge-on), 3 edges per facet.
+    assert_eq!(segments[1], 2 * 4 * 4 * 2 * 3, "{segments:?}");
+    let dots = fig
+        .prims
+        .iter()
+        .filter(|p| matches!(p, Prim::Circle { .. }))
+        .count();
+    // Contact nodes on the front face (5 × 5 minus the 5 clamped bottom nodes; edge nodes
+    // carry two points) plus the 3 legend dots.
+    assert!(dots > 20 + 3, "{dots} dots");
+}

@@ -7,7 +7,8 @@
 //! gap along their normals), the contact nodes coloured by status (grey separated, blue
 //! stick, red slip) and the interface forces (green arrows, the force of the foundation on
 //! the body divided by the node's weight, i.e. the traction, scaled so the largest arrow is
-//! 12 % of the panel; the scale is printed).
+//! 12 % of the panel; the scale is printed). A 3D solution is drawn as a front view
+//! (orthographic projection on the x–z plane, see [`front_view`]).
 
 use super::{Anchor, Figure, Prim, Rgb};
 use crate::problem::Problem;
@@ -42,13 +43,7 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
         color: DARK,
     });
     if d != 2 {
-        prims.push(Prim::Text {
-            pos: [x0 + w / 2.0, y0 + h / 2.0],
-            text: "3D: open solution.vtu in ParaView".into(),
-            size: 16.0,
-            anchor: Anchor::Middle,
-            color: DARK,
-        });
+        prims.extend(front_view(problem, solution, rect));
         return prims;
     }
     let pos = |n: usize, deformed: bool| {
@@ -177,7 +172,13 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
             fill: status_color(c.status),
         });
     }
-    // Legend.
+    legend(&mut prims, solution, max_t, rect);
+    prims
+}
+
+/// The legend (slip and stick counts, largest traction) at the bottom of the panel `rect`.
+fn legend(prims: &mut Vec<Prim>, solution: &Solution, max_t: f64, rect: [f64; 4]) {
+    let [x0, y0, _, h] = rect;
     let ly = y0 + h - 14.0;
     let (n_stick, n_slip) = solution.contact.iter().fold((0, 0), |(a, b), c| {
         (
@@ -205,6 +206,147 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
         });
         lx += 12.0 + super::text_width(&label, 12.0) + 20.0;
     }
+}
+
+/// A 3D solution seen from the front (looking along +y, x to the right, z up), in
+/// orthographic projection: the deformed boundary facets that face the viewer (thin), the
+/// rigid foundations of the contact boundaries seen edge-on (thick: their facets shifted by
+/// the gap), the undeformed bounding box (dashed), the visible contact nodes coloured by
+/// status, and their interface tractions (arrows, projected).
+fn front_view(problem: &Problem, solution: &Solution, rect: [f64; 4]) -> Vec<Prim> {
+    let mesh = &problem.mesh;
+    let [x0, y0, w, h] = rect;
+    let mut prims = Vec::new();
+    let pos = |n: usize, s: f64| {
+        let x = mesh.node(n);
+        [
+            x[0] + s * solution.u[3 * n],
+            x[2] + s * solution.u[3 * n + 2],
+        ]
+    };
+    let facing: Vec<usize> = (0..mesh.n_facets())
+        .filter(|&f| mesh.facet_measure_normal(f).1[1] < -0.5)
+        .collect();
+    let mut visible = vec![false; mesh.n_nodes()];
+    for &f in &facing {
+        for &v in mesh.facet(f) {
+            visible[v as usize] = true;
+        }
+    }
+    let mut foundation = Vec::new();
+    for cb in &problem.contact {
+        for f in mesh.part_facets(cb.part) {
+            let (_, nrm) = mesh.facet_measure_normal(f);
+            if nrm[1].abs() > 0.5 {
+                continue;
+            }
+            let v = mesh.facet(f);
+            for k in 0..3 {
+                let (a, b) = (pos(v[k] as usize, 0.0), pos(v[(k + 1) % 3] as usize, 0.0));
+                let sh = [cb.gap * nrm[0], cb.gap * nrm[2]];
+                foundation.push(([a[0] + sh[0], a[1] + sh[1]], [b[0] + sh[0], b[1] + sh[1]]));
+            }
+        }
+    }
+    let (blo, bhi) = mesh.bounding_box();
+    let mut lo = [blo[0], blo[2]];
+    let mut hi = [bhi[0], bhi[2]];
+    let mut grow = |p: [f64; 2]| {
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    };
+    for n in (0..mesh.n_nodes()).filter(|&n| visible[n]) {
+        grow(pos(n, 1.0));
+    }
+    for (a, b) in &foundation {
+        grow(*a);
+        grow(*b);
+    }
+    let margin = 0.08 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let (lo, hi) = (
+        [lo[0] - margin, lo[1] - margin],
+        [hi[0] + margin, hi[1] + margin],
+    );
+    let (top, bottom) = (34.0, 40.0);
+    let scale = (w / (hi[0] - lo[0])).min((h - top - bottom) / (hi[1] - lo[1]));
+    let cx = x0 + 0.5 * (w - scale * (hi[0] - lo[0]));
+    let cy = y0 + top + 0.5 * (h - top - bottom - scale * (hi[1] - lo[1]));
+    let px = |p: [f64; 2]| [cx + scale * (p[0] - lo[0]), cy + scale * (hi[1] - p[1])];
+    let corners = [
+        [blo[0], blo[2]],
+        [bhi[0], blo[2]],
+        [bhi[0], bhi[2]],
+        [blo[0], bhi[2]],
+        [blo[0], blo[2]],
+    ];
+    prims.push(Prim::Polyline {
+        points: corners.iter().map(|&c| px(c)).collect(),
+        color: GREY,
+        width: 1.0,
+        dashed: true,
+    });
+    let mut edges = Vec::with_capacity(3 * facing.len());
+    for &f in &facing {
+        let v = mesh.facet(f);
+        for k in 0..3 {
+            let (a, b) = (v[k] as usize, v[(k + 1) % 3] as usize);
+            edges.push((px(pos(a, 1.0)), px(pos(b, 1.0))));
+        }
+    }
+    prims.push(Prim::Segments {
+        segments: edges,
+        color: MESH,
+        width: if facing.len() > 20_000 { 0.3 } else { 0.6 },
+    });
+    prims.push(Prim::Segments {
+        segments: foundation.iter().map(|(a, b)| (px(*a), px(*b))).collect(),
+        color: DARK,
+        width: 4.0,
+    });
+    let norm3 = |f: &[f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+    let max_t = solution
+        .contact
+        .iter()
+        .map(|c| norm3(&c.force) / c.weight)
+        .fold(0.0, f64::max);
+    let arrow_px = 0.12 * w.min(h);
+    for c in solution.contact.iter().filter(|c| visible[c.node as usize]) {
+        let p = px(pos(c.node as usize, 1.0));
+        if c.status != Status::Separated && max_t > 0.0 {
+            let k = arrow_px / max_t;
+            let tip = [
+                p[0] + k * c.force[0] / c.weight,
+                p[1] - k * c.force[2] / c.weight,
+            ];
+            if (tip[0] - p[0]).hypot(tip[1] - p[1]) > 1.0 {
+                prims.push(Prim::Arrow {
+                    from: p,
+                    to: tip,
+                    color: GREEN,
+                    width: 1.5,
+                });
+            }
+        }
+        prims.push(Prim::Circle {
+            center: p,
+            radius: if c.status == Status::Separated {
+                1.5
+            } else {
+                3.0
+            },
+            fill: status_color(c.status),
+        });
+    }
+    prims.push(Prim::Text {
+        pos: [x0 + w / 2.0, y0 + top + 8.0],
+        text: "front view: x right, z up".into(),
+        size: 12.0,
+        anchor: Anchor::Middle,
+        color: DARK,
+    });
+    legend(&mut prims, solution, max_t, rect);
     prims
 }
 
