@@ -368,6 +368,35 @@ fn malformed_scenarios_are_rejected_naming_the_field() {
         ),
         &["dirichlet[0].components", "w"],
     );
+    assert_rejected(
+        dir,
+        "check",
+        "poisson-low.toml",
+        &edit("poisson = 0.3", "poisson = -1.0"),
+        &["material.poisson", "-1", "-1 < ν < 0.5"],
+    );
+    assert_rejected(
+        dir,
+        "check",
+        "young-inf.toml",
+        &edit("young = 2000.0", "young = inf"),
+        &["material.young", "inf"],
+    );
+    // A contact part that is the Dirichlet part: no contact node could remain.
+    assert_rejected(
+        dir,
+        "check",
+        "contact-on-dirichlet.toml",
+        &format!("{VALID}\n[[contact]]\npart = \"bottom\"\ngap = 0.1\nc_nu = 100.0\n"),
+        &["contact[0].part", "bottom", "Dirichlet"],
+    );
+    assert_rejected(
+        dir,
+        "check",
+        "signorini-with-stiffness.toml",
+        &format!("{VALID}\n[[contact]]\npart = \"left\"\nlaw = \"signorini\"\nc_nu = 100.0\n"),
+        &["contact[0].c_nu", "signorini"],
+    );
     // `solve` validates the same way, and writes nothing for invalid input.
     assert_rejected(
         dir,
