@@ -72,13 +72,12 @@ pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
 /// This drives the solver's lower-level API (`System`, `newton::minimize`) directly: a
 /// problem without contact is a single convex minimization.
 #[track_caller]
-pub fn solve_with_prescribed_field(
+pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
     problem: &Problem,
-    field: impl Fn(&[f64]) -> [f64; 2],
+    field: impl Fn(&[f64]) -> V,
 ) -> (Vec<f64>, usize) {
     let mesh = &problem.mesh;
     let d = mesh.dim();
-    assert_eq!(d, 2);
     assert!(
         problem.contact.is_empty(),
         "helper is for problems without contact"
@@ -87,6 +86,7 @@ pub fn solve_with_prescribed_field(
     let mut u = vec![0.0; d * mesh.n_nodes()];
     for n in 0..mesh.n_nodes() {
         let v = field(mesh.node(n));
+        let v = v.as_ref();
         for i in 0..d {
             if system.dofs.is_fixed(d * n + i) {
                 u[d * n + i] = v[i];
