@@ -83,17 +83,8 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
         grow(*a);
         grow(*b);
     }
-    let margin = 0.08 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    let (lo, hi) = (
-        [lo[0] - margin, lo[1] - margin],
-        [hi[0] + margin, hi[1] + margin],
-    );
-    let top = 34.0;
-    let bottom = 40.0;
-    let scale = (w / (hi[0] - lo[0])).min((h - top - bottom) / (hi[1] - lo[1]));
-    let cx = x0 + 0.5 * (w - scale * (hi[0] - lo[0]));
-    let cy = y0 + top + 0.5 * (h - top - bottom - scale * (hi[1] - lo[1]));
-    let px = |p: [f64; 2]| [cx + scale * (p[0] - lo[0]), cy + scale * (hi[1] - p[1])];
+    let frame = Frame::new(lo, hi, rect);
+    let px = |p: [f64; 2]| frame.px(p);
     // Undeformed boundary, dashed.
     let mut undeformed = Vec::new();
     let mut boundary = Vec::new();
@@ -174,6 +165,46 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
     }
     legend(&mut prims, solution, max_t, rect);
     prims
+}
+
+/// Space above (title) and below (legend) the drawing in a panel (px).
+const TOP: f64 = 34.0;
+const BOTTOM: f64 = 40.0;
+
+/// The map from world coordinates (y up) to the pixels of a panel: equal scales, the world
+/// box `lo..hi` grown by an 8 % margin and centred between title and legend.
+struct Frame {
+    lo: [f64; 2],
+    hi: [f64; 2],
+    scale: f64,
+    origin: [f64; 2],
+}
+
+impl Frame {
+    fn new(lo: [f64; 2], hi: [f64; 2], rect: [f64; 4]) -> Self {
+        let [x0, y0, w, h] = rect;
+        let margin = 0.08 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let lo = [lo[0] - margin, lo[1] - margin];
+        let hi = [hi[0] + margin, hi[1] + margin];
+        let scale = (w / (hi[0] - lo[0])).min((h - TOP - BOTTOM) / (hi[1] - lo[1]));
+        let origin = [
+            x0 + 0.5 * (w - scale * (hi[0] - lo[0])),
+            y0 + TOP + 0.5 * (h - TOP - BOTTOM - scale * (hi[1] - lo[1])),
+        ];
+        Frame {
+            lo,
+            hi,
+            scale,
+            origin,
+        }
+    }
+
+    fn px(&self, p: [f64; 2]) -> [f64; 2] {
+        [
+            self.origin[0] + self.scale * (p[0] - self.lo[0]),
+            self.origin[1] + self.scale * (self.hi[1] - p[1]),
+        ]
+    }
 }
 
 /// The legend (slip and stick counts, largest traction) at the bottom of the panel `rect`.
@@ -264,16 +295,8 @@ fn front_view(problem: &Problem, solution: &Solution, rect: [f64; 4]) -> Vec<Pri
         grow(*a);
         grow(*b);
     }
-    let margin = 0.08 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
-    let (lo, hi) = (
-        [lo[0] - margin, lo[1] - margin],
-        [hi[0] + margin, hi[1] + margin],
-    );
-    let (top, bottom) = (34.0, 40.0);
-    let scale = (w / (hi[0] - lo[0])).min((h - top - bottom) / (hi[1] - lo[1]));
-    let cx = x0 + 0.5 * (w - scale * (hi[0] - lo[0]));
-    let cy = y0 + top + 0.5 * (h - top - bottom - scale * (hi[1] - lo[1]));
-    let px = |p: [f64; 2]| [cx + scale * (p[0] - lo[0]), cy + scale * (hi[1] - p[1])];
+    let frame = Frame::new(lo, hi, rect);
+    let px = |p: [f64; 2]| frame.px(p);
     let corners = [
         [blo[0], blo[2]],
         [bhi[0], blo[2]],
@@ -340,7 +363,7 @@ fn front_view(problem: &Problem, solution: &Solution, rect: [f64; 4]) -> Vec<Pri
         });
     }
     prims.push(Prim::Text {
-        pos: [x0 + w / 2.0, y0 + top + 8.0],
+        pos: [x0 + w / 2.0, y0 + TOP + 8.0],
         text: "front view: x right, z up".into(),
         size: 12.0,
         anchor: Anchor::Middle,
