@@ -2,13 +2,59 @@
 //! available before anything large is allocated, so that an oversized request fails fast
 //! with a clear message instead of after minutes or by the kernel's OOM killer.
 
-/// Memory currently available to the process (bytes): `MemAvailable` of `/proc/meminfo`;
-/// `None` where it cannot be read (then no limit is applied).
+/// Memory currently available to the process (bytes): `MemAvailable` of `/proc/meminfo`,
+/// lowered to the room left under the memory limit of the process's control group (a
+/// container or batch-job limit: cgroup v2 `memory.max − memory.current`, or v1
+/// `memory.limit_in_bytes − memory.usage_in_bytes`) where one is set; `None` where
+/// nothing can be read (then no limit is applied).
 pub fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
+    let meminfo = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|text| {
+            let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+            let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+            Some(kib * 1024)
+        });
+    let cgroup = cgroup_room();
+    match (meminfo, cgroup) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// Room left under the control group's memory limit (bytes), if a limit is set.
+fn cgroup_room() -> Option<u64> {
+    let read = |p: &str| std::fs::read_to_string(p).ok();
+    // cgroup v2: the unified hierarchy, at the path of the `0::` line of /proc/self/cgroup.
+    let v2_path = read("/proc/self/cgroup").and_then(|t| {
+        t.lines()
+            .find_map(|l| l.strip_prefix("0::").map(|p| p.trim().to_string()))
+    });
+    if let Some(path) = v2_path {
+        let base = format!("/sys/fs/cgroup{}", if path == "/" { "" } else { &path });
+        if let (Some(max), Some(cur)) = (
+            read(&format!("{base}/memory.max")),
+            read(&format!("{base}/memory.current")),
+        ) {
+            return room(&max, &cur);
+        }
+    }
+    // cgroup v1: the memory controller's own mount (a container sees its group as root).
+    room(
+        &read("/sys/fs/cgroup/memory/memory.limit_in_bytes")?,
+        &read("/sys/fs/cgroup/memory/memory.usage_in_bytes")?,
+    )
+}
+
+/// `limit − usage` from the two files' contents; `None` without a limit (`max`, or v1's
+/// "unlimited" 2⁶³ − page size) or on unreadable contents.
+fn room(limit: &str, usage: &str) -> Option<u64> {
+    let limit: u64 = limit.trim().parse().ok()?;
+    let usage: u64 = usage.trim().parse().ok()?;
+    if limit >= 1 << 62 {
+        return None;
+    }
+    Some(limit.saturating_sub(usage))
 }
 
 /// Estimated peak memory (bytes) of a solve on a generated `nx × ny` rectangle (2D).
@@ -82,4 +128,20 @@ pub fn estimate_mesh(dim: usize, nodes: u64, cells: u64) -> u64 {
 /// memory): nine times the file covers it.
 pub fn estimate_mesh_read(file_bytes: u64) -> u64 {
     file_bytes.saturating_mul(9)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::room;
+
+    /// The cgroup limit files: v2 `max` and v1's "unlimited" mean no limit; otherwise the
+    /// room is limit − usage, never negative.
+    #[test]
+    fn cgroup_room_reads_limits() {
+        assert_eq!(room("max\n", "123\n"), None);
+        assert_eq!(room("9223372036854771712\n", "5"), None);
+        assert_eq!(room("1000\n", "250\n"), Some(750));
+        assert_eq!(room("1000", "2000"), Some(0));
+        assert_eq!(room("garbage", "1"), None);
+    }
 }
