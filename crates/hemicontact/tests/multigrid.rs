@@ -85,10 +85,14 @@ fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
 
 /// Deterministic pseudo-random vector.
 fn vector(n: usize, seed: u64) -> Vec<f64> {
-    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+    let mut s = seed
+        .wrapping_mul(6364136223846793005)
+        .wrapping_add(1442695040888963407);
     (0..n)
         .map(|_| {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
         })
         .collect()
@@ -153,8 +157,12 @@ fn iterations_bounded_under_refinement() {
 #[test]
 fn paper3d_iterative_matches_direct() {
     use hemicontact::solver::{solve, LinearSolver};
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper3d.toml");
-    let scenario = Scenario::from_file(&path).unwrap().with_resolution(8).unwrap();
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper3d.toml");
+    let scenario = Scenario::from_file(&path)
+        .unwrap()
+        .with_resolution(8)
+        .unwrap();
     let mut p = scenario.into_problem().unwrap();
     p.solver.linear_solver = LinearSolver::Direct;
     let direct = solve(&p).unwrap();

@@ -591,12 +591,7 @@ impl Multigrid {
             levels,
             fine_slots,
             coarse: None,
-            work: [
-                vec![0.0; n0],
-                vec![0.0; n0],
-                vec![0.0; n0],
-                vec![0.0; n0],
-            ],
+            work: [vec![0.0; n0], vec![0.0; n0], vec![0.0; n0], vec![0.0; n0]],
         }
     }
 
@@ -607,10 +602,7 @@ impl Multigrid {
 
     /// Stored entries of all operators and prolongations (a memory measure).
     pub fn nnz(&self) -> usize {
-        self.levels
-            .iter()
-            .map(|l| l.a.nnz() + 2 * l.p.nnz())
-            .sum()
+        self.levels.iter().map(|l| l.a.nnz() + 2 * l.p.nnz()).sum()
     }
 
     /// The fine operator (full CSR) with the values of the last [`Multigrid::update`].
@@ -646,11 +638,17 @@ impl Multigrid {
 
     /// One V-cycle: `z = M⁻¹ r` (symmetric positive definite in `r`).
     ///
+    /// Before the first [`Multigrid::update`] there are no operators: then `z = r`.
+    ///
     /// # Panics
-    /// If [`Multigrid::update`] was not called or the lengths do not match.
+    /// If the lengths do not match the fine level.
     #[track_caller]
     pub fn apply(&mut self, r: &[f64], z: &mut [f64]) {
         let last = self.levels.len() - 1;
+        let Some(llt) = self.coarse.as_ref() else {
+            z.copy_from_slice(r);
+            return;
+        };
         self.levels[0].b.copy_from_slice(r);
         for l in 0..last {
             let (lo, hi) = self.levels.split_at_mut(l + 1);
@@ -663,7 +661,6 @@ impl Multigrid {
             let c = &mut self.levels[last];
             c.x.copy_from_slice(&c.b);
             let n = c.x.len();
-            let llt = self.coarse.as_ref().expect("Multigrid::update before apply");
             llt.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut c.x, n, 1));
         }
         for l in (0..last).rev() {

@@ -91,11 +91,13 @@ pub enum LinearSolver {
 
 impl LinearSolver {
     /// Number of equations from which `auto` chooses the iterative solver in 3D. Measured
-    /// on `scenarios/paper3d.toml` (see the README section "3D at scale"): at 108k equations
-    /// a numeric Cholesky factorization takes about 10 s and its factor 1 GB, while a
-    /// multigrid-preconditioned solve takes a few seconds; around 60k equations the two
-    /// are comparable.
-    pub const AUTO_ITERATIVE_EQUATIONS: usize = 60_000;
+    /// on `scenarios/paper3d.toml` (README section "3D at scale", end-to-end solves on the
+    /// 2-core target, direct / iterative): 14 739 equations 0.99 s / 0.66 s, 46 875
+    /// equations 8.2 s / 2.3 s, 104 544 equations 45 s / 5.3 s. Below 30 000 the gain is
+    /// small and the direct solver is kept for its robustness (exact-constraint penalties
+    /// make the Hessian ill-conditioned, which costs PCG iterations but not a
+    /// factorization).
+    pub const AUTO_ITERATIVE_EQUATIONS: usize = 30_000;
 
     /// The solver used for a system of dimension `dim` with `n_equations` equations:
     /// [`LinearSolver::Direct`] or [`LinearSolver::Iterative`].

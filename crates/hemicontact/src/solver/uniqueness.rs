@@ -58,7 +58,9 @@ pub struct Uniqueness {
 }
 
 /// The discrete trace constant ‖γ‖ of the problem's Γ_C (all contact boundaries) and the
-/// number of power iterations; `0.0` if there is no contact point.
+/// number of power iterations; `0.0` if there is no contact point. Always uses the direct
+/// (Cholesky) linear solver, whatever `problem.solver.linear_solver` says: the power
+/// iteration needs `K_ε⁻¹` to round-off.
 ///
 /// # Errors
 /// As [`System::new`] and the factorization of `K_ε`.
