@@ -18,13 +18,18 @@ fn problem(text: &str) -> Problem {
 
 /// A box `(0,2)×(0,1)×(0,1)` with `n` cells per unit length, clamped at the bottom.
 fn box_problem(n: usize) -> Problem {
-    problem(&format!(
+    problem(&box_problem_text(n))
+}
+
+/// The scenario text of [`box_problem`].
+fn box_problem_text(n: usize) -> String {
+    format!(
         "[mesh]\nkind = \"box\"\nsize = [2.0, 1.0, 1.0]\nn = [{}, {n}, {n}]\n\
          [material]\nyoung = 1000.0\npoisson = 0.3\n\
          [[dirichlet]]\npart = \"bottom\"\n\
          [[loads.traction]]\npart = \"top\"\nvalue = [10.0, 5.0, -30.0]\n",
         2 * n
-    ))
+    )
 }
 
 /// A rectangle `(0,3)×(0,1)` clamped at the left, loaded on the right.
@@ -175,4 +180,37 @@ fn paper3d_iterative_matches_direct() {
     assert!(iterative.report.newton.iter().any(|s| s.pcg_iterations > 0));
     let e = rel_diff(&iterative.u, &direct.u);
     assert!(e < 1e-7, "relative difference {e:e}");
+}
+
+/// `[solver] linear_solver` parses in kebab case, and `auto` picks the iterative solver
+/// only for large 3D systems.
+#[test]
+fn linear_solver_setting() {
+    use hemicontact::solver::LinearSolver;
+    let mut text = box_problem_text(2);
+    text.push_str("[solver]\nlinear_solver = \"iterative\"\n");
+    let p = problem(&text);
+    assert_eq!(p.solver.linear_solver, LinearSolver::Iterative);
+    let system = System::new(&p).unwrap();
+    assert!(system.cholesky.is_none() && system.multigrid.is_some());
+    let p = problem(&box_problem_text(2));
+    assert_eq!(p.solver.linear_solver, LinearSolver::Auto);
+    let system = System::new(&p).unwrap();
+    assert!(system.cholesky.is_some() && system.multigrid.is_none());
+    let big = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
+    assert_eq!(LinearSolver::Auto.resolve(3, big), LinearSolver::Iterative);
+    assert_eq!(LinearSolver::Auto.resolve(3, big - 1), LinearSolver::Direct);
+    assert_eq!(
+        LinearSolver::Auto.resolve(2, 10 * big),
+        LinearSolver::Direct
+    );
+    assert_eq!(
+        LinearSolver::Direct.resolve(3, 10 * big),
+        LinearSolver::Direct
+    );
+    let bad = format!(
+        "{}[solver]\nlinear_solver = \"multigrid\"\n",
+        box_problem_text(2)
+    );
+    assert!(Scenario::from_str(&bad, "test").is_err());
 }
