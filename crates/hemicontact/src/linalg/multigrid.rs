@@ -145,16 +145,46 @@ impl Csr {
     }
 }
 
-/// Sparse product `A B` by rows (Gustavson), with a dense accumulator of `B`'s width.
+/// Sparse product `A B` by rows (Gustavson), blocks of rows in parallel. Every row is
+/// computed by one task in a fixed order, so the result does not depend on the scheduling.
 fn multiply(a: &Csr, b: &Csr) -> Csr {
     let n = a.n_rows();
-    let mut acc = vec![0.0; b.n_cols];
-    let mut mark = vec![usize::MAX; b.n_cols];
+    let blocks: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..n.div_ceil(ROWS_PER_TASK))
+        .into_par_iter()
+        .map(|k| multiply_rows(a, b, k * ROWS_PER_TASK..((k + 1) * ROWS_PER_TASK).min(n)))
+        .collect();
+    let nnz = blocks.iter().map(|blk| blk.1.len()).sum();
     let mut ptr = Vec::with_capacity(n + 1);
     ptr.push(0);
+    let mut col = Vec::with_capacity(nnz);
+    let mut val = Vec::with_capacity(nnz);
+    for (lengths, c, v) in blocks {
+        for len in lengths {
+            ptr.push(ptr[ptr.len() - 1] + len);
+        }
+        col.extend_from_slice(&c);
+        val.extend_from_slice(&v);
+    }
+    Csr {
+        n_cols: b.n_cols,
+        ptr,
+        col,
+        val,
+    }
+}
+
+/// Rows `rows` of `A B`: their lengths, columns (sorted per row) and values.
+fn multiply_rows(
+    a: &Csr,
+    b: &Csr,
+    rows: std::ops::Range<usize>,
+) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
+    let mut acc = vec![0.0; b.n_cols];
+    let mut mark = vec![usize::MAX; b.n_cols];
+    let mut lengths = Vec::with_capacity(rows.len());
     let mut col = Vec::new();
     let mut val = Vec::new();
-    for i in 0..n {
+    for i in rows {
         let start = col.len();
         for (k, av) in a.row(i) {
             for (j, bv) in b.row(k) {
@@ -168,14 +198,9 @@ fn multiply(a: &Csr, b: &Csr) -> Csr {
         }
         col[start..].sort_unstable();
         val.extend(col[start..].iter().map(|&j| acc[j as usize]));
-        ptr.push(col.len());
+        lengths.push(col.len() - start);
     }
-    Csr {
-        n_cols: b.n_cols,
-        ptr,
-        col,
-        val,
-    }
+    (lengths, col, val)
 }
 
 /// A regular grid of Q1 nodes: `m[a]` intervals of width `h[a]` from `lo[a]` along each of
