@@ -180,6 +180,9 @@ fn paper3d_iterative_matches_direct() {
     assert!(iterative.report.newton.iter().any(|s| s.pcg_iterations > 0));
     let e = rel_diff(&iterative.u, &direct.u);
     assert!(e < 1e-7, "relative difference {e:e}");
+    // Deterministic: a second iterative solve is bit-identical.
+    let again = solve(&p).unwrap();
+    assert_eq!(again.u, iterative.u);
 }
 
 /// `[solver] linear_solver` parses in kebab case, and `auto` picks the iterative solver
