@@ -759,6 +759,7 @@ const KEYS: &[&str] = &[
     "ordering",
     "threads",
     "factorization_threads",
+    "linear_solver",
     "newton",
     "outer",
     "max_iterations",

@@ -257,11 +257,24 @@ impl Scenario {
         };
         let mesh = read.mesh;
         if let Some(limit) = self.memory_limit {
-            let need = crate::resources::estimate_mesh(
-                mesh.dim(),
-                mesh.n_nodes() as u64,
-                mesh.n_cells() as u64,
-            );
+            let iterative = self
+                .file
+                .solver
+                .linear_solver
+                .resolve(mesh.dim(), mesh.dim() * mesh.n_nodes())
+                == crate::solver::LinearSolver::Iterative;
+            let need = if iterative {
+                crate::resources::estimate_tetrahedra_iterative(
+                    mesh.n_nodes() as f64,
+                    mesh.n_cells() as f64,
+                )
+            } else {
+                crate::resources::estimate_mesh(
+                    mesh.dim(),
+                    mesh.n_nodes() as u64,
+                    mesh.n_cells() as u64,
+                )
+            };
             if need > limit {
                 return Err(too_large(
                     need,
@@ -330,7 +343,18 @@ impl Scenario {
         let need = if dim == 2 {
             crate::resources::estimate_rectangle(counts[0], counts[1])
         } else {
-            crate::resources::estimate_box(counts[0], counts[1], counts[2])
+            let equations = 3 * (counts[0] + 1) * (counts[1] + 1) * (counts[2] + 1);
+            match self
+                .file
+                .solver
+                .linear_solver
+                .resolve(3, equations as usize)
+            {
+                crate::solver::LinearSolver::Iterative => {
+                    crate::resources::estimate_box_iterative(counts[0], counts[1], counts[2])
+                }
+                _ => crate::resources::estimate_box(counts[0], counts[1], counts[2]),
+            }
         };
         if let Some(limit) = self.memory_limit {
             if need > limit {

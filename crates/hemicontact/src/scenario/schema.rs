@@ -54,6 +54,7 @@
 //!
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
+//! linear_solver = "auto"    # "direct", "iterative" (multigrid CG) or "auto" (3D ≥ 30k eq.)
 //! [solver.constraints]      # exact constraints (augmented Lagrangian)
 //! penalty = 1000.0          # dimensionless factor γ
 //!

@@ -8,15 +8,17 @@ use serde::Serialize;
 pub struct Timings {
     /// Sparsity pattern and DOF map.
     pub pattern: f64,
-    /// Fill-reducing ordering and symbolic factorization.
+    /// Fill-reducing ordering and symbolic factorization (iterative linear solver: the
+    /// multigrid grids and prolongations).
     pub symbolic: f64,
     /// Assembly of energy, gradient and Hessian (all Newton steps).
     pub assembly: f64,
-    /// Numeric factorizations (all Newton steps).
+    /// Numeric factorizations (all Newton steps); with the iterative linear solver, the
+    /// multigrid set-ups (Galerkin operators, smoother intervals, coarsest factor).
     pub factorization: f64,
     /// Triangular solves and PCG iterations (all Newton steps).
     pub solve: f64,
-    /// Number of numeric factorizations.
+    /// Number of numeric factorizations (iterative linear solver: multigrid set-ups).
     pub n_factorizations: usize,
     /// Line searches (energy evaluations).
     pub line_search: f64,
@@ -71,8 +73,11 @@ pub struct SolveReport {
     pub n_equations: usize,
     /// Stored entries of the matrix (upper triangle).
     pub nnz_matrix: usize,
-    /// Stored entries of the Cholesky factor.
+    /// Stored entries of the Cholesky factor (0 with the iterative linear solver).
     pub nnz_factor: usize,
+    /// Equations per multigrid level, finest first, with the iterative linear solver
+    /// (empty with the direct one).
+    pub multigrid_levels: Vec<usize>,
     /// Outer iterations.
     pub outer: Vec<OuterStep>,
     /// Newton steps (all outer iterations).
@@ -101,7 +106,11 @@ impl SolveReport {
             n_dofs: system.dofs.n_dofs(),
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
-            nnz_factor: system.cholesky.nnz_factor(),
+            nnz_factor: system.cholesky.as_ref().map_or(0, |c| c.nnz_factor()),
+            multigrid_levels: system
+                .multigrid
+                .as_ref()
+                .map_or_else(Vec::new, |m| m.level_sizes()),
             outer: Vec::new(),
             newton: Vec::new(),
             n_contact_points: system.contact.len(),

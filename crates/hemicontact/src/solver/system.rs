@@ -9,7 +9,7 @@ use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
-use crate::linalg::Cholesky;
+use crate::linalg::{Cholesky, Multigrid};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -20,8 +20,11 @@ pub struct System {
     pub dofs: DofMap,
     /// Upper-triangular pattern of the reduced system.
     pub pattern: SystemPattern,
-    /// Cholesky factorization (symbolic analysis done).
-    pub cholesky: Cholesky,
+    /// Cholesky factorization (symbolic analysis done); `None` with the iterative linear
+    /// solver, which never factorizes the fine system.
+    pub cholesky: Option<Cholesky>,
+    /// Multigrid hierarchy of the iterative linear solver; `None` with the direct one.
+    pub multigrid: Option<Multigrid>,
     /// Contact points.
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
@@ -51,9 +54,10 @@ pub struct System {
     pub grad_bulk: Vec<f64>,
     /// Hessian values at the last evaluation with a Hessian (upper triangle).
     pub hess: Vec<f64>,
-    /// Seconds spent on (pattern, symbolic analysis).
+    /// Seconds spent on (pattern, symbolic analysis or multigrid grids and prolongations).
     pub setup_time: (f64, f64),
-    /// Hessian values of the current factorization (empty: none yet).
+    /// Hessian values of the current factorization or multigrid operators (empty: none
+    /// yet).
     factored: Vec<f64>,
     /// PCG work vectors (r, z, p, Ap).
     work: [Vec<f64>; 4],
@@ -71,6 +75,10 @@ pub struct System {
 /// Cost of one PCG iteration (a triangular solve and a sparse product) in solve units.
 const PCG_ITERATION_COST: f64 = 1.1;
 
+/// Iteration cap of multigrid-preconditioned CG (iterative linear solver). Measured counts
+/// are far below (tens at most); reaching the cap means the preconditioner failed.
+pub const ITERATIVE_MAX_ITERATIONS: usize = 500;
+
 /// How a Newton system was solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LinearInfo {
@@ -81,11 +89,22 @@ pub struct LinearInfo {
 }
 
 impl System {
-    /// Builds the DOF map, pattern and contact points, and runs the symbolic analysis.
+    /// Builds the DOF map, pattern and contact points, and prepares the linear solver
+    /// chosen by `problem.solver.linear_solver` (see [`super::LinearSolver::resolve`]).
     ///
     /// # Errors
     /// [`crate::Error::OutOfMemory`] if the pattern or factor cannot be allocated.
     pub fn new(problem: &Problem) -> Result<Self> {
+        Self::with_linear_solver(problem, problem.solver.linear_solver)
+    }
+
+    /// As [`System::new`] with the linear solver `kind` instead of the problem's: for the
+    /// direct solver the symbolic Cholesky analysis, for the iterative one the multigrid
+    /// grids and prolongations (no factorization of the fine system).
+    ///
+    /// # Errors
+    /// As [`System::new`].
+    pub fn with_linear_solver(problem: &Problem, kind: super::LinearSolver) -> Result<Self> {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
@@ -96,21 +115,31 @@ impl System {
         });
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
-        let cholesky = Cholesky::analyze(
-            &problem.mesh,
-            dofs.equations(),
-            &pattern,
-            problem.solver.ordering,
-            super::parallelism(problem.solver.factorization_threads),
-        )?;
+        let (cholesky, multigrid) = match kind.resolve(problem.mesh.dim(), pattern.n()) {
+            super::LinearSolver::Iterative => (
+                None,
+                Some(Multigrid::new(&problem.mesh, dofs.equations(), &pattern)),
+            ),
+            _ => (
+                Some(Cholesky::analyze(
+                    &problem.mesh,
+                    dofs.equations(),
+                    &pattern,
+                    problem.solver.ordering,
+                    super::parallelism(problem.solver.factorization_threads),
+                )?),
+                None,
+            ),
+        };
         let t2 = Instant::now();
         // A solve streams the factor twice (2 nnz(L) multiply-adds); a factorization costs
         // Σ_j c_j² ≈ nnz(L) · (average column count). Measured on the paper square the
         // ratio is about nnz(L)/(12 n): 6 at n = 128 (30 ms vs 5 ms), 9 at n = 512 (1.1 s vs
         // 0.12 s). A count-based model, not a timer, keeps the solver's decisions — and so
         // its results — deterministic.
-        let factor_cost =
-            (cholesky.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0);
+        let factor_cost = cholesky.as_ref().map_or(1.0, |c| {
+            (c.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0)
+        });
         let f_ext = problem.external_forces();
         let force_floor = {
             let d = problem.mesh.dim();
@@ -127,6 +156,7 @@ impl System {
             dofs,
             pattern,
             cholesky,
+            multigrid,
             contact,
             contact_slots,
             rho_num: problem.solver.outer.friction_regularization * problem.diameter(),
@@ -273,8 +303,16 @@ impl System {
     ///   residual `settings.pcg_tolerance`.
     /// - Otherwise (or if PCG does not get there) the Hessian is refactorized.
     ///
+    /// With the iterative linear solver ([`System::multigrid`]) instead: the multigrid
+    /// operators are rebuilt from `self.hess` when it changed (same 1e-12 test; the time
+    /// goes to `timings.factorization` and counts as a factorization in
+    /// `timings.n_factorizations` and `refactorized`), then multigrid-preconditioned CG
+    /// solves to the relative residual `eta` within [`ITERATIVE_MAX_ITERATIONS`].
+    ///
     /// # Errors
-    /// As [`Cholesky::factorize`].
+    /// As [`Cholesky::factorize`]; with the iterative solver, [`crate::Error::Breakdown`]
+    /// if CG does not reach `eta` within [`ITERATIVE_MAX_ITERATIONS`] iterations or breaks
+    /// down, and the errors of [`Multigrid::update`].
     pub fn linear_solve(
         &mut self,
         b: &[f64],
@@ -283,11 +321,19 @@ impl System {
         settings: &super::NewtonSettings,
         timings: &mut super::Timings,
     ) -> Result<LinearInfo> {
+        if self.multigrid.is_some() {
+            return self.iterative_solve(b, x, eta, timings);
+        }
         let t = Instant::now();
         let mut info = LinearInfo {
             refactorized: false,
             pcg_iterations: 0,
         };
+        if self.cholesky.is_none() {
+            return Err(crate::Error::Breakdown(
+                "no linear solver prepared for the system".into(),
+            ));
+        }
         if !self.factored.is_empty() && !self.refactor_next {
             let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let (mut change, mut changed) = (0.0f64, 0usize);
@@ -298,7 +344,9 @@ impl System {
             }
             if change <= 1e-12 * scale {
                 x.copy_from_slice(b);
-                self.cholesky.solve_in_place(x);
+                if let Some(cholesky) = self.cholesky.as_mut() {
+                    cholesky.solve_in_place(x);
+                }
                 timings.solve += t.elapsed().as_secs_f64();
                 return Ok(info);
             }
@@ -331,13 +379,18 @@ impl System {
         self.factored.clear();
         self.refactor_next = false;
         self.pcg_spent = 0.0;
-        self.cholesky.factorize(&self.pattern, &self.hess)?;
+        let Some(cholesky) = self.cholesky.as_mut() else {
+            return Err(crate::Error::Breakdown(
+                "no linear solver prepared for the system".into(),
+            ));
+        };
+        cholesky.factorize(&self.pattern, &self.hess)?;
         self.factored.extend_from_slice(&self.hess);
         timings.factorization += t.elapsed().as_secs_f64();
         timings.n_factorizations += 1;
         let t = Instant::now();
         x.copy_from_slice(b);
-        self.cholesky.solve_in_place(x);
+        cholesky.solve_in_place(x);
         timings.solve += t.elapsed().as_secs_f64();
         info.refactorized = true;
         Ok(info)
@@ -349,6 +402,7 @@ impl System {
     fn pcg(&mut self, b: &[f64], x: &mut [f64], max_iter: usize, tol: f64) -> Option<usize> {
         let n = b.len();
         let [r, z, p, ap] = &mut self.work;
+        let cholesky = self.cholesky.as_mut()?;
         for v in [&mut *r, &mut *z, &mut *p, &mut *ap] {
             v.resize(n, 0.0);
         }
@@ -359,13 +413,13 @@ impl System {
             return Some(0);
         }
         x.copy_from_slice(b);
-        self.cholesky.solve_in_place(x);
+        cholesky.solve_in_place(x);
         self.pattern.sym_matvec(&self.hess, x, ap);
         for i in 0..n {
             r[i] = b[i] - ap[i];
         }
         z.copy_from_slice(r);
-        self.cholesky.solve_in_place(z);
+        cholesky.solve_in_place(z);
         p.copy_from_slice(z);
         let mut rz = dot(r, z);
         for k in 1..=max_iter {
@@ -383,7 +437,7 @@ impl System {
                 return Some(k);
             }
             z.copy_from_slice(r);
-            self.cholesky.solve_in_place(z);
+            cholesky.solve_in_place(z);
             let rz_new = dot(r, z);
             let beta = rz_new / rz;
             rz = rz_new;
@@ -392,6 +446,54 @@ impl System {
             }
         }
         None
+    }
+
+    /// The iterative branch of [`System::linear_solve`]: multigrid-preconditioned CG, with
+    /// the multigrid operators rebuilt when the Hessian changed.
+    fn iterative_solve(
+        &mut self,
+        b: &[f64],
+        x: &mut [f64],
+        eta: f64,
+        timings: &mut super::Timings,
+    ) -> Result<LinearInfo> {
+        let Some(mg) = self.multigrid.as_mut() else {
+            return Err(crate::Error::Breakdown(
+                "no multigrid hierarchy prepared for the system".into(),
+            ));
+        };
+        let mut info = LinearInfo {
+            refactorized: false,
+            pcg_iterations: 0,
+        };
+        let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let unchanged = !self.factored.is_empty()
+            && self
+                .hess
+                .iter()
+                .zip(&self.factored)
+                .all(|(a, c)| (a - c).abs() <= 1e-12 * scale);
+        if !unchanged {
+            let t = Instant::now();
+            self.factored.clear();
+            mg.update(&self.hess)?;
+            self.factored.extend_from_slice(&self.hess);
+            timings.factorization += t.elapsed().as_secs_f64();
+            timings.n_factorizations += 1;
+            info.refactorized = true;
+        }
+        let t = Instant::now();
+        let outcome = mg.solve(b, x, eta, ITERATIVE_MAX_ITERATIONS)?;
+        timings.solve += t.elapsed().as_secs_f64();
+        if !outcome.converged {
+            return Err(crate::Error::Breakdown(format!(
+                "multigrid-preconditioned CG did not reach the relative residual {eta:e} in \
+                 {} iterations (reached {:e}); try [solver] linear_solver = \"direct\"",
+                outcome.iterations, outcome.relative_residual
+            )));
+        }
+        info.pcg_iterations = outcome.iterations;
+        Ok(info)
     }
 
     /// Gradient restricted to the free DOFs (equation order) into `r`.

@@ -58,12 +58,15 @@ pub struct Uniqueness {
 }
 
 /// The discrete trace constant ‖γ‖ of the problem's Γ_C (all contact boundaries) and the
-/// number of power iterations; `0.0` if there is no contact point.
+/// number of power iterations; `0.0` if there is no contact point. Always uses the direct
+/// (Cholesky) linear solver, whatever `problem.solver.linear_solver` says: the power
+/// iteration needs `K_ε⁻¹` to round-off.
 ///
 /// # Errors
 /// As [`System::new`] and the factorization of `K_ε`.
 pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
-    let mut system = System::new(problem)?;
+    // The power iteration needs K_ε⁻¹ to round-off: always the direct solver.
+    let mut system = System::with_linear_solver(problem, super::LinearSolver::Direct)?;
     if system.contact.is_empty() {
         return Ok((0.0, 0));
     }
@@ -77,7 +80,10 @@ pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
     let mut grad = vec![0.0; u.len()];
     let mut k = vec![0.0; system.pattern.nnz()];
     bulk.assemble(&u, &mut grad, Want::Hessian, &system.pattern, Some(&mut k));
-    system.cholesky.factorize(&system.pattern, &k)?;
+    let Some(cholesky) = system.cholesky.as_mut() else {
+        return Err(crate::Error::Breakdown("no Cholesky factorization".into()));
+    };
+    cholesky.factorize(&system.pattern, &k)?;
     // Lumped boundary mass on the free DOFs.
     let n = system.pattern.n();
     let mut m = vec![0.0; n];
@@ -99,7 +105,7 @@ pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
         for (xi, mi) in x.iter_mut().zip(&m) {
             *xi *= mi;
         }
-        system.cholesky.solve_in_place(&mut x);
+        cholesky.solve_in_place(&mut x);
         let s = x.iter().map(|v| v * v).sum::<f64>().sqrt();
         if s == 0.0 {
             return Ok((0.0, it));
