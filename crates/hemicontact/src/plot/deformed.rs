@@ -8,7 +8,7 @@
 //! stick, red slip) and the interface forces (green arrows, the force of the foundation on
 //! the body divided by the node's weight, i.e. the traction, scaled so the largest arrow is
 //! 12 % of the panel; the scale is printed). A 3D solution is drawn as a front view
-//! (orthographic projection on the x–z plane, see [`front_view`]).
+//! (orthographic projection on the x–z plane).
 
 use super::{Anchor, Figure, Prim, Rgb};
 use crate::problem::Problem;
