@@ -122,13 +122,14 @@ pub fn minimize(
     let mut steps = 0;
     let mut prev_res = f64::INFINITY;
     let mut last_full = false;
-    // Energy of an evaluation (with Hessian) at `u` left by the line search, if any.
-    let mut evaluated: Option<f64> = None;
+    // Energy of an evaluation at `u` left by the line search, if any, and whether it
+    // included the Hessian.
+    let mut evaluated: Option<(f64, bool)> = None;
     loop {
         let t = Instant::now();
-        let energy = match evaluated.take() {
+        let (energy, with_hessian) = match evaluated.take() {
             Some(e) => e,
-            None => system.evaluate(problem, u, frozen, true),
+            None => (system.evaluate(problem, u, frozen, true), true),
         };
         report.timings.assembly += t.elapsed().as_secs_f64();
         system.reduce(&system.grad, &mut r);
@@ -177,6 +178,13 @@ pub fn minimize(
             });
         }
         prev_res = res;
+        if !with_hessian {
+            // The line search evaluated this point without the Hessian (it expected the
+            // step to converge): assemble it now.
+            let t = Instant::now();
+            system.evaluate(problem, u, frozen, true);
+            report.timings.assembly += t.elapsed().as_secs_f64();
+        }
         for (d, ri) in r_neg.iter_mut().zip(&r) {
             *d = -ri;
         }
@@ -188,7 +196,7 @@ pub fn minimize(
         let t = Instant::now();
         // Line search on φ(t) = Π(u + tΔ), convex and piecewise smooth: the full step with
         // the Hessian (so the next Newton step can reuse the evaluation), else a bracketing
-        // secant search (Illinois) on φ'(t) — exact for the piecewise quadratic energies here
+        // secant search (safeguarded by bisection) on φ'(t) — exact for the piecewise quadratic energies here
         // once the kinks on the line are passed — for a step with sufficient decrease
         // (Armijo) that is no longer steeply descending (weak Wolfe curvature condition
         // φ'(t) ≥ 0.9 φ'(0)). Halving would stop at the first power of two below the kink
@@ -207,12 +215,17 @@ pub fn minimize(
                 }
             }
             let full = iter == 0;
-            let e_trial = system.evaluate(problem, &trial, frozen, full);
+            // The full step is evaluated with the Hessian, for the next Newton step — unless
+            // the factorization was reused unchanged (the active sets are settled, so the
+            // full step of the piecewise quadratic energy most likely converges and the
+            // Hessian would be wasted).
+            let hessian = full && (linear.refactorized || linear.pcg_iterations > 0);
+            let e_trial = system.evaluate(problem, &trial, frozen, hessian);
             let armijo = e_trial <= energy + settings.armijo * step * slope;
             // Below round-off of the energy, the Armijo test is meaningless: accept.
             if full && (armijo || negligible) {
                 accepted = true;
-                evaluated = Some(e_trial);
+                evaluated = Some((e_trial, hessian));
                 break;
             }
             let d = directional_derivative(system, &delta);
@@ -223,7 +236,7 @@ pub fn minimize(
             if noise && d.abs() <= 0.5 * slope.abs() {
                 accepted = true;
                 if full {
-                    evaluated = Some(e_trial);
+                    evaluated = Some((e_trial, hessian));
                 }
                 break;
             }
@@ -241,23 +254,23 @@ pub fn minimize(
             if armijo {
                 best = Some(best.map_or(step, |s: f64| s.max(step)));
             }
-            // Update the bracket [a, b] of the zero of φ' (φ'(a) < 0).
+            // Update the bracket [a, b] of the zero of φ' (φ'(a) < 0). When the same end
+            // moves twice in a row, the secant is stuck against a steep kink (a stiff penalty
+            // switching on): bisect, so the bracket at least halves every other trial.
+            let repeated = (d < 0.0 && side == -1) || (d >= 0.0 && side == 1);
             if d < 0.0 {
                 a = step;
                 da = d;
-                if side == -1 {
-                    db *= 0.5;
-                }
                 side = -1;
             } else {
                 b = step;
                 db = d;
-                if side == 1 {
-                    da *= 0.5;
-                }
                 side = 1;
             }
-            step = if db.is_finite() && db > da {
+            step = if repeated {
+                side = 0;
+                a + 0.5 * (b - a)
+            } else if db.is_finite() && db > da {
                 let t = a - da * (b - a) / (db - da);
                 t.clamp(a + 1e-3 * (b - a), b - 1e-3 * (b - a))
             } else {
