@@ -578,6 +578,13 @@ const STRINGS: &[&str] = &[
 /// Whole lines inserted somewhere.
 const LINES: &[&str] = &[
     "bogus = 1",
+    "[solver.constraints]",
+    "locking_penalty = -1.0",
+    "contact_penalty = 1e300",
+    "initial_penalty = nan",
+    "law = \"signorini\"",
+    "exact = true",
+    "treatment = \"exact\"",
     "young = 1.0",
     "poisson = 0.3",
     "n = [4, 4]",
@@ -760,6 +767,9 @@ const KEYS: &[&str] = &[
     "threads",
     "factorization_threads",
     "linear_solver",
+    "locking_penalty",
+    "contact_penalty",
+    "initial_penalty",
     "newton",
     "outer",
     "max_iterations",

@@ -798,6 +798,35 @@ impl Scenario {
                 "a number in (0, 0.01)",
             ));
         }
+        let cs = &solver.constraints;
+        for (field, v, lo, hi) in [
+            (
+                "solver.constraints.locking_penalty",
+                cs.locking_penalty,
+                1e-3,
+                1e6,
+            ),
+            (
+                "solver.constraints.contact_penalty",
+                cs.contact_penalty,
+                1e-3,
+                1e6,
+            ),
+            (
+                "solver.constraints.initial_penalty",
+                cs.initial_penalty,
+                1e-6,
+                1e6,
+            ),
+        ] {
+            if !(v >= lo && v <= hi) {
+                return Err(self.err(
+                    field,
+                    v,
+                    &format!("a dimensionless penalty factor from {lo:e} to {hi:e}"),
+                ));
+            }
+        }
         let contact = self.build_contact(&mesh)?;
         for (k, c) in contact.iter().enumerate() {
             if dirichlet.iter().any(|d| d.part == c.part) {

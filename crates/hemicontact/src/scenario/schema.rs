@@ -56,7 +56,9 @@
 //! ordering = "nested-dissection"
 //! linear_solver = "auto"    # "direct", "iterative" (multigrid CG) or "auto" (3D ≥ 30k eq.)
 //! [solver.constraints]      # exact constraints (augmented Lagrangian)
-//! penalty = 1000.0          # dimensionless factor γ
+//! locking_penalty = 1000.0  # dimensionless factors γ (ideal locking; Signorini and
+//! contact_penalty = 100.0   #   exact friction) and γ₀ of the continuation
+//! initial_penalty = 1.0
 //!
 //! [output]
 //! dir = "out/example"       # default: given on the command line

@@ -195,13 +195,9 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         force_scale: f64::NAN,
     };
     report.converged = false;
-    let stages = if constraints::has_exact_constraints(problem) {
-        settings.constraints.stages()
-    } else {
-        0
-    };
+    let stages = constraints::stages(problem);
     for k in 0..settings.outer.max_iterations.max(1) {
-        system.set_penalty_scale(settings.constraints.scale(k));
+        system.set_penalty_stage(&settings.constraints, k);
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
         } else {
@@ -283,10 +279,7 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         }
         if outer_loop && k + 1 < stages {
             // Penalty continuation: the map changes with the penalty, so no mixing yet.
-            step.mixing = format!(
-                "penalty continuation: factor {:e} next",
-                settings.constraints.scale(k + 1) * settings.constraints.penalty
-            );
+            step.mixing = format!("penalty continuation: stage {} of {stages} next", k + 1);
             z = g;
             frozen = next;
         } else if outer_loop {

@@ -201,13 +201,15 @@ impl System {
         })
     }
 
-    /// Scales the augmented-Lagrangian penalties to `scale` times their full values
-    /// (continuation, see [`super::constraints`]).
-    pub fn set_penalty_scale(&mut self, scale: f64) {
+    /// Sets the augmented-Lagrangian penalties of outer iteration `k` (continuation, see
+    /// [`super::constraints`]).
+    pub fn set_penalty_stage(&mut self, settings: &super::ConstraintSettings, k: usize) {
+        let contact = settings.factor(k, settings.contact_penalty) / settings.contact_penalty;
+        let locking = settings.factor(k, settings.locking_penalty) / settings.locking_penalty;
         for (r, full) in self.contact_penalty.iter_mut().zip(&self.full_penalty.0) {
-            *r = scale * full;
+            *r = contact * full;
         }
-        self.locking_penalty = scale * self.full_penalty.1;
+        self.locking_penalty = locking * self.full_penalty.1;
     }
 
     /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
