@@ -13,20 +13,23 @@
 
 mod common;
 
-use common::{lame, problem, rel};
+use common::{assert_certified, lame, problem, rel};
 use hemicontact::solver::{solve, Solution, Status};
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
 
+/// Certified (common::assert_certified) and the KKT residuals of the exact constraints below
+/// `tol`, with nonnegative multipliers.
 #[track_caller]
 fn assert_kkt(s: &Solution, tol: f64) {
-    let c = &s.report.certificate;
-    assert!(s.report.converged, "not converged: {}", s.report.message);
-    assert!(c.equilibrium < tol, "equilibrium {:e}", c.equilibrium);
-    assert!(c.normal_law < tol, "normal law {:e}", c.normal_law);
-    assert!(c.friction_law < tol, "friction law {:e}", c.friction_law);
-    let kkt = c.kkt.as_ref().expect("a KKT certificate");
+    assert_certified(s, tol);
+    let kkt = s
+        .report
+        .certificate
+        .kkt
+        .as_ref()
+        .expect("a KKT certificate");
     assert!(kkt.worst() < tol, "KKT residuals {kkt:?}");
     assert!(kkt.locking_min_multiplier >= 0.0 && kkt.contact_min_multiplier >= 0.0);
 }
@@ -285,26 +288,37 @@ fn assert_linear_rate(label: &str, diffs: &[f64]) {
     }
 }
 
+/// Solves the scenario `text(p)` for each parameter `p` and returns the largest nodal
+/// displacement difference to `limit` for each (asserting convergence).
+fn distances(limit: &Solution, params: &[f64], text: impl Fn(f64) -> String) -> Vec<f64> {
+    params
+        .iter()
+        .map(|&p| {
+            let s = solve(&problem(&text(p))).unwrap();
+            assert!(
+                s.report.converged,
+                "not converged at {p}: {}",
+                s.report.message
+            );
+            max_diff(&s.u, &limit.u)
+        })
+        .collect()
+}
+
 /// Nearly locking → ideal locking: the penalty solutions approach the ideal one like 1/C_κ.
 #[test]
 fn nearly_locking_tends_to_ideal_locking_like_one_over_c_kappa() {
     let ideal = solve(&problem(&paper("paper-ideal.toml", &[]))).unwrap();
     assert_kkt(&ideal, 1e-8);
-    let diffs: Vec<f64> = [1e5, 1e6, 1e7]
-        .iter()
-        .map(|c| {
-            let text = paper(
-                "paper-ideal.toml",
-                &[(
-                    "treatment = \"exact\"",
-                    &format!("treatment = \"penalty\"\nc_kappa = {c}"),
-                )],
-            );
-            let s = solve(&problem(&text)).unwrap();
-            assert!(s.report.converged);
-            max_diff(&s.u, &ideal.u)
-        })
-        .collect();
+    let diffs = distances(&ideal, &[1e5, 1e6, 1e7], |c| {
+        paper(
+            "paper-ideal.toml",
+            &[(
+                "treatment = \"exact\"",
+                &format!("treatment = \"penalty\"\nc_kappa = {c}"),
+            )],
+        )
+    });
     assert_linear_rate("C_κ → ∞", &diffs);
 }
 
@@ -315,21 +329,15 @@ fn normal_compliance_tends_to_signorini_like_one_over_c_nu() {
     assert_kkt(&sig, 1e-8);
     let kkt = sig.report.certificate.kkt.as_ref().unwrap();
     assert!(sig.report.certificate.n_contact > 0 && kkt.n_constraints.1 > 0);
-    let diffs: Vec<f64> = [1e7, 1e8, 1e9]
-        .iter()
-        .map(|c| {
-            let text = paper(
-                "paper-signorini.toml",
-                &[(
-                    "law = \"signorini\"",
-                    &format!("law = \"normal-compliance\"\nc_nu = {c}"),
-                )],
-            );
-            let s = solve(&problem(&text)).unwrap();
-            assert!(s.report.converged);
-            max_diff(&s.u, &sig.u)
-        })
-        .collect();
+    let diffs = distances(&sig, &[1e7, 1e8, 1e9], |c| {
+        paper(
+            "paper-signorini.toml",
+            &[(
+                "law = \"signorini\"",
+                &format!("law = \"normal-compliance\"\nc_nu = {c}"),
+            )],
+        )
+    });
     assert_linear_rate("c_ν → ∞", &diffs);
 }
 
@@ -339,19 +347,13 @@ fn normal_compliance_tends_to_signorini_like_one_over_c_nu() {
 fn regularized_friction_tends_to_exact_friction_like_rho() {
     let exact = solve(&problem(&sheared_block(1e-3, 10.0, "exact = true"))).unwrap();
     assert_kkt(&exact, 1e-8);
-    let diffs: Vec<f64> = [1e-5, 1e-6, 1e-7]
-        .iter()
-        .map(|rho| {
-            let text = sheared_block(
-                1e-3,
-                10.0,
-                &format!("potential = \"regularized\"\nrho = {rho}"),
-            );
-            let s = solve(&problem(&text)).unwrap();
-            assert!(s.report.converged);
-            max_diff(&s.u, &exact.u)
-        })
-        .collect();
+    let diffs = distances(&exact, &[1e-5, 1e-6, 1e-7], |rho| {
+        sheared_block(
+            1e-3,
+            10.0,
+            &format!("potential = \"regularized\"\nrho = {rho}"),
+        )
+    });
     assert_linear_rate("ρ → 0", &diffs);
 }
 

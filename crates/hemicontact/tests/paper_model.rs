@@ -8,6 +8,8 @@
 //! the frozen quantities the solver iterated on.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::{solve, Solution, Status};
@@ -20,23 +22,7 @@ fn problem(text: &str) -> Problem {
 }
 
 fn assert_certified(s: &Solution) {
-    let c = &s.report.certificate;
-    assert!(s.report.converged, "not converged: {}", s.report.message);
-    assert!(
-        c.equilibrium < 1e-8,
-        "equilibrium residual {:e}",
-        c.equilibrium
-    );
-    assert!(
-        c.normal_law < 1e-8,
-        "normal-law residual {:e}",
-        c.normal_law
-    );
-    assert!(
-        c.friction_law < 1e-8,
-        "friction-law residual {:e}",
-        c.friction_law
-    );
+    common::assert_certified(s, 1e-8);
 }
 
 const E: f64 = 1000.0;

@@ -114,3 +114,22 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
     );
     (u, outcome.steps)
 }
+
+/// Asserts that a solve converged and that its certificate (equilibrium, normal-law and
+/// friction-law residuals, computed from equilibrium of the body) is below `tol`.
+#[track_caller]
+pub fn assert_certified(s: &hemicontact::solver::Solution, tol: f64) {
+    let c = &s.report.certificate;
+    assert!(s.report.converged, "not converged: {}", s.report.message);
+    assert!(
+        c.equilibrium < tol,
+        "equilibrium residual {:e}",
+        c.equilibrium
+    );
+    assert!(c.normal_law < tol, "normal-law residual {:e}", c.normal_law);
+    assert!(
+        c.friction_law < tol,
+        "friction-law residual {:e}",
+        c.friction_law
+    );
+}
