@@ -444,7 +444,7 @@ fn run_and_write(
 
 fn print_table(cases: &[Case]) {
     say!(
-        "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>6} {:>12} {:>10} {:>10}",
+        "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>6} {:>6} {:>10} {:>10}",
         "case",
         "DOFs",
         "outer",
@@ -452,6 +452,7 @@ fn print_table(cases: &[Case]) {
         "factor.",
         "time s",
         "contact",
+        "stick",
         "slip",
         "max |u| m",
         "certif."
@@ -465,7 +466,7 @@ fn print_table(cases: &[Case]) {
             .max(cert.friction_law)
             .max(cert.kkt.as_ref().map_or(0.0, |k| k.worst()));
         say!(
-            "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>6} {:>12} {:>10.6} {:>10.1e}{}",
+            "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>7} {:>6} {:>6} {:>10.4e} {:>10.1e}{}",
             c.label,
             r.n_dofs,
             r.outer.len(),
@@ -473,6 +474,7 @@ fn print_table(cases: &[Case]) {
             r.timings.n_factorizations,
             r.timings.total,
             cert.n_contact,
+            cert.n_stick,
             cert.n_slip,
             c.summary.max_displacement,
             worst,

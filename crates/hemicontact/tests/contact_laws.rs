@@ -316,7 +316,7 @@ const A_J: f64 = 0.3;
 fn potentials() -> [FrictionPotential; 3] {
     [
         FrictionPotential::Norm,
-        FrictionPotential::Nonconvex { a: A_J },
+        FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
         FrictionPotential::Regularized { rho: 0.01 },
     ]
 }
@@ -352,8 +352,11 @@ fn friction_potential_slope_is_derivative() {
     assert!((reg.value(r) - (0.0005f64.sqrt() - 0.01)).abs() < 1e-16);
     assert_eq!(reg.slope(0.0), 0.0);
     assert_eq!(FrictionPotential::Norm.slope(0.0), 1.0);
-    assert_eq!(FrictionPotential::Nonconvex { a: A_J }.slope(0.0), 1.0);
-    let nc = FrictionPotential::Nonconvex { a: A_J };
+    assert_eq!(
+        FrictionPotential::Nonconvex { a: A_J, unit: 1.0 }.slope(0.0),
+        1.0
+    );
+    let nc = FrictionPotential::Nonconvex { a: A_J, unit: 1.0 };
     // r = 1 > a: a·1 + a(1 − a)/2 = 0.3 + 0.105.
     assert!((nc.value(1.0) - 0.405).abs() < 1e-15);
     // r = 0.1 < a: 0.1 + (a − 1)/(2a)·0.01 = 0.1 − 0.7/0.6·0.01.
@@ -363,7 +366,7 @@ fn friction_potential_slope_is_derivative() {
 #[test]
 fn nonconvex_potential_dc_split_and_regularity() {
     let a = A_J;
-    let j = FrictionPotential::Nonconvex { a };
+    let j = FrictionPotential::Nonconvex { a, unit: 1.0 };
     let alpha = j.alpha_j();
     assert!((alpha - (1.0 - a) / a).abs() < 1e-15);
     let h_val = |r: f64| r - j.value(r);
@@ -801,7 +804,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: paper_exponential(),
-                potential: FrictionPotential::Nonconvex { a: A_J },
+                potential: FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
                 exact: false,
             }),
         },
@@ -842,7 +845,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: paper_exponential(),
-                potential: FrictionPotential::Nonconvex { a: A_J },
+                potential: FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
                 exact: true,
             }),
         },

@@ -14,7 +14,7 @@
 mod common;
 
 use common::{assert_certified, lame, problem, rel};
-use hemicontact::solver::{solve, Solution, Status};
+use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
@@ -214,11 +214,11 @@ fn block_on_signorini_foundation_matches_hand_solution() {
                 );
                 // The equilibrium force is the pressure on the node's share of Γ_C.
                 assert!(rel(-c.force_normal, c.weight * p, 1.0) < 1e-8);
-                assert_ne!(c.status, Status::Separated);
+                assert_eq!(c.normal_state, NormalState::Contact);
             } else {
                 assert!(rel(uy, -delta, 1.0) < 1e-10, "u_y {uy} vs −δ");
                 assert_eq!(c.pressure, 0.0);
-                assert_eq!(c.status, Status::Separated);
+                assert_eq!(c.normal_state, NormalState::Separated);
             }
         }
     }
@@ -244,11 +244,14 @@ fn sheared_block_on_tresca_foundation_slides_at_the_bound_or_sticks() {
         let u_max = s.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if slides {
             assert!(rel(rx, f, 1.0) < 1e-8, "top x-reaction {rx} vs F L = {f}");
-            assert!(s.contact.iter().all(|c| c.status == Status::Slip));
+            assert!(s
+                .contact
+                .iter()
+                .all(|c| c.friction_state == FrictionState::Slip));
         } else {
             assert!(rx < 0.9 * f, "top x-reaction {rx} reaches the bound {f}");
             for c in &s.contact {
-                assert_eq!(c.status, Status::Stick);
+                assert_eq!(c.friction_state, FrictionState::Stick);
                 assert!(c.slip <= 1e-12 * u_max, "sticking slip {:e}", c.slip);
             }
         }

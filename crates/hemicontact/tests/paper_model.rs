@@ -12,7 +12,7 @@ mod common;
 
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
-use hemicontact::solver::{solve, Solution, Status};
+use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
 
 fn problem(text: &str) -> Problem {
     Scenario::from_str(text, "test")
@@ -152,15 +152,23 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     // Below the threshold: stick, uniform shear u_x = δ y.
     let (pr, s) = sheared_block(0.5 * delta_star, mu);
     assert_certified(&s);
-    let rho_num = 1e-8 * pr.diameter();
+    // The numerical regularization of ‖·‖ in the user's units: a fraction
+    // (`friction_regularization`, 1e-8) of the displacement scale of the solve.
+    let scales = s.report.scales.expect("scales");
+    let rho_num = pr.solver.outer.friction_regularization * scales.displacement;
     for c in &s.contact {
-        assert_eq!(c.status, Status::Stick, "node {} should stick", c.node);
+        assert_eq!(
+            c.friction_state,
+            FrictionState::Stick,
+            "node {} should stick",
+            c.node
+        );
         assert!(c.slip < rho_num, "stick slip {}", c.slip);
         // Tangential traction G δ below the bound.
         assert!((c.force_tangential[0].abs() / c.weight - g * 0.5 * delta_star).abs() < 1e-6 * mu);
     }
     // Exact up to the numerical regularization of ‖·‖: a sticking node moves by less than
-    // ρ_num = 1e-8 · diam(Ω) (SolverSettings::outer.friction_regularization).
+    // ρ_num.
     for n in 0..pr.mesh.n_nodes() {
         let y = pr.mesh.node(n)[1];
         assert!((s.u[2 * n] - 0.5 * delta_star * y).abs() < rho_num);
@@ -170,7 +178,12 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     let (pr, s) = sheared_block(delta, mu);
     assert_certified(&s);
     for c in &s.contact {
-        assert_eq!(c.status, Status::Slip, "node {} should slip", c.node);
+        assert_eq!(
+            c.friction_state,
+            FrictionState::Slip,
+            "node {} should slip",
+            c.node
+        );
         assert!(
             (c.slip - (delta - delta_star)).abs() < 1e-8 * delta_star,
             "slip {}",
@@ -217,13 +230,16 @@ fn paper_solution_is_mirror_symmetric() {
 fn paper_qualitative_result() {
     let (_, free) = paper(16, 0.0, "");
     assert_certified(&free);
-    assert!(free.contact.iter().all(|c| c.status == Status::Separated));
+    assert!(free
+        .contact
+        .iter()
+        .all(|c| c.normal_state == NormalState::Separated));
     let (pr, locked) = paper(16, 1.0e4, "");
     assert_certified(&locked);
     let touching: Vec<_> = locked
         .contact
         .iter()
-        .filter(|c| c.status != Status::Separated)
+        .filter(|c| c.normal_state == NormalState::Contact)
         .collect();
     assert!(!touching.is_empty());
     for side in 0..2 {
@@ -238,7 +254,9 @@ fn paper_qualitative_result() {
             .iter()
             .any(|c| pr.mesh.node(c.node as usize)[1] == 4.0));
     }
-    assert!(touching.iter().any(|c| c.status == Status::Slip));
+    assert!(touching
+        .iter()
+        .any(|c| c.friction_state == FrictionState::Slip));
     // The locking penalty acts: some cell has |tr ε| > θ.
     let summary = hemicontact::io::summary::Summary::new(&pr, &locked, None, "test");
     assert!(summary.locked_cells > 0);
@@ -293,7 +311,10 @@ fn nonconvex_friction_potential_run() {
     let s = solve(&pr).unwrap();
     assert_certified(&s);
     assert!(s.report.outer.len() > 1);
-    assert!(s.contact.iter().any(|c| c.status == Status::Slip));
+    assert!(s
+        .contact
+        .iter()
+        .any(|c| c.friction_state == FrictionState::Slip));
 }
 
 fn constant_mu(mu: f64, outer: &str) -> String {

@@ -8,6 +8,10 @@
 //! |-----------|---------------|-------|---|
 //! | norm | `r` | `r` | 0 |
 //! | nonconvex (17), 0 < a < 1 | `r + (a−1)/(2a) r²` (r ≤ a), `a r + a(1−a)/2` (r > a) | `r` | `(1−a)/(2a) r²` (r ≤ a), `(1−a) r − a(1−a)/2` (r > a) |
+//!
+//! The paper states (17) with the slip r in metres; the law is `ℓ j₁₇(r/ℓ)` with the slip
+//! unit ℓ = 1 m ([`FrictionPotential::Nonconvex::unit`]), which keeps its form when the
+//! variables are made dimensionless (ℓ becomes ℓ/U for a displacement scale U).
 //! | regularized (19) | `√(r² + ρ²) − ρ` | j | 0 |
 //!
 //! The norm is nonsmooth at 0. The solver works with its regularization
@@ -85,6 +89,29 @@ impl FrictionCoefficient {
         }
     }
 
+    /// The same law in dimensionless variables: slips in units of `displacement` (m) and
+    /// values in units of `value` (1 for a Coulomb-type coefficient, the traction unit for a
+    /// Tresca bound): `μ̂(r̂) = μ(U r̂)/value`, so β̂ = βU, table slips r/U and values
+    /// μ/value.
+    pub fn nondimensional(&self, displacement: f64, value: f64) -> Self {
+        match self {
+            FrictionCoefficient::Constant { mu } => {
+                FrictionCoefficient::Constant { mu: mu / value }
+            }
+            FrictionCoefficient::Exponential { a, b, beta } => FrictionCoefficient::Exponential {
+                a: a / value,
+                b: b / value,
+                beta: beta * displacement,
+            },
+            FrictionCoefficient::Table { points } => FrictionCoefficient::Table {
+                points: points
+                    .iter()
+                    .map(|p| [p[0] / displacement, p[1] / value])
+                    .collect(),
+            },
+        }
+    }
+
     /// Checks the parameters; returns what is wrong.
     ///
     /// # Errors
@@ -132,10 +159,13 @@ pub enum FrictionBound {
 pub enum FrictionPotential {
     /// `j(ξ) = ‖ξ‖`.
     Norm,
-    /// The paper's nonconvex example (17) with parameter `0 < a < 1`.
+    /// The paper's nonconvex example (17) with parameter `0 < a < 1`, for the slip measured
+    /// in the unit ℓ: `j(r) = ℓ j₁₇(r/ℓ)`.
     Nonconvex {
-        /// a_j.
+        /// a_j (dimensionless).
         a: f64,
+        /// The slip unit ℓ of the formula (m); 1 for the paper's law.
+        unit: f64,
     },
     /// The regularized Coulomb law (19) `√(‖ξ‖² + ρ²) − ρ`.
     Regularized {
@@ -149,11 +179,12 @@ impl FrictionPotential {
     pub fn value(&self, r: f64) -> f64 {
         match *self {
             FrictionPotential::Norm => r,
-            FrictionPotential::Nonconvex { a } => {
-                if r <= a {
-                    r + (a - 1.0) / (2.0 * a) * r * r
+            FrictionPotential::Nonconvex { a, unit } => {
+                let x = r / unit;
+                unit * if x <= a {
+                    x + (a - 1.0) / (2.0 * a) * x * x
                 } else {
-                    a * r + a * (1.0 - a) / 2.0
+                    a * x + a * (1.0 - a) / 2.0
                 }
             }
             FrictionPotential::Regularized { rho } => (r * r + rho * rho).sqrt() - rho,
@@ -165,9 +196,10 @@ impl FrictionPotential {
     pub fn slope(&self, r: f64) -> f64 {
         match *self {
             FrictionPotential::Norm => 1.0,
-            FrictionPotential::Nonconvex { a } => {
-                if r <= a {
-                    1.0 - (1.0 - a) * r / a
+            FrictionPotential::Nonconvex { a, unit } => {
+                let x = r / unit;
+                if x <= a {
+                    1.0 - (1.0 - a) * x / a
                 } else {
                     a
                 }
@@ -186,7 +218,7 @@ impl FrictionPotential {
     /// convex potentials.
     pub fn h_slope(&self, r: f64) -> f64 {
         match *self {
-            FrictionPotential::Nonconvex { a } => (1.0 - a) * (r / a).min(1.0),
+            FrictionPotential::Nonconvex { a, unit } => (1.0 - a) * (r / (a * unit)).min(1.0),
             _ => 0.0,
         }
     }
@@ -213,11 +245,26 @@ impl FrictionPotential {
 
     /// Relaxed monotonicity constant `α_j ≥ 0` of ∂j:
     /// `(ζ₁ − ζ₂)·(ξ₁ − ξ₂) ≥ −α_j ‖ξ₁ − ξ₂‖²`. Zero for convex j; `(1 − a)/a` for (17)
-    /// (the Lipschitz constant of ∇h).
+    /// (the Lipschitz constant of ∇h; 1/m for ℓ = 1 m).
     pub fn alpha_j(&self) -> f64 {
         match *self {
-            FrictionPotential::Nonconvex { a } => (1.0 - a) / a,
+            FrictionPotential::Nonconvex { a, unit } => (1.0 - a) / (a * unit),
             _ => 0.0,
+        }
+    }
+
+    /// The same law for the dimensionless slip `r̂ = r/U` (U the displacement scale, m):
+    /// `ĵ(r̂) = j(U r̂)/U`, so ρ̂ = ρ/U and ℓ̂ = ℓ/U.
+    pub fn nondimensional(&self, displacement: f64) -> Self {
+        match *self {
+            FrictionPotential::Norm => FrictionPotential::Norm,
+            FrictionPotential::Nonconvex { a, unit } => FrictionPotential::Nonconvex {
+                a,
+                unit: unit / displacement,
+            },
+            FrictionPotential::Regularized { rho } => FrictionPotential::Regularized {
+                rho: rho / displacement,
+            },
         }
     }
 }

@@ -45,6 +45,17 @@ pub enum NormalLaw {
 }
 
 impl NormalLaw {
+    /// The same law for dimensionless displacements and pressures: `ĉ_ν = c_ν / k` with the
+    /// stiffness unit `k` (Pa/m: the traction unit over the displacement unit).
+    pub fn nondimensional(&self, stiffness: f64) -> NormalLaw {
+        match *self {
+            NormalLaw::Compliance(c) => NormalLaw::Compliance(NormalCompliance {
+                c_nu: c.c_nu / stiffness,
+            }),
+            NormalLaw::Signorini => NormalLaw::Signorini,
+        }
+    }
+
     /// Whether the law is the exact (Signorini) constraint.
     #[inline]
     pub fn is_exact(&self) -> bool {

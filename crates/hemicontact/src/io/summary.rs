@@ -50,9 +50,11 @@ pub struct Summary {
     pub total_reaction: Vec<f64>,
     /// Number of contact points.
     pub contact_points: usize,
-    /// Number of contact points in contact (not separated).
+    /// Number of contact points in contact (normal state `contact`: positive pressure).
     pub contact_active: usize,
-    /// Number of slipping contact points.
+    /// Number of sticking contact points (friction state `stick`).
+    pub contact_stick: usize,
+    /// Number of slipping contact points (friction state `slip`).
     pub contact_slip: usize,
     /// Number of cells where the locking penalty acts (Q(ε) > 0).
     pub locked_cells: usize,
@@ -77,11 +79,7 @@ impl Summary {
     ) -> Self {
         let mesh = &problem.mesh;
         let d = mesh.dim();
-        let max_displacement = solution
-            .u
-            .chunks(d)
-            .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-            .fold(0.0, f64::max);
+        let max_displacement = crate::norms::max_nodal_norm(&solution.u, d);
         let mut total_reaction = vec![0.0; d];
         for (k, r) in solution.reactions.iter().enumerate() {
             total_reaction[k % d] += r;
@@ -121,6 +119,7 @@ impl Summary {
             total_reaction,
             contact_points: solution.contact.len(),
             contact_active: cert.n_contact,
+            contact_stick: cert.n_stick,
             contact_slip: cert.n_slip,
             locked_cells,
             max_abs_trace_strain,
@@ -168,8 +167,9 @@ pub fn write_results(
 /// The `.vtu` content of a solution: displacement, reactions and contact data at points;
 /// strain, stress, von Mises stress, tr ε and locking activity per cell.
 ///
-/// Contact point data (for nodes that are not contact nodes: status −1, zeros elsewhere):
-/// `contact_status` (0 separated, 1 stick, 2 slip), `contact_pressure`, `slip`,
+/// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
+/// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
+/// 1 stick, 2 slip), `contact_pressure`, `slip`,
 /// `interface_force` (the force of the foundation on the node, N), and the contact
 /// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
 /// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is on two
@@ -219,14 +219,16 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         q.push(if qv.is_finite() { qv } else { 0.0 });
     }
     let n = mesh.n_nodes();
-    let mut status = vec![-1i32; n];
+    let mut normal_state = vec![-1i32; n];
+    let mut friction_state = vec![-1i32; n];
     let mut pressure = vec![0.0; n];
     let mut slip = vec![0.0; n];
     let mut force = vec![0.0; 3 * n];
     let mut traction = vec![0.0; 3 * n];
     for c in &solution.contact {
         let v = c.node as usize;
-        status[v] = c.status.code();
+        normal_state[v] = c.normal_state.code();
+        friction_state[v] = c.friction_state.code();
         pressure[v] = c.pressure;
         slip[v] = c.slip;
         for k in 0..3 {
@@ -237,7 +239,8 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
     let mut w = VtuWriter::new(mesh);
     w.point_f64("displacement", 3, pad_vector(d, &solution.u))
         .point_f64("reaction", 3, pad_vector(d, &solution.reactions))
-        .point_i32("contact_status", status)
+        .point_i32("contact_state", normal_state)
+        .point_i32("friction_state", friction_state)
         .point_f64("contact_pressure", 1, pressure.clone())
         .point_f64("contact_multiplier", 1, pressure)
         .point_f64("friction_traction", 3, traction)
@@ -256,25 +259,21 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
 /// The contact-node table: one row per contact point, comma-separated, with a header.
 ///
 /// Columns: node, boundary (part name), x, y, z, weight, u_nu, gap, u_tau_1, u_tau_2, slip,
-/// pressure, bound, force_normal, force_tangential_1, force_tangential_2, status,
-/// normal_residual, friction_residual.
+/// pressure, bound, force_normal, force_tangential_1, force_tangential_2, normal_state
+/// (separated/contact), friction_state (none/stick/slip), normal_residual,
+/// friction_residual.
 pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
     let mesh = &problem.mesh;
     let mut out = String::from(
         "node,boundary,x,y,z,weight,u_nu,gap,u_tau_1,u_tau_2,slip,pressure,bound,\
-         force_normal,force_tangential_1,force_tangential_2,status,normal_residual,friction_residual\n",
+         force_normal,force_tangential_1,force_tangential_2,normal_state,friction_state,normal_residual,friction_residual\n",
     );
     for c in &solution.contact {
         let x = mesh.node(c.node as usize);
         let xyz: Vec<f64> = (0..3).map(|i| x.get(i).copied().unwrap_or(0.0)).collect();
         let part = &mesh.part_names()[problem.contact[c.boundary].part];
-        let status = match c.status {
-            crate::solver::Status::Separated => "separated",
-            crate::solver::Status::Stick => "stick",
-            crate::solver::Status::Slip => "slip",
-        };
         out.push_str(&format!(
-            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{:e}\n",
+            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{:e}\n",
             c.node,
             part,
             xyz[0],
@@ -291,7 +290,8 @@ pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
             c.force_normal,
             c.force_tangential[0],
             c.force_tangential[1],
-            status,
+            c.normal_state.name(),
+            c.friction_state.name(),
             c.normal_residual,
             c.friction_residual
         ));

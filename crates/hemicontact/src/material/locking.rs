@@ -39,6 +39,21 @@ pub enum LockingSet {
 }
 
 impl LockingSet {
+    /// The same set for the dimensionless strain `ε̂ = ε/e` (e the strain unit), with the
+    /// unit q of its function: `Q(e ε̂) = q Q̂(ε̂)`. Limited compressibility and the ball
+    /// scale like a strain (θ̂ = θ/e, r̂ = r/e, q = e), Prager's set like its square (κ̂ = κ/e,
+    /// q = e²).
+    pub fn nondimensional(&self, e: f64) -> (LockingSet, f64) {
+        match *self {
+            LockingSet::None => (LockingSet::None, 1.0),
+            LockingSet::LimitedCompressibility { theta } => {
+                (LockingSet::LimitedCompressibility { theta: theta / e }, e)
+            }
+            LockingSet::Prager { kappa } => (LockingSet::Prager { kappa: kappa / e }, e * e),
+            LockingSet::Ball { r } => (LockingSet::Ball { r: r / e }, e),
+        }
+    }
+
     /// `Q(ε)`: negative inside B, zero on its boundary, positive outside.
     #[inline]
     pub fn q(&self, eps: &Sym) -> f64 {

@@ -57,6 +57,26 @@ impl Elasticity {
     }
 }
 
+impl Elasticity {
+    /// The same law for the dimensionless strain `ε̂ = ε/e` and energy density `Ŵ = W/(S e²)`
+    /// (S the stress scale, Pa): the moduli divided by S; the Hencky transition strain
+    /// `s₀` (a squared strain) divided by e².
+    pub fn nondimensional(&self, stress: f64, e: f64) -> Elasticity {
+        match *self {
+            Elasticity::Hooke(h) => Elasticity::Hooke(Hooke {
+                lambda: h.lambda / stress,
+                mu: h.mu / stress,
+            }),
+            Elasticity::Hencky(h) => Elasticity::Hencky(Hencky {
+                bulk: h.bulk / stress,
+                shear: h.shear / stress,
+                shear_inf: h.shear_inf / stress,
+                s0: h.s0 / (e * e),
+            }),
+        }
+    }
+}
+
 impl StrainEnergy for Elasticity {
     #[inline]
     fn energy(&self, eps: &Sym) -> f64 {
@@ -102,6 +122,34 @@ impl Material {
             locking: LockingPenalty::NONE,
             ideal_locking: None,
         }
+    }
+}
+
+impl Material {
+    /// The same material for the dimensionless strain `ε̂ = ε/e` and energy density
+    /// `Ŵ = W/(S e²)` (S the stress scale, Pa), with the unit of its ideal-locking
+    /// multiplier `S e²/q` (Pa; q the unit of the locking function,
+    /// [`LockingSet::nondimensional`]). The penalty `Ψ = (C_κ/2) Q_+²` keeps its form with
+    /// `Ĉ_κ = C_κ q²/(S e²)`.
+    pub fn nondimensional(&self, stress: f64, e: f64) -> (Material, f64) {
+        let (set, q) = self.locking.set.nondimensional(e);
+        let locking = LockingPenalty {
+            set,
+            c_kappa: self.locking.c_kappa * (q / e) * (q / e) / stress,
+        };
+        let (ideal_locking, multiplier_unit) = match self.ideal_locking {
+            Some(b) => {
+                let (set, q) = b.nondimensional(e);
+                (Some(set), stress * (e / q) * e)
+            }
+            None => (None, stress * e),
+        };
+        let material = Material {
+            elasticity: self.elasticity.nondimensional(stress, e),
+            locking,
+            ideal_locking,
+        };
+        (material, multiplier_unit)
     }
 }
 

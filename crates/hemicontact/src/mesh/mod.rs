@@ -372,6 +372,16 @@ impl Mesh {
             .sum()
     }
 
+    /// The same mesh with every coordinate divided by `length` (m): the mesh in units of
+    /// `length`, as used to make the problem dimensionless.
+    pub fn in_units_of(&self, length: f64) -> Mesh {
+        let mut m = self.clone();
+        for x in m.coords.iter_mut() {
+            *x /= length;
+        }
+        m
+    }
+
     /// Bounding box `(min, max)` of the nodes (unused coordinates are zero).
     pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
         let mut lo = [f64::INFINITY; 3];

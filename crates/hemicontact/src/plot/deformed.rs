@@ -12,7 +12,7 @@
 
 use super::{Anchor, Figure, Prim, Rgb};
 use crate::problem::Problem;
-use crate::solver::{Solution, Status};
+use crate::solver::{ContactResult, FrictionState, NormalState, Solution};
 
 const GREY: Rgb = [150, 150, 150];
 const MESH: Rgb = [120, 140, 175];
@@ -21,12 +21,18 @@ const GREEN: Rgb = [0, 140, 60];
 const BLUE: Rgb = [20, 80, 220];
 const RED: Rgb = [220, 30, 30];
 
-fn status_color(s: Status) -> Rgb {
-    match s {
-        Status::Separated => GREY,
-        Status::Stick => BLUE,
-        Status::Slip => RED,
+/// Marker colour of a contact point: its friction state (grey: no friction force).
+fn status_color(c: &ContactResult) -> Rgb {
+    match c.friction_state {
+        FrictionState::None => GREY,
+        FrictionState::Stick => BLUE,
+        FrictionState::Slip => RED,
     }
+}
+
+/// Whether a contact point touches its foundation (normal state; drawn as a large marker).
+fn touching(c: &ContactResult) -> bool {
+    c.normal_state == NormalState::Contact
 }
 
 /// Primitives of one panel at pixel rectangle `(x0, y0, w, h)` with a title.
@@ -139,7 +145,7 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
     let arrow_px = 0.12 * w.min(h);
     for c in &solution.contact {
         let p = px(pos(c.node as usize, true));
-        if c.status != Status::Separated && max_t > 0.0 {
+        if touching(c) && max_t > 0.0 {
             let t = [c.force[0] / c.weight, c.force[1] / c.weight];
             let k = arrow_px / max_t;
             let tip = [p[0] + k * t[0], p[1] - k * t[1]];
@@ -152,15 +158,11 @@ pub fn panel(problem: &Problem, solution: &Solution, rect: [f64; 4], title: &str
                 });
             }
         }
-        let r = if c.status == Status::Separated {
-            1.5
-        } else {
-            3.0
-        };
+        let r = if touching(c) { 3.0 } else { 1.5 };
         prims.push(Prim::Circle {
             center: p,
             radius: r,
-            fill: status_color(c.status),
+            fill: status_color(c),
         });
     }
     legend(&mut prims, solution, max_t, rect);
@@ -211,14 +213,11 @@ impl Frame {
 fn legend(prims: &mut Vec<Prim>, solution: &Solution, max_t: f64, rect: [f64; 4]) {
     let [x0, y0, _, h] = rect;
     let ly = y0 + h - 14.0;
-    let (n_stick, n_slip) = solution.contact.iter().fold((0, 0), |(a, b), c| {
-        (
-            a + usize::from(c.status == Status::Stick),
-            b + usize::from(c.status == Status::Slip),
-        )
-    });
+    let cert = &solution.report.certificate;
+    let (n_contact, n_stick, n_slip) = (cert.n_contact, cert.n_stick, cert.n_slip);
     let mut lx = x0 + 10.0;
     for (label, color) in [
+        (format!("contact {n_contact}"), DARK),
         (format!("slip {n_slip}"), RED),
         (format!("stick {n_stick}"), BLUE),
         (format!("traction max {max_t:.3e}"), GREEN),
@@ -337,7 +336,7 @@ fn front_view(problem: &Problem, solution: &Solution, rect: [f64; 4]) -> Vec<Pri
     let arrow_px = 0.12 * w.min(h);
     for c in solution.contact.iter().filter(|c| visible[c.node as usize]) {
         let p = px(pos(c.node as usize, 1.0));
-        if c.status != Status::Separated && max_t > 0.0 {
+        if touching(c) && max_t > 0.0 {
             let k = arrow_px / max_t;
             let tip = [
                 p[0] + k * c.force[0] / c.weight,
@@ -354,12 +353,8 @@ fn front_view(problem: &Problem, solution: &Solution, rect: [f64; 4]) -> Vec<Pri
         }
         prims.push(Prim::Circle {
             center: p,
-            radius: if c.status == Status::Separated {
-                1.5
-            } else {
-                3.0
-            },
-            fill: status_color(c.status),
+            radius: if touching(c) { 3.0 } else { 1.5 },
+            fill: status_color(c),
         });
     }
     prims.push(Prim::Text {

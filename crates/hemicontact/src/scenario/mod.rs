@@ -613,7 +613,7 @@ impl Scenario {
                                     "a parameter with 0 < a < 1",
                                 ));
                             }
-                            FrictionPotential::Nonconvex { a }
+                            FrictionPotential::Nonconvex { a, unit: 1.0 }
                         }
                         PotentialKind::Regularized => FrictionPotential::Regularized {
                             rho: self.positive(

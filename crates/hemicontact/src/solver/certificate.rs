@@ -13,46 +13,106 @@
 //!   otherwise (stick) `‖R_τ,i‖ ≤ w_i F j'(0)`; for the smooth law (19) always
 //!   `R_τ,i = −w_i F ∇j(u_τ)`.
 //!
-//! Status: *separated* when the pressure is zero (for Coulomb-type bounds and frictionless
-//! contact; a Tresca-type bound acts regardless of the pressure, so its points are stick or
-//! slip), *slip* when in contact with `r > r_stick` (or frictionless), *stick* otherwise.
+//! States, one for each law (never mixed): the *normal state* is `contact` where the
+//! pressure is positive and `separated` elsewhere; the *friction state* is `none` where no
+//! friction force can act (frictionless contact, or a Coulomb-type bound at a separated
+//! point), `stick` where the slip is at most `tol · max|u|` and `slip` elsewhere. A
+//! Tresca-type bound acts regardless of the pressure, so a separated point may stick or
+//! slip.
 //!
-//! On a roller node (some components prescribed), a law is only checked along directions
-//! that involve free components only: along a prescribed one the force is a support
-//! reaction.
+//! The law checks, each relative to the solution's own scales (force scale `S`, slip scale
+//! `max|u|`) with the certificate tolerance `tol`:
 //!
-//! At a node shared by several contact boundaries (an edge or corner between walls), the
+//! - stick: `‖R_τ‖ ≤ w F j'(0)` (the excess is the residual) — and the slip is below
+//!   `tol · max|u|` by definition of the state;
+//! - slip: `R_τ = −w F j'(r) u_τ/r` (the force equals the bound and opposes the slip);
+//! - the smooth law (19) everywhere: `R_τ = −w F ∇j(u_τ)`;
+//! - separated points under a Coulomb bound or without friction: `R_τ = 0`;
+//! - the normal law `R·ν = −w p(u_ν)` (for Signorini with the multiplier as p; its sign,
+//!   the constraint and complementarity are the KKT checks);
+//! - equilibrium at the free DOFs (the relative Newton residual).
+//!
+//! A certificate *passes* when every residual is at most `tol`; a solve whose certificate
+//! fails is reported as not converged, naming the law, the contact part and the node.
+//!
+//! Support reactions are not contact forces: at a node on rollers that is also a contact
+//! node, the force along a prescribed component is shared by the support and the
+//! foundation, and equilibrium cannot tell them apart. There the contact force is the
+//! model's (the law evaluated at the final state), and the support reaction is the rest
+//! ([`crate::solver::System::reactions`]), so reactions and interface forces together
+//! balance the loads.
+//!
+//! At a node shared by several contact points (an edge between two contact parts), the
 //! equilibrium force is one vector for several points: the force attributed to a point is
 //! what remains after subtracting the model forces of the node's other points.
 //!
 //! Residuals are forces (N, or N/m in 2D), reported relative to the force scale `S` =
 //! the largest nodal external force or contact force, at least the force unit of the
-//! prescribed displacements ([`super::System::force_floor`]). `r_stick = 10³ ρ_num`.
+//! prescribed displacements ([`super::System::force_floor`]).
 
 use super::constraints::KktCertificate;
 use crate::assembly::contact::{ContactAssembler, Frozen};
 use crate::contact::{FrictionBound, FrictionPotential};
 use serde::Serialize;
 
-/// Contact status of a point.
+/// Normal contact state of a point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Status {
-    /// Not touching the foundation (u_ν < g): no force.
+pub enum NormalState {
+    /// No pressure: not touching the foundation (or, with normal compliance, not
+    /// penetrating the asperities).
     Separated,
-    /// In contact, tangential force below the bound, no slip.
+    /// Positive contact pressure.
+    Contact,
+}
+
+impl NormalState {
+    /// Integer code for VTK/CSV output: 0 separated, 1 contact.
+    pub fn code(self) -> i32 {
+        match self {
+            NormalState::Separated => 0,
+            NormalState::Contact => 1,
+        }
+    }
+
+    /// The state's name as written in CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalState::Separated => "separated",
+            NormalState::Contact => "contact",
+        }
+    }
+}
+
+/// Friction state of a point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionState {
+    /// No friction force can act: frictionless contact, or a Coulomb-type bound at a
+    /// separated point.
+    None,
+    /// Slip at most `tol · max|u|`; the tangential force is within the bound.
     Stick,
-    /// In contact and slipping: the tangential force equals the bound.
+    /// Slipping: the tangential force equals the bound and opposes the slip.
     Slip,
 }
 
-impl Status {
-    /// Integer code for VTK/CSV output: 0 separated, 1 stick, 2 slip.
+impl FrictionState {
+    /// Integer code for VTK/CSV output: 0 none, 1 stick, 2 slip.
     pub fn code(self) -> i32 {
         match self {
-            Status::Separated => 0,
-            Status::Stick => 1,
-            Status::Slip => 2,
+            FrictionState::None => 0,
+            FrictionState::Stick => 1,
+            FrictionState::Slip => 2,
+        }
+    }
+
+    /// The state's name as written in CSV files.
+    pub fn name(self) -> &'static str {
+        match self {
+            FrictionState::None => "none",
+            FrictionState::Stick => "stick",
+            FrictionState::Slip => "slip",
         }
     }
 }
@@ -87,17 +147,32 @@ pub struct ContactResult {
     /// Friction traction `−σ_τ = −R_τ / w` in global coordinates (Pa, N/m in 2D): the
     /// friction multiplier of exact friction, recovered from equilibrium.
     pub friction_traction: [f64; 3],
-    /// Status.
-    pub status: Status,
+    /// Normal contact state.
+    pub normal_state: NormalState,
+    /// Friction state.
+    pub friction_state: FrictionState,
     /// Normal-law residual (N).
     pub normal_residual: f64,
     /// Friction-law residual (N).
     pub friction_residual: f64,
 }
 
+/// Where a law residual is largest: the point's node, contact boundary and residual.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Worst {
+    /// Mesh node.
+    pub node: u32,
+    /// Contact boundary index (into the problem's list).
+    pub boundary: usize,
+    /// The residual relative to the force scale.
+    pub residual: f64,
+}
+
 /// The certificate; see the module documentation.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Certificate {
+    /// The tolerance every residual is compared with (dimensionless).
+    pub tolerance: f64,
     /// Relative equilibrium residual of the last convex problem (‖∇E_k‖ / force scale of
     /// the Newton criterion).
     pub equilibrium: f64,
@@ -105,44 +180,109 @@ pub struct Certificate {
     pub normal_law: f64,
     /// Largest friction-law residual, relative to the force scale.
     pub friction_law: f64,
-    /// Node with the largest friction-law residual, if any.
-    pub worst_friction_node: Option<u32>,
+    /// The point with the largest normal-law residual, if any point has one.
+    pub worst_normal: Option<Worst>,
+    /// The point with the largest friction-law residual, if any point has one.
+    pub worst_friction: Option<Worst>,
     /// The force scale S (N).
     pub force_scale: f64,
-    /// Slip below which a point counts as sticking (m).
+    /// Slip up to which a point counts as sticking, `tol · max|u|` (m).
     pub stick_threshold: f64,
-    /// Number of points in contact.
+    /// Number of points in contact (normal state).
     pub n_contact: usize,
-    /// Number of slipping points.
+    /// Number of sticking points (friction state).
+    pub n_stick: usize,
+    /// Number of slipping points (friction state).
     pub n_slip: usize,
     /// KKT residuals of the exact constraints, if the problem has any.
     pub kkt: Option<KktCertificate>,
 }
 
-/// Evaluates the contact results and the certificate at `u`. `grad_bulk` is `∇W(u) − f`
-/// (DOF order, so it is the interface force at contact nodes) and `f_ext` the external
-/// forces; `frozen` the quantities of the last convex problem (its multipliers give the
+/// One failed check of a certificate: which law, how far off, where.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Failure {
+    /// The law or condition: `"equilibrium"`, `"normal law"`, `"friction law"` or
+    /// `"KKT conditions of the exact constraints"`.
+    pub law: &'static str,
+    /// The residual (relative, as reported).
+    pub residual: f64,
+    /// The point where it is largest, for the contact laws.
+    pub at: Option<Worst>,
+}
+
+impl Certificate {
+    /// The checks above the tolerance, worst first; empty when the certificate passes. A
+    /// residual that is not a number fails.
+    pub fn failures(&self) -> Vec<Failure> {
+        let tol = self.tolerance;
+        let mut out: Vec<Failure> = [
+            ("equilibrium", self.equilibrium, None),
+            ("normal law", self.normal_law, self.worst_normal),
+            ("friction law", self.friction_law, self.worst_friction),
+            (
+                "KKT conditions of the exact constraints",
+                self.kkt.as_ref().map_or(0.0, KktCertificate::worst),
+                None,
+            ),
+        ]
+        .into_iter()
+        .filter(|(_, r, _)| r.is_nan() || *r > tol)
+        .map(|(law, residual, at)| Failure { law, residual, at })
+        .collect();
+        out.sort_by(|a, b| b.residual.total_cmp(&a.residual));
+        out
+    }
+
+    /// Whether every residual is at most the tolerance.
+    pub fn passes(&self) -> bool {
+        self.failures().is_empty()
+    }
+}
+
+/// The data [`evaluate`] needs besides the contact assembler.
+pub struct Inputs<'a> {
+    /// Displacement (DOF order).
+    pub u: &'a [f64],
+    /// `∇W(u) − f` (DOF order): the interface force at free DOFs of contact nodes.
+    pub grad_bulk: &'a [f64],
+    /// External forces (DOF order).
+    pub f_ext: &'a [f64],
+    /// Whether a DOF is prescribed.
+    pub fixed: &'a dyn Fn(usize) -> bool,
+    /// Relative equilibrium residual of the last convex problem.
+    pub equilibrium: f64,
+    /// The frozen quantities of the last convex problem.
+    pub frozen: &'a Frozen,
+    /// Force floor of the force scale ([`super::System::force_floor`]).
+    pub force_floor: f64,
+    /// Certificate tolerance.
+    pub tolerance: f64,
+}
+
+/// Evaluates the contact results and the certificate; see the module documentation.
+/// `frozen` holds the quantities of the last convex problem (its multipliers give the
 /// pressure at Signorini points and the stick/slip classification of exact friction:
 /// stick where `‖τ + r u_τ‖ ≤ F`, i.e. the projection defining the friction force is
 /// inactive).
-pub fn evaluate(
-    ca: &ContactAssembler<'_>,
-    u: &[f64],
-    grad_bulk: &[f64],
-    f_ext: &[f64],
-    fixed: &dyn Fn(usize) -> bool,
-    equilibrium: f64,
-    frozen: &Frozen,
-    force_floor: f64,
-) -> (Vec<ContactResult>, Certificate) {
+pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResult>, Certificate) {
+    let Inputs {
+        u,
+        grad_bulk,
+        f_ext,
+        fixed,
+        equilibrium,
+        frozen,
+        force_floor,
+        tolerance,
+    } = *inp;
     let d = ca.dim;
     let m = d - 1;
-    let stick_threshold = 1e3 * ca.rho_num;
     let u_scale = u
         .chunks(d)
         .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
+    let stick_threshold = tolerance * u_scale;
     let mut kkt = KktCertificate::default();
     // The other points on the node of point i (points are ordered by boundary, so they are
     // found through a node → points map).
@@ -169,9 +309,16 @@ pub fn evaluate(
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
+        let model = ca.point(u, frozen, i).gradient;
         let mut force = [0.0; 3];
         for k in 0..d {
-            force[k] = grad_bulk[d * v + k];
+            force[k] = if fixed(d * v + k) {
+                // A prescribed component: the support and the foundation share the force,
+                // so the contact force is the model's, the support reaction the rest.
+                -model[k]
+            } else {
+                grad_bulk[d * v + k]
+            };
         }
         // A node on several contact boundaries (an edge between two walls) has one
         // equilibrium force for all its points: attribute to this point what remains after
@@ -179,7 +326,9 @@ pub fn evaluate(
         for j in shared(i) {
             let g = ca.point(u, frozen, j).gradient;
             for k in 0..d {
-                force[k] += g[k];
+                if !fixed(d * v + k) {
+                    force[k] += g[k];
+                }
             }
         }
         let n = &ca.nodes.normal[i];
@@ -189,29 +338,19 @@ pub fn evaluate(
         for a in 0..m {
             ft[a] = (0..d).map(|k| force[k] * t[a][k]).sum();
         }
-        // On a roller, the force along a prescribed component is a support reaction, not a
-        // contact force: a law is checked only along directions made of free components.
-        let free = |dir: &[f64; 3]| (0..d).all(|k| dir[k].abs() < 1e-12 || !fixed(d * v + k));
-        let normal_checked = free(n);
-        let tangent_checked = (0..m).all(|a| free(&t[a]));
-        let normal_residual = if normal_checked {
-            (fn_ + w * s.pressure).abs()
-        } else {
-            0.0
-        };
+        let normal_residual = (fn_ + w * s.pressure).abs();
         let ft_norm = (ft[0] * ft[0] + ft[1] * ft[1]).sqrt();
-        let in_contact = s.pressure > 0.0;
-        let (status, friction_residual) = match &cb.friction {
-            None => (
-                if in_contact {
-                    Status::Slip
-                } else {
-                    Status::Separated
-                },
-                ft_norm,
-            ),
-            Some(fr) if !in_contact && fr.bound == FrictionBound::Coulomb => {
-                (Status::Separated, ft_norm)
+        let normal_state = if s.pressure > 0.0 {
+            NormalState::Contact
+        } else {
+            NormalState::Separated
+        };
+        let (friction_state, friction_residual) = match &cb.friction {
+            None => (FrictionState::None, ft_norm),
+            Some(fr)
+                if normal_state == NormalState::Separated && fr.bound == FrictionBound::Coulomb =>
+            {
+                (FrictionState::None, ft_norm)
             }
             Some(fr) => {
                 let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
@@ -229,6 +368,11 @@ pub fn evaluate(
                 } else {
                     s.slip > stick_threshold
                 };
+                let state = if slipping {
+                    FrictionState::Slip
+                } else {
+                    FrictionState::Stick
+                };
                 if slipping || smooth {
                     // R_τ = −w F j'(r) u_τ/r.
                     let slope = if s.slip > 0.0 {
@@ -239,24 +383,11 @@ pub fn evaluate(
                     let r2: f64 = (0..m)
                         .map(|a| (ft[a] + wf * slope * s.u_tau[a]).powi(2))
                         .sum();
-                    let st = if slipping {
-                        Status::Slip
-                    } else {
-                        Status::Stick
-                    };
-                    (st, r2.sqrt())
+                    (state, r2.sqrt())
                 } else {
-                    (
-                        Status::Stick,
-                        (ft_norm - wf * fr.potential.slope(0.0)).max(0.0),
-                    )
+                    (state, (ft_norm - wf * fr.potential.slope(0.0)).max(0.0))
                 }
             }
-        };
-        let friction_residual = if tangent_checked {
-            friction_residual
-        } else {
-            0.0
         };
         let mut friction_traction = [0.0; 3];
         for a in 0..m {
@@ -289,7 +420,8 @@ pub fn evaluate(
             force_tangential: ft,
             force,
             friction_traction,
-            status,
+            normal_state,
+            friction_state,
             normal_residual,
             friction_residual,
         });
@@ -309,23 +441,40 @@ pub fn evaluate(
     }
     let mut cert = Certificate {
         kkt: exact_any.then_some(kkt),
+        tolerance,
         equilibrium,
         force_scale: scale,
         stick_threshold,
         ..Certificate::default()
     };
+    let worse = |w: &mut Option<Worst>, value: &mut f64, r: &ContactResult, residual: f64| {
+        let rel = residual / scale;
+        // A NaN residual is the worst of all.
+        if rel > *value || (rel.is_nan() && !value.is_nan()) || w.is_none() && rel > 0.0 {
+            *value = rel;
+            *w = Some(Worst {
+                node: r.node,
+                boundary: r.boundary,
+                residual: rel,
+            });
+        }
+    };
     for r in &results {
-        cert.normal_law = cert.normal_law.max(r.normal_residual / scale);
-        if r.friction_residual / scale > cert.friction_law {
-            cert.friction_law = r.friction_residual / scale;
-            cert.worst_friction_node = Some(r.node);
-        }
-        if r.status != Status::Separated {
-            cert.n_contact += 1;
-        }
-        if r.status == Status::Slip {
-            cert.n_slip += 1;
-        }
+        worse(
+            &mut cert.worst_normal,
+            &mut cert.normal_law,
+            r,
+            r.normal_residual,
+        );
+        worse(
+            &mut cert.worst_friction,
+            &mut cert.friction_law,
+            r,
+            r.friction_residual,
+        );
+        cert.n_contact += usize::from(r.normal_state == NormalState::Contact);
+        cert.n_stick += usize::from(r.friction_state == FrictionState::Stick);
+        cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
     (results, cert)
 }

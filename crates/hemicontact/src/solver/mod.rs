@@ -12,10 +12,11 @@ pub mod constraints;
 pub mod newton;
 pub mod outer;
 pub mod report;
+pub mod scaling;
 pub mod system;
 pub mod uniqueness;
 
-pub use certificate::{Certificate, ContactResult, Status};
+pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
 pub use constraints::{ConstraintSettings, KktCertificate};
 pub use newton::NewtonSettings;
 pub use outer::{Acceleration, OuterSettings};
@@ -56,6 +57,11 @@ pub struct SolverSettings {
     pub outer: OuterSettings,
     /// Exact constraints (augmented Lagrangian) settings.
     pub constraints: ConstraintSettings,
+    /// Tolerance of the certificate (dimensionless): every residual of the contact laws,
+    /// of equilibrium and of the exact constraints, relative to the solution's own scales,
+    /// must be at most this for a solve to count as converged. Default 1e-6; see
+    /// [`certificate`].
+    pub certificate_tolerance: f64,
 }
 
 impl Default for SolverSettings {
@@ -68,6 +74,7 @@ impl Default for SolverSettings {
             newton: NewtonSettings::default(),
             outer: OuterSettings::default(),
             constraints: ConstraintSettings::default(),
+            certificate_tolerance: 1e-6,
         }
     }
 }
@@ -164,9 +171,21 @@ pub fn solve(problem: &Problem) -> Result<Solution> {
 ///
 /// # Errors
 /// As [`solve`].
-pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
+pub fn solve_from(problem: &Problem, u: Vec<f64>) -> Result<Solution> {
     let start = Instant::now();
     problem.validate()?;
+    let scales = scaling::Scales::of(problem)?;
+    let scaled = scales.nondimensional(problem);
+    let u = u.into_iter().map(|x| x / scales.displacement).collect();
+    let mut solution = scales.dimensional(solve_dimensionless(&scaled, u)?);
+    solution.report.timings.total = start.elapsed().as_secs_f64();
+    Ok(solution)
+}
+
+/// [`solve_from`] for a problem in dimensionless variables ([`scaling`]): every tolerance,
+/// regularization and threshold below is a pure number relative to the problem's scales.
+fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
+    let start = Instant::now();
     let mut system = System::new(problem)?;
     let prescribed = problem.prescribed_displacement();
     for (k, x) in u.iter_mut().enumerate() {
@@ -195,9 +214,10 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         force_scale: f64::NAN,
     };
     report.converged = false;
-    let stages = constraints::stages(problem);
+    let stages = constraints::stages(problem).max(system::regularization_stages(problem));
     for k in 0..settings.outer.max_iterations.max(1) {
         system.set_penalty_stage(&settings.constraints, k);
+        system.set_regularization_stage(k);
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
         } else {
@@ -278,8 +298,9 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             break;
         }
         if outer_loop && k + 1 < stages {
-            // Penalty continuation: the map changes with the penalty, so no mixing yet.
-            step.mixing = format!("penalty continuation: stage {} of {stages} next", k + 1);
+            // Continuation (penalties, friction regularization): the map changes with each
+            // stage, so no mixing yet.
+            step.mixing = format!("continuation: stage {} of {stages} next", k + 1);
             z = g;
             frozen = next;
         } else if outer_loop {
@@ -309,17 +330,49 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
     let equilibrium = last.residual / last.force_scale;
     let (contact, mut certificate) = certificate::evaluate(
         &ca,
-        &u,
-        &system.grad_bulk,
-        &system.f_ext,
-        &|k| system.dofs.is_fixed(k),
-        equilibrium,
-        &frozen,
-        system.force_floor,
+        &certificate::Inputs {
+            u: &u,
+            grad_bulk: &system.grad_bulk,
+            f_ext: &system.f_ext,
+            fixed: &|k| system.dofs.is_fixed(k),
+            equilibrium,
+            frozen: &frozen,
+            force_floor: system.force_floor,
+            tolerance: settings.certificate_tolerance,
+        },
     );
     if let Some(set) = problem.material.ideal_locking {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
         constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
+    }
+    // A run counts as converged only with a passing certificate.
+    if let Some(worst) = certificate.failures().first().filter(|_| report.converged) {
+        report.converged = false;
+        let at = worst.at.map_or(String::new(), |w| {
+            let part = problem.contact[w.boundary].part;
+            format!(
+                " at node {} of contact part `{}`",
+                w.node,
+                problem.mesh.part_names()[part]
+            )
+        });
+        let hint = match worst.law {
+            "friction law" => {
+                "; the friction regularization ([solver.outer] friction_regularization) may be \
+                 too large for this tolerance: lower it, or impose friction exactly \
+                 ([contact.friction] exact = true)"
+            }
+            _ => "",
+        };
+        report.message = format!(
+            "not certified: the {} residual {:.2e}{at} exceeds the certificate tolerance \
+             {:.0e} after {} outer iterations and {} Newton steps{hint}",
+            worst.law,
+            worst.residual,
+            certificate.tolerance,
+            report.outer.len(),
+            report.newton.len()
+        );
     }
     report.certificate = certificate;
     report.timings.total = start.elapsed().as_secs_f64();

@@ -90,6 +90,8 @@ pub struct SolveReport {
     pub residual: f64,
     /// Residual tolerance that was applied (N): relative tolerance × force scale.
     pub residual_tolerance: f64,
+    /// The scales in which the problem was solved (see [`super::scaling`]).
+    pub scales: Option<super::scaling::Scales>,
     /// Largest relative residual at which a Newton solve stopped at the round-off floor
     /// above the tolerance (0: never; see [`super::newton`]).
     pub round_off_floor: f64,
@@ -118,6 +120,7 @@ impl SolveReport {
             residual: f64::NAN,
             residual_tolerance: f64::NAN,
             round_off_floor: 0.0,
+            scales: None,
             timings: Timings {
                 pattern: system.setup_time.0,
                 symbolic: system.setup_time.1,

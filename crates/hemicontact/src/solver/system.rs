@@ -29,8 +29,13 @@ pub struct System {
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
     pub contact_slots: Vec<u32>,
-    /// Numerical regularization ρ_num of the norm in the friction potential (m).
+    /// Numerical regularization ρ_num of the norm in the friction potential, in units of
+    /// the displacement scale (the solver works in dimensionless variables, see
+    /// [`super::scaling`]).
     pub rho_num: f64,
+    /// The target value of `rho_num`, reached by continuation
+    /// ([`System::set_regularization_stage`]).
+    rho_target: f64,
     /// Augmented-Lagrangian penalty r_i per contact point (Pa/m), see
     /// [`super::constraints`].
     pub contact_penalty: Vec<f64>,
@@ -70,6 +75,32 @@ pub struct System {
     pcg_spent: f64,
     /// Parallel assembly buffers.
     workspace: Workspace,
+}
+
+/// Friction regularization (relative to the displacement scale) at which the continuation
+/// of [`System::set_regularization_stage`] starts.
+pub const REGULARIZATION_START: f64 = 1e-2;
+
+/// Factor by which the friction regularization shrinks per outer iteration. Measured on a
+/// pressed and sheared block with Coulomb friction (16 × 8 cells, 12 sticking and 5
+/// slipping points, target 1e-8): 77 Newton steps with 0.1, 228 with 0.01, 346 without
+/// continuation.
+pub const REGULARIZATION_STEP: f64 = 0.1;
+
+/// Number of outer iterations the regularization continuation of `problem` needs to reach
+/// its target: 0 without a contact point whose friction is regularized numerically (the
+/// potentials `norm` and `nonconvex` without `exact`).
+pub fn regularization_stages(problem: &Problem) -> usize {
+    let regularized = problem.contact.iter().any(|c| {
+        c.friction
+            .as_ref()
+            .is_some_and(|f| f.potential.is_nonsmooth() && !f.exact)
+    });
+    let target = problem.solver.outer.friction_regularization;
+    if !regularized || target >= REGULARIZATION_START {
+        return 0;
+    }
+    ((REGULARIZATION_START / target).ln() / REGULARIZATION_STEP.recip().ln()).ceil() as usize
 }
 
 /// Cost of one PCG iteration (a triangular solve and a sparse product) in solve units.
@@ -159,7 +190,8 @@ impl System {
             multigrid,
             contact,
             contact_slots,
-            rho_num: problem.solver.outer.friction_regularization * problem.diameter(),
+            rho_num: problem.solver.outer.friction_regularization,
+            rho_target: problem.solver.outer.friction_regularization,
             full_penalty: (contact_penalty.clone(), locking_penalty),
             contact_penalty,
             locking_penalty,
@@ -210,6 +242,18 @@ impl System {
             *r = contact * full;
         }
         self.locking_penalty = locking * self.full_penalty.1;
+    }
+
+    /// Sets the friction regularization of outer iteration `k`: continuation from
+    /// [`REGULARIZATION_START`] down by [`REGULARIZATION_STEP`] per outer iteration to its target value,
+    /// which it reaches at iteration [`regularization_stages`]. A sticking point of the
+    /// regularized norm `√(r² + ρ²)` has curvature 1/ρ only within |r| ≲ ρ; approached from
+    /// slips many times ρ, Newton sees almost no curvature and overshoots, so a small ρ
+    /// is reached from a large one, each convex problem warm-started from the last.
+    pub fn set_regularization_stage(&mut self, k: usize) {
+        self.rho_num = self
+            .rho_target
+            .max(REGULARIZATION_START * REGULARIZATION_STEP.powi(k.min(300) as i32));
     }
 
     /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
