@@ -69,9 +69,12 @@
 //!   gap, not a plane.
 //! - Locking by the nearly-locking penalty and contact by normal compliance; the exact
 //!   constraints (ideal locking, Signorini) are not yet available.
-//! - The norm `‖·‖` of the friction potential is regularized numerically by
-//!   `ρ_num = 10⁻⁸ diam(Ω)` (see [`solver::OuterSettings::friction_regularization`]); a
-//!   sticking node may therefore move by up to about ρ_num.
+//! - Every solve is carried out in dimensionless variables ([`solver::scaling`]), so units
+//!   do not matter; the norm `‖·‖` of the friction potential is regularized numerically by
+//!   `ρ_num = 10⁻⁸ U` with U the displacement scale (see
+//!   [`solver::OuterSettings::friction_regularization`]), or imposed exactly with
+//!   `exact = true`. A solve counts as converged only when its certificate passes
+//!   ([`solver::certificate`]).
 #![deny(missing_docs)]
 
 pub mod assembly;

@@ -798,6 +798,14 @@ impl Scenario {
                 "a number in (0, 0.01)",
             ));
         }
+        let tol = solver.certificate_tolerance;
+        if !(tol.is_finite() && tol >= 1e-14 && tol < 1.0) {
+            return Err(self.err(
+                "solver.certificate_tolerance",
+                tol,
+                "a relative tolerance in [1e-14, 1)",
+            ));
+        }
         let cs = &solver.constraints;
         for (field, v, lo, hi) in [
             (

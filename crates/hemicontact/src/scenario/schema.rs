@@ -55,6 +55,7 @@
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
 //! linear_solver = "auto"    # "direct", "iterative" (multigrid CG) or "auto" (3D ≥ 30k eq.)
+//! certificate_tolerance = 1e-6   # every certificate residual (relative) must be below it
 //! [solver.constraints]      # exact constraints (augmented Lagrangian)
 //! locking_penalty = 1000.0  # dimensionless factors γ (ideal locking; Signorini and
 //! contact_penalty = 100.0   #   exact friction) and γ₀ of the continuation

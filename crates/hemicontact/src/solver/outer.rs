@@ -55,8 +55,11 @@ pub struct OuterSettings {
     /// Initial relaxation factor ω ∈ (0, 1] of the plain fixed point. Default 1.
     pub relaxation: f64,
     /// Numerical regularization of the norm in the friction potential, relative to the
-    /// domain diameter: `ρ_num = friction_regularization · diam(Ω)`. Default 1e-8, far
-    /// below any slip of interest (slips of the paper's example are 10⁻³–10⁻¹ m); the
+    /// displacement scale U of the problem ([`super::scaling`]): `ρ_num =
+    /// friction_regularization · U`, reached by continuation from `10⁻² U`
+    /// ([`super::System::set_regularization_stage`]). Default 1e-8: the friction force of a
+    /// point slipping by r misses the bound by `ρ²/(2r²)` of it, far below the certificate
+    /// tolerance wherever the slip exceeds `10⁻⁶ max|u|` (below that a point sticks); the
     /// paper example's reported digits do not change when it shrinks tenfold (tested).
     pub friction_regularization: f64,
     /// Solve early convex problems inexactly. Default true.
