@@ -840,6 +840,7 @@ impl Scenario {
         let problem = Problem {
             mesh,
             material,
+            plane: self.file.material.plane,
             dirichlet,
             tractions,
             body_force,
