@@ -58,8 +58,11 @@ pub struct Summary {
     pub locked_cells: usize,
     /// Largest |tr ε| over the cells.
     pub max_abs_trace_strain: f64,
-    /// The uniqueness condition of the paper's Theorem 4 (SPEC §1).
-    pub uniqueness: Option<crate::solver::uniqueness::Uniqueness>,
+    /// The uniqueness condition of the paper's Theorem 4,
+    /// `(μ₀ α_j + c_j L_μ) ‖γ‖² < m_A`, as [`crate::solver::uniqueness::evaluate`] gives it:
+    /// evaluated for contact with Tresca-type bounds (`applies`, `holds`, `margin`), or
+    /// `applies: false` with the reason in `note`.
+    pub uniqueness: crate::solver::uniqueness::Uniqueness,
     /// Notes raised while resolving the scenario (see
     /// [`crate::scenario::Scenario::into_problem_with_notes`]); empty from [`Summary::new`].
     pub notes: Vec<String>,
@@ -68,7 +71,9 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Builds the summary of `solution`.
+    /// Builds the summary of `solution`. Evaluating the uniqueness condition may cost one
+    /// Cholesky factorization of the ε–ε stiffness and a power iteration (see
+    /// [`crate::solver::uniqueness::evaluate`]).
     pub fn new(
         problem: &Problem,
         solution: &Solution,
@@ -124,7 +129,7 @@ impl Summary {
             contact_slip: cert.n_slip,
             locked_cells,
             max_abs_trace_strain,
-            uniqueness: None,
+            uniqueness: crate::solver::uniqueness::evaluate(problem),
             notes: Vec::new(),
             report: solution.report.clone(),
         }
