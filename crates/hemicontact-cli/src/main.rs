@@ -354,7 +354,10 @@ fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
             if u.holds { "holds" } else { "FAILS" },
             u.margin
         ),
-        (None, None) => {}
+        (None, None) => say!(
+            "  μ₀α_j + c_jL_μ = 0: the condition holds whatever ‖γ‖ (margin {:.6e})",
+            u.margin
+        ),
     }
 }
 

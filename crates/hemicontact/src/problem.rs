@@ -36,6 +36,10 @@ pub struct Problem {
     pub mesh: Mesh,
     /// The bulk material.
     pub material: Material,
+    /// The plane idealization of a 2D problem: plane strain (`ε_zz = 0`, the out-of-plane
+    /// stress follows from the law) or plane stress (`σ_zz = 0`); `Strain` in 3D. The
+    /// material's constants already reflect it; the stress output uses it for σ_zz.
+    pub plane: crate::material::Plane,
     /// Dirichlet conditions (Γ_D).
     pub dirichlet: Vec<Dirichlet>,
     /// Surface tractions (Γ_N).

@@ -152,11 +152,30 @@ impl Sym {
         out
     }
 
-    /// Von Mises equivalent `sqrt(3/2) ‖a^D‖`, computed from the in-plane components only
-    /// (for plane problems the out-of-plane stress is not part of the tensor).
-    pub fn von_mises(&self) -> f64 {
-        (1.5f64).sqrt() * self.deviator().norm()
+    /// The full 3×3 matrix of the tensor with out-of-plane normal component `zz` (for
+    /// d = 2: `[[a_xx, a_xy, 0], [a_xy, a_yy, 0], [0, 0, zz]]`; for d = 3 `zz` is ignored
+    /// and this is [`Sym::to_matrix`]).
+    pub fn to_matrix_with_zz(&self, zz: f64) -> [[f64; 3]; 3] {
+        let mut m = self.to_matrix();
+        if self.dim == 2 {
+            m[2][2] = zz;
+        }
+        m
     }
+}
+
+/// Von Mises equivalent of a full 3×3 symmetric tensor `m`: `√(3/2 s:s)` with
+/// `s = m − (tr m / 3) I` its three-dimensional deviator (the unit of `m`, Pa for a stress).
+pub fn von_mises(m: &[[f64; 3]; 3]) -> f64 {
+    let mean = (m[0][0] + m[1][1] + m[2][2]) / 3.0;
+    let mut ss = 0.0;
+    for (i, row) in m.iter().enumerate() {
+        for (j, &v) in row.iter().enumerate() {
+            let s = if i == j { v - mean } else { v };
+            ss += s * s;
+        }
+    }
+    (1.5 * ss).sqrt()
 }
 
 /// The zero tangent.

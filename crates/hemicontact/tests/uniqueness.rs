@@ -87,3 +87,108 @@ fn coulomb_bound_is_reported_as_not_covered() {
     assert!(u.note.unwrap().contains("Coulomb"));
     assert!(u.trace_constant.is_none());
 }
+
+/// The unit square clamped on `bottom` and `left`, cut by one "/" diagonal into two
+/// triangles: the only free node is the corner (1, 1), a contact node of `top` with
+/// lumped weight ½, pushed into the foundation by a traction on `right`. E = 1000 Pa,
+/// ν = 0: m_A = 2G = 1000 Pa. Tresca-type bound, j = ‖·‖ (α_j = 0, c_j = 1),
+/// μ(r) = 0.3 e^{−βr} + 0.1: L_μ = 0.3 β.
+///
+/// By hand, with `v = a φ` (φ the hat function of (1, 1): `y` on the lower triangle, `x`
+/// on the upper one), `‖ε(v)‖² = ½ (a_y² + a_x²/2) + ½ (a_x² + a_y²/2) = ¾ |a|²` and
+/// `‖v‖²_{Γ_C} = ½ |a|²`, so `‖γ‖² = 2/3` and the left-hand side is `0.3 β · 2/3 = 0.2 β`.
+fn one_free_node(beta: f64, extra: &str) -> String {
+    format!(
+        r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [1, 1]
+pattern = "uniform"
+[material]
+young = 1000.0
+poisson = 0.0
+[[dirichlet]]
+part = "bottom"
+[[dirichlet]]
+part = "left"
+[[loads.traction]]
+part = "right"
+value = [0.0, 10.0]
+[[contact]]
+part = "top"
+gap = 0.0
+c_nu = 1.0e3
+[contact.friction]
+bound = "tresca"
+mu = {{ law = "exponential", a = 0.4, b = 0.1, beta = {beta:?} }}
+{extra}
+"#
+    )
+}
+
+/// The `uniqueness` block of the summary of a solve of `text`, as written to JSON.
+fn summary_uniqueness(text: &str) -> serde_json::Value {
+    let p = problem(text);
+    let solution = hemicontact::solver::solve(&p).unwrap();
+    let summary = hemicontact::io::summary::Summary::new(&p, &solution, None, "test");
+    let json = serde_json::to_value(&summary).unwrap();
+    json["uniqueness"].clone()
+}
+
+fn num(v: &serde_json::Value, key: &str) -> f64 {
+    v[key]
+        .as_f64()
+        .unwrap_or_else(|| panic!("`{key}` is not a number in {v}"))
+}
+
+/// β = 2000: L_μ = 600, lhs = 400 < m_A = 1000: the condition holds (margin 600).
+#[test]
+fn summary_carries_the_condition_where_it_holds() {
+    let u = summary_uniqueness(&one_free_node(2000.0, ""));
+    assert_eq!(u["applies"], true, "{u}");
+    assert_eq!(u["holds"], true, "{u}");
+    assert!(
+        (num(&u, "trace_constant").powi(2) - 2.0 / 3.0).abs() < 1e-9,
+        "{u}"
+    );
+    assert!((num(&u, "m_a") - 1000.0).abs() < 1e-9);
+    assert!((num(&u, "lhs") - 400.0).abs() < 1e-6, "{u}");
+    assert!((num(&u, "margin") - 600.0).abs() < 1e-6, "{u}");
+}
+
+/// β = 6000: L_μ = 1800, lhs = 1200 ≥ m_A = 1000: the condition fails (margin −200).
+#[test]
+fn summary_carries_the_condition_where_it_fails() {
+    let u = summary_uniqueness(&one_free_node(6000.0, ""));
+    assert_eq!(u["applies"], true, "{u}");
+    assert_eq!(u["holds"], false, "{u}");
+    assert!((num(&u, "lhs") - 1200.0).abs() < 1e-6, "{u}");
+    assert!((num(&u, "margin") + 200.0).abs() < 1e-6, "{u}");
+}
+
+/// Where the condition is not evaluated, the summary says why: no contact boundary, a
+/// Coulomb-type bound, the iterative linear solver.
+#[test]
+fn summary_gives_the_reason_where_the_condition_is_not_evaluated() {
+    let no_contact = one_free_node(2000.0, "")
+        .split("[[contact]]")
+        .next()
+        .unwrap()
+        .to_string();
+    let u = summary_uniqueness(&no_contact);
+    assert_eq!(u["applies"], false, "{u}");
+    assert!(u["note"].as_str().unwrap().contains("no contact"), "{u}");
+
+    let u = summary_uniqueness(&builtin::paper(8, 1.0e4));
+    assert_eq!(u["applies"], false, "{u}");
+    assert!(u["note"].as_str().unwrap().contains("Coulomb"), "{u}");
+
+    let iterative = one_free_node(2000.0, "[solver]\nlinear_solver = \"iterative\"")
+        .replace("n = [1, 1]", "n = [4, 4]");
+    let u = summary_uniqueness(&iterative);
+    assert_eq!(u["applies"], false, "{u}");
+    assert!(u["note"].as_str().unwrap().contains("iterative"), "{u}");
+    assert!(u["trace_constant"].is_null() && u["lhs"].is_null(), "{u}");
+    assert!((num(&u, "l_mu") - 600.0).abs() < 1e-9, "{u}");
+}

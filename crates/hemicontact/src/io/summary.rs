@@ -3,10 +3,10 @@
 use super::vtu::{pad_vector, VtuWriter};
 use crate::assembly::BulkAssembler;
 use crate::error::Result;
-use crate::material::StrainEnergy;
 use crate::norms::energy_norm;
 use crate::problem::Problem;
 use crate::solver::{Solution, SolveReport};
+use crate::tensor::von_mises;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -60,8 +60,11 @@ pub struct Summary {
     pub locked_cells: usize,
     /// Largest |tr ε| over the cells.
     pub max_abs_trace_strain: f64,
-    /// The uniqueness condition of the paper's Theorem 4 (SPEC §1).
-    pub uniqueness: Option<crate::solver::uniqueness::Uniqueness>,
+    /// The uniqueness condition of the paper's Theorem 4,
+    /// `(μ₀ α_j + c_j L_μ) ‖γ‖² < m_A`, as [`crate::solver::uniqueness::evaluate`] gives it:
+    /// evaluated for contact with Tresca-type bounds (`applies`, `holds`, `margin`), or
+    /// `applies: false` with the reason in `note`.
+    pub uniqueness: crate::solver::uniqueness::Uniqueness,
     /// Notes raised while resolving the scenario (see
     /// [`crate::scenario::Scenario::into_problem_with_notes`]); empty from [`Summary::new`].
     pub notes: Vec<String>,
@@ -70,7 +73,9 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Builds the summary of `solution`.
+    /// Builds the summary of `solution`. Evaluating the uniqueness condition may cost one
+    /// Cholesky factorization of the ε–ε stiffness and a power iteration (see
+    /// [`crate::solver::uniqueness::evaluate`]).
     pub fn new(
         problem: &Problem,
         solution: &Solution,
@@ -123,7 +128,7 @@ impl Summary {
             contact_slip: cert.n_slip,
             locked_cells,
             max_abs_trace_strain,
-            uniqueness: None,
+            uniqueness: crate::solver::uniqueness::evaluate(problem),
             notes: Vec::new(),
             report: solution.report.clone(),
         }
@@ -167,6 +172,13 @@ pub fn write_results(
 /// The `.vtu` content of a solution: displacement, reactions and contact data at points;
 /// strain, stress, von Mises stress, tr ε and locking activity per cell.
 ///
+/// `stress` is the full 3×3 tensor ([`crate::material::Material::stress_3x3`]): in 2D plane
+/// strain with `σ_zz = ∂W/∂ε_zz` (Hooke: `λ tr ε`) plus the zz part of the locking stress,
+/// in plane stress with `σ_zz = 0`; `von_mises` is `√(3/2 s:s)` of its 3D deviator s
+/// ([`crate::tensor::von_mises`]). `strain` is the strain of the model: in 2D its
+/// out-of-plane components are written as 0 (exact in plane strain; in plane stress the
+/// thickness strain ε_zz is not computed).
+///
 /// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
 /// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
 /// 1 stick, 2 slip), `contact_pressure`, `slip`,
@@ -195,13 +207,9 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
     let ideal = problem.material.ideal_locking;
     let set = ideal.unwrap_or(locking.set);
     for (c, e) in strains.iter().enumerate() {
-        let mut s = problem.material.stress(e);
         let (act, lambda) = match ideal {
-            Some(set) => {
+            Some(_) => {
                 let l = solution.locking_multiplier.get(c).copied().unwrap_or(0.0);
-                if l > 0.0 {
-                    s = s.add_scaled(l, &set.dq(e));
-                }
                 (l > 0.0, l)
             }
             None => (
@@ -209,9 +217,13 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
                 locking.c_kappa * locking.set.q(e).max(0.0),
             ),
         };
+        let ideal_multiplier = if ideal.is_some() { lambda } else { 0.0 };
+        let s = problem
+            .material
+            .stress_3x3(e, problem.plane, ideal_multiplier);
         eps9.extend(e.to_matrix().iter().flatten());
-        sig9.extend(s.to_matrix().iter().flatten());
-        vm.push(s.von_mises());
+        sig9.extend(s.iter().flatten());
+        vm.push(von_mises(&s));
         tr.push(e.trace());
         active.push(i32::from(act));
         multiplier.push(if lambda.is_finite() { lambda } else { 0.0 });

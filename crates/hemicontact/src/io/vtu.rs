@@ -2,8 +2,7 @@
 //! 64-bit block headers), readable by ParaView, VTK and meshio.
 //!
 //! Point coordinates are written with 3 components (z = 0 in 2D); vectors with 3 components;
-//! symmetric tensors as 9-component full matrices (row-major), in-plane components only for
-//! 2D problems.
+//! symmetric tensors as 9-component full matrices (row-major).
 
 use crate::error::Result;
 use crate::mesh::Mesh;

@@ -5,7 +5,8 @@
 //! (large deviatoric strains) and `Φ'' ≥ 0` (Φ convex).
 //!
 //! Stress `σ = K tr(ε) I + 2Φ'(s) ε^D`, tangent `K I⊗I + 2Φ'(s) 𝕀^D + 4Φ''(s) ε^D⊗ε^D`
-//! with `s = ‖ε^D‖²` and `𝕀^D = 𝕀 − (1/d) I⊗I`.
+//! with `s = ‖ε^D‖²` and `𝕀^D = 𝕀 − (1/d) I⊗I`. Out-of-plane stress in plane strain (d = 2,
+//! see [`crate::material`]): `σ_zz = (K − Φ'(s)) tr ε`.
 //!
 //! Constants (d the dimension): strongly monotone with `m_A = min(dK, 2G)` (the Hessian is
 //! at least `dK` on the volumetric direction and at least `2Φ' ≥ 2G` on deviatoric ones),
@@ -76,5 +77,14 @@ impl StrainEnergy for Hencky {
         add_identity(&mut t, d, 2.0 * d1);
         add_outer(&mut t, 4.0 * d2, &dev, &dev);
         t
+    }
+
+    /// `σ_zz = (K − (2/d) Φ'(s)) tr ε`: with `s = ε:ε − (tr ε)²/d`,
+    /// `∂s/∂ε_zz = 2ε_zz − (2/d) tr ε = −(2/d) tr ε` at `ε_zz = 0`.
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        let dev = eps.deviator();
+        let (_, d1, _) = self.phi(dev.dot(&dev));
+        (self.bulk - 2.0 * d1 / eps.dim as f64) * eps.trace()
     }
 }

@@ -1,7 +1,7 @@
 //! Isotropic Hooke's law (SPEC §2): `A ε = λ tr(ε) I + 2G ε`.
 //!
 //! Energy `W(ε) = λ/2 (tr ε)² + G ε:ε`; stress `σ = λ tr(ε) I + 2G ε`;
-//! tangent `λ I ⊗ I + 2G 𝕀`. Strongly monotone with constant `m_A = 2G` when `λ ≥ 0`
+//! tangent `λ I ⊗ I + 2G 𝕀`; out-of-plane stress in plane strain `σ_zz = λ tr ε`. Strongly monotone with constant `m_A = 2G` when `λ ≥ 0`
 //! (always true for `0 ≤ ν < 1/2`), Lipschitz with constant `dλ + 2G`.
 
 use super::StrainEnergy;
@@ -69,5 +69,11 @@ impl StrainEnergy for Hooke {
         add_outer(&mut t, self.lambda, &i, &i);
         add_identity(&mut t, eps.dim, 2.0 * self.mu);
         t
+    }
+
+    /// `σ_zz = λ tr ε`: 3D Hooke's law at `ε_zz = 0`.
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        self.lambda * eps.trace()
     }
 }

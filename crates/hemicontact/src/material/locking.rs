@@ -88,6 +88,19 @@ impl LockingSet {
         }
     }
 
+    /// Out-of-plane component `∂Q/∂ε_zz` of a two-dimensional strain `eps` under plane
+    /// strain (`ε_zz = 0`, Q read as a function of `tr ε` and `ε:ε`, see
+    /// [`crate::material`]): `sgn(tr ε)` for limited compressibility, `−tr ε / 2` for
+    /// Prager's set (the zz entry of `ε − (tr ε/2) I`), 0 for the ball and for no locking.
+    #[inline]
+    pub fn dq_zz(&self, eps: &Sym) -> f64 {
+        match *self {
+            LockingSet::None | LockingSet::Ball { .. } => 0.0,
+            LockingSet::LimitedCompressibility { .. } => eps.trace().signum(),
+            LockingSet::Prager { .. } => -eps.trace() / eps.dim as f64,
+        }
+    }
+
     /// Adds `s ∂²Q(ε)` to the tangent `t`.
     #[inline]
     fn add_d2q(&self, t: &mut Tangent, eps: &Sym, s: f64) {
@@ -172,6 +185,18 @@ impl StrainEnergy for LockingPenalty {
         }
         t
     }
+    /// `σ_zz = C_κ Q_+ ∂Q/∂ε_zz` ([`LockingSet::dq_zz`]).
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        if self.c_kappa == 0.0 {
+            return 0.0;
+        }
+        let q = self.set.q(eps);
+        if q <= 0.0 {
+            return 0.0;
+        }
+        self.c_kappa * q * self.set.dq_zz(eps)
+    }
 }
 
 /// The augmented Lagrangian term of *ideal* locking in one cell (SPEC §1, the constraint
@@ -227,5 +252,14 @@ impl StrainEnergy for AugmentedLocking {
             self.set.add_d2q(&mut t, eps, m);
         }
         t
+    }
+    /// `σ_zz = (λ + r Q)_+ ∂Q/∂ε_zz` ([`LockingSet::dq_zz`]).
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        let m = self.multiplier(eps);
+        if m <= 0.0 {
+            return 0.0;
+        }
+        m * self.set.dq_zz(eps)
     }
 }

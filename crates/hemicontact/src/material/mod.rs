@@ -4,6 +4,23 @@
 //! nearly-locking penalty); the laws here know nothing of meshes or DOFs, so each is
 //! testable on its own (finite-difference checks of stress against energy and of tangent
 //! against stress live in `tests/`).
+//!
+//! ## Out-of-plane stress in plane strain
+//!
+//! In 2D every law here is an isotropic function of the two invariants of a symmetric 2×2
+//! strain, `W(ε) = f(tr ε, ε:ε)`. Plane strain embeds ε in 3D with `ε_zz = ε_xz = ε_yz = 0`
+//! and reads the law as the same function of the 3D invariants `tr ε`, `ε:ε` (the only
+//! isotropic extension that does not involve det ε). The out-of-plane stress is then
+//!
+//! `σ_zz = ∂W/∂ε_zz = ∂f/∂(tr ε) + 2 ε_zz ∂f/∂(ε:ε) = ∂f/∂(tr ε)`,
+//!
+//! the coefficient `a` when the in-plane stress is written `σ = a I + b ε`
+//! ([`StrainEnergy::plane_strain_stress_zz`]). For Hooke's law this extension is 3D Hooke with
+//! the same λ, G (`σ_zz = λ tr ε`); for limited compressibility and the ball it is the 3D set
+//! (`σ_zz = C_κ Q_+ sgn(tr ε)`, resp. 0). The 2D Hencky law and Prager's set are written with
+//! the 2D deviator `ε − (tr ε/2) I`; they are *not* the plane-strain restrictions of their
+//! 3D versions with the same constants, and their σ_zz is that of the extension above:
+//! Hencky `(K − Φ'(s)) tr ε`, Prager `−C_κ Q_+ tr ε / 2`. Under plane stress `σ_zz = 0`.
 
 pub mod hencky;
 pub mod hooke;
@@ -24,6 +41,9 @@ pub trait StrainEnergy {
     fn stress(&self, eps: &Sym) -> Sym;
     /// Tangent `∂σ/∂ε` (a generalized derivative where σ is only piecewise smooth).
     fn tangent(&self, eps: &Sym) -> Tangent;
+    /// Out-of-plane normal stress `σ_zz = ∂W/∂ε_zz` (Pa) of a two-dimensional strain `eps`
+    /// under plane strain (`ε_zz = 0`); see the module documentation.
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64;
 }
 
 /// The elasticity operator A = ∂W (SPEC §2).
@@ -97,6 +117,13 @@ impl StrainEnergy for Elasticity {
         match self {
             Elasticity::Hooke(h) => h.tangent(eps),
             Elasticity::Hencky(h) => h.tangent(eps),
+        }
+    }
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        match self {
+            Elasticity::Hooke(h) => h.plane_strain_stress_zz(eps),
+            Elasticity::Hencky(h) => h.plane_strain_stress_zz(eps),
         }
     }
 }
@@ -179,5 +206,39 @@ impl StrainEnergy for Material {
             }
         }
         t
+    }
+    #[inline]
+    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
+        let s = self.elasticity.plane_strain_stress_zz(eps);
+        if self.locking.c_kappa == 0.0 {
+            return s;
+        }
+        s + self.locking.plane_strain_stress_zz(eps)
+    }
+}
+
+impl Material {
+    /// The full 3×3 stress (Pa) of a cell with strain `eps`, including the ideal-locking
+    /// stress `multiplier · ∂Q(ε)` (`multiplier` the cell's λ_T ≥ 0 in Pa; 0 without ideal
+    /// locking). In 3D it is `σ(ε) + λ_T ∂Q`; in 2D the in-plane part is the same and the
+    /// out-of-plane normal stress is `σ_zz = ∂W/∂ε_zz + λ_T ∂Q/∂ε_zz` under plane strain
+    /// (see the module documentation; `λ tr ε` plus the locking part for Hooke's law) and
+    /// 0 under plane stress. The out-of-plane shear stresses are 0.
+    pub fn stress_3x3(&self, eps: &Sym, plane: Plane, multiplier: f64) -> [[f64; 3]; 3] {
+        let mut s = self.stress(eps);
+        let set = self.ideal_locking.unwrap_or(LockingSet::None);
+        if multiplier > 0.0 {
+            s = s.add_scaled(multiplier, &set.dq(eps));
+        }
+        let zz = if eps.dim == 2 && plane == Plane::Strain {
+            let mut zz = self.plane_strain_stress_zz(eps);
+            if multiplier > 0.0 {
+                zz += multiplier * set.dq_zz(eps);
+            }
+            zz
+        } else {
+            0.0
+        };
+        s.to_matrix_with_zz(zz)
     }
 }

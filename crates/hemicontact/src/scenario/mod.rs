@@ -848,6 +848,7 @@ impl Scenario {
         let problem = Problem {
             mesh,
             material,
+            plane: self.file.material.plane,
             dirichlet,
             tractions,
             body_force,

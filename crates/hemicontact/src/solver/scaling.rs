@@ -174,6 +174,7 @@ impl Scales {
                     }),
                 })
                 .collect(),
+            plane: problem.plane,
             solver: problem.solver.clone(),
         }
     }

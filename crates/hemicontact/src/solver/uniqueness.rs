@@ -31,9 +31,10 @@ use serde::Serialize;
 /// The outcome of the uniqueness check; see the module documentation.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Uniqueness {
-    /// Whether Theorem 4 applies (no Coulomb-type bound).
+    /// Whether the condition was evaluated: Theorem 4 covers the problem (contact with
+    /// Tresca-type bounds or none) and ‖γ‖ could be computed where needed ([`evaluate`]).
     pub applies: bool,
-    /// Why it does not apply, if so.
+    /// Why it was not evaluated, if so.
     pub note: Option<String>,
     /// m_A (Pa).
     pub m_a: f64,
@@ -45,13 +46,17 @@ pub struct Uniqueness {
     pub c_j: f64,
     /// Largest α_j.
     pub alpha_j: f64,
-    /// The trace constant ‖γ‖ (not computed when the theorem does not apply).
+    /// The factor `max_b (μ₀ α_j + c_j L_μ)` that multiplies ‖γ‖² (Pa/m, ‖γ‖² being in m;
+    /// 0 without friction).
+    pub factor: f64,
+    /// The trace constant ‖γ‖ (not computed when the theorem does not apply, or when
+    /// `factor` is 0 and the condition holds whatever ‖γ‖).
     pub trace_constant: Option<f64>,
     /// Power iterations used for ‖γ‖.
     pub iterations: usize,
-    /// Left-hand side `max_b (μ₀ α_j + c_j L_μ) ‖γ‖²` (NaN when not computed).
+    /// Left-hand side `max_b (μ₀ α_j + c_j L_μ) ‖γ‖²` (Pa; NaN when not evaluated).
     pub lhs: f64,
-    /// `m_A − lhs`: positive when the condition holds.
+    /// `m_A − lhs` (Pa): positive when the condition holds.
     pub margin: f64,
     /// Whether the condition holds (and the theorem applies).
     pub holds: bool,
@@ -125,11 +130,32 @@ pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
     Ok((lambda.sqrt(), max_iter))
 }
 
-/// Evaluates the uniqueness condition for `problem`.
+/// Evaluates the uniqueness condition for `problem`. ‖γ‖ is computed only when the theorem
+/// applies and `μ₀ α_j + c_j L_μ > 0`; otherwise (frictionless contact, or a constant μ
+/// with a convex potential) the left-hand side is 0 and the condition holds whatever ‖γ‖.
 ///
 /// # Errors
 /// As [`trace_constant`].
 pub fn check(problem: &Problem) -> Result<Uniqueness> {
+    let mut u = constants(problem);
+    if !u.applies {
+        return Ok(u);
+    }
+    u.lhs = 0.0;
+    if u.factor > 0.0 {
+        let (g, iterations) = trace_constant(problem)?;
+        u.trace_constant = Some(g);
+        u.iterations = iterations;
+        u.lhs = u.factor * g * g;
+    }
+    u.margin = u.m_a - u.lhs;
+    u.holds = u.lhs < u.m_a;
+    Ok(u)
+}
+
+/// The constants of the condition, `applies` false with the reason for a Coulomb-type
+/// bound, and `lhs`, `margin` NaN, `holds` false (nothing evaluated yet).
+fn constants(problem: &Problem) -> Uniqueness {
     let d = problem.mesh.dim();
     let m_a = problem.material.elasticity.monotonicity(d);
     let frictions: Vec<_> = problem
@@ -153,19 +179,12 @@ pub fn check(problem: &Problem) -> Result<Uniqueness> {
         alpha_j = alpha_j.max(e);
         factor = factor.max(a * e + c * b);
     }
-    let (gamma, iterations) = if coulomb {
-        (None, 0)
-    } else {
-        let (g, it) = trace_constant(problem)?;
-        (Some(g), it)
-    };
-    let lhs = gamma.map_or(f64::NAN, |g| factor * g * g);
     let note = if coulomb {
         Some("Theorem 4 covers Tresca-type friction bounds F = μ(‖u_τ‖); a Coulomb-type bound F = μ p(u_ν) is not covered".to_string())
     } else {
         None
     };
-    Ok(Uniqueness {
+    Uniqueness {
         applies: !coulomb,
         note,
         m_a,
@@ -173,10 +192,58 @@ pub fn check(problem: &Problem) -> Result<Uniqueness> {
         l_mu,
         c_j,
         alpha_j,
-        trace_constant: gamma,
-        iterations,
-        lhs,
-        margin: m_a - lhs,
-        holds: !coulomb && lhs < m_a,
-    })
+        trace_constant: None,
+        iterations: 0,
+        factor,
+        lhs: f64::NAN,
+        margin: f64::NAN,
+        holds: false,
+    }
+}
+
+/// The uniqueness check written to `summary.json` for every solve: [`check`] where it can
+/// be evaluated, otherwise `applies: false` with the reason in `note` and the constants of
+/// the laws (`lhs`, `margin` NaN, written as `null`):
+/// - no contact boundary: there is no friction term, nothing to check;
+/// - a Coulomb-type bound (see [`check`]);
+/// - the iterative linear solver (large 3D problems): ‖γ‖ needs a Cholesky factorization
+///   of the ε–ε stiffness, which that choice exists to avoid;
+/// - the computation of ‖γ‖ failed (the error is quoted).
+///
+/// Exact constraints (Signorini, ideal locking, exact stick/slip) are within the theorem,
+/// which is stated for the constraint set `{v_ν ≤ g, ε(v) ∈ B}`.
+pub fn evaluate(problem: &Problem) -> Uniqueness {
+    let not_evaluated = |note: String| Uniqueness {
+        applies: false,
+        note: Some(note),
+        ..constants(problem)
+    };
+    if problem.contact.is_empty() {
+        return not_evaluated(
+            "no contact boundary: the condition bounds the friction on Γ_C, there is none"
+                .to_string(),
+        );
+    }
+    let u = constants(problem);
+    if !u.applies {
+        return u;
+    }
+    let iterative = problem
+        .solver
+        .linear_solver
+        .resolve(problem.mesh.dim(), problem.dof_map().n_free())
+        == super::LinearSolver::Iterative;
+    if iterative && u.factor > 0.0 {
+        return not_evaluated(
+            "not evaluated: the trace constant ‖γ‖ needs a Cholesky factorization of the ε–ε \
+             stiffness, and this problem uses the iterative linear solver"
+                .to_string(),
+        );
+    }
+    match check(problem) {
+        Ok(u) => u,
+        Err(e) => not_evaluated(format!(
+            "not evaluated: the trace constant ‖γ‖ could not be computed ({e})"
+        )),
+    }
 }
