@@ -262,7 +262,7 @@ fn one_clockwise_triangle_among_counterclockwise_ones_is_named() {
     let tag = element_tag(&mesh, odd);
     assert!(
         msg.contains(&format!(
-            "1 of the {} triangles of surface 1 are inverted: element {tag} is ordered clockwise",
+            "1 of the {} triangles of surface 1 is inverted: element {tag} is ordered clockwise",
             mesh.n_cells()
         )),
         "{msg}"

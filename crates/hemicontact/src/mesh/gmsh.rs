@@ -1430,11 +1430,12 @@ fn reorient(
         return Err((
             at,
             format!(
-                "{} of the {n_all} {kind} of {entity_kind} {e} are inverted: {names} {} ordered \
+                "{} of the {n_all} {kind} of {entity_kind} {e} {} inverted: {names} {} ordered \
                  {odd_word}, the others {rest_word} (a tangled mesh, e.g. a node moved past its \
                  neighbours). The cells of one {entity_kind} must all have the same \
                  orientation: {pos} is used as is, {neg} throughout is reoriented",
                 odd.len(),
+                if odd.len() == 1 { "is" } else { "are" },
                 if odd.len() == 1 { "is" } else { "are" },
             ),
         ));
