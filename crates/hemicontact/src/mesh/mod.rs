@@ -41,8 +41,10 @@
 //! for a facet (h_F its longest edge). Both sums are compensated (Neumaier), so summation
 //! adds only ε relative. The mesh is accepted when
 //! `|Σ_T |T| − (1/d) Σ_F (x_F − o)·n_F |F|| ≤ 8d ε (Σ_T h_T^d + Σ_F |x_F − o| h_F^{d−1})`,
-//! twice the rounding bound; since `h_T^d > |T|`, this is at least `16 ε |Ω|`. A folded cell
-//! whose area is 10⁻¹² of its diameter squared would be rejected as degenerate anyway.
+//! twice the rounding bound; since `h_T^d > |T|`, this is at least `8d ε |Ω|`. A fold is
+//! missed only when `2 |R|` is below that tolerance, about `8d ε N h^d` for N cells of size h:
+//! a region of the order of the round-off of the whole domain's measure. (Folds with cells
+//! of both orientations, the usual tangle, are refused before, as inverted cells.)
 
 pub mod generate;
 pub mod gmsh;
