@@ -129,9 +129,11 @@ impl Problem {
     }
 
     /// Notes worth telling the user, warnings that do not stop a run: each contact part that
-    /// shares nodes with a Dirichlet part. Nodes with every displacement component
+    /// shares nodes with a Dirichlet part (nodes with every displacement component
     /// prescribed are not contact nodes (SPEC §3: a node on Γ_D is never a contact node);
-    /// nodes on a roller keep contact on their free components.
+    /// nodes on a roller keep contact on their free components), and each contact part that
+    /// turns corners (nodes split into one contact point per direction; see
+    /// [`crate::contact::nodes`]).
     pub fn notes(&self) -> Vec<String> {
         let names = self.mesh.part_names();
         let full = self.fully_prescribed();
@@ -161,6 +163,25 @@ impl Problem {
                     names[c.part],
                     shared.len(),
                     names[b.part]
+                ));
+            }
+        }
+        let points = self.contact_nodes();
+        for (b, c) in self.contact.iter().enumerate() {
+            let nodes: Vec<u32> = (0..points.len())
+                .filter(|&i| points.boundary[i] as usize == b)
+                .map(|i| points.node[i])
+                .collect();
+            // Points of one boundary are ordered by node: corners are runs of equal nodes.
+            let corners = nodes.chunk_by(|a, b| a == b).filter(|r| r.len() > 1);
+            let (n_corners, n_points) = corners.fold((0, 0), |(n, p), r| (n + 1, p + r.len()));
+            if n_corners > 0 {
+                notes.push(format!(
+                    "contact part `{}` turns corners (facet normals more than {}° apart) at \
+                     {n_corners} node(s): they are {n_points} contact points, one per \
+                     direction, as if the part were split there",
+                    names[c.part],
+                    crate::contact::nodes::CORNER_ANGLE_DEG,
                 ));
             }
         }

@@ -13,8 +13,8 @@
 //!   tags) for the square and the cube, and the same coordinates up to the last bit (Gmsh
 //!   writes 16 significant digits in ASCII, the exact double in binary).
 //! - **Gmsh's numbering is kept or mapped**: the hand-written `tiny.msh` (sparse node tags
-//!   10…40, an unused geometry node 99, a clockwise triangle) gives 4 nodes in file order,
-//!   the clockwise triangle reoriented, the unused node dropped with a note.
+//!   10…40, an unused geometry node 99) gives 4 nodes in file order, its cells as written,
+//!   the unused node dropped with a note. (Orientation: see `tests/tangled.rs`.)
 //! - **Every bad file gives its error**, naming the file and (ASCII) the line or (binary)
 //!   the byte offset, and saying what is wrong: format 2.2, quadrangles, second-order
 //!   elements, truncation, undefined or duplicate node tags, a degenerate triangle, a
@@ -200,13 +200,13 @@ fn half_disc_area_is_the_inscribed_polygon() {
 }
 
 #[test]
-fn tiny_file_keeps_file_order_and_reorients() {
+fn tiny_file_keeps_file_order() {
     let g = read("tiny.msh");
     let m = &g.mesh;
     // Node 99 (a geometry point) is used by no triangle: dropped, with a note.
     assert_eq!(g.node_tags, [10, 20, 30, 40]);
     assert_eq!(m.coords(), [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0]);
-    // Element 6 is [10, 40, 30], clockwise: its last two vertices are swapped.
+    // Elements 5 and 6 are [10, 20, 30] and [10, 30, 40], counterclockwise: kept as they are.
     assert_eq!(m.cells(), [0, 1, 2, 0, 2, 3]);
     assert_eq!(g.element_tags, [5, 6]);
     assert_eq!(m.part_names(), ["bottom", "right", "top", "left"]);
@@ -250,8 +250,8 @@ fn unnamed_groups_are_named_by_tag_and_regions_are_recorded() {
         )
         .replace("5 6 1 6", "6 6 1 6")
         .replace(
-            "2 1 2 2\n5 10 20 30\n6 10 40 30\n",
-            "2 1 2 1\n5 10 20 30\n2 2 2 1\n6 10 40 30\n",
+            "2 1 2 2\n5 10 20 30\n6 10 30 40\n",
+            "2 1 2 1\n5 10 20 30\n2 2 2 1\n6 10 30 40\n",
         );
     let g = parse_msh(text.as_bytes(), "tiny-unnamed.msh").unwrap();
     assert_eq!(g.mesh.part_names(), ["1", "2", "3", "4"]);

@@ -1,17 +1,37 @@
 //! Contact nodes (SPEC §3): the nodes of Γ_C with their lumped weights, averaged normals and
 //! tangent bases.
 //!
-//! A *contact point* is a pair (node, contact boundary): a node on two contact boundaries
-//! (an edge between two faces facing two foundations) is two points, one per foundation.
-//! Nodes on Γ_D are never contact nodes. For point `i`:
+//! A *contact point* is a node of a contact boundary with one direction of contact: a node on
+//! two contact boundaries (an edge between two faces facing two foundations) is two points,
+//! one per foundation, and so is a node where one contact boundary turns a corner (below).
+//! Nodes on Γ_D are never contact nodes. For point `i`, with `𝓕_i` its facets:
 //!
-//! - weight `w_i = ∫_{Γ_C} φ_i = Σ_{F ∋ node} |F| / d` over the boundary's facets;
-//! - normal `ν_i`: the weighted average `Σ |F| ν_F` of its facets' outward normals,
-//!   normalized;
+//! - weight `w_i = Σ_{F ∈ 𝓕_i} |F| / d` (the integral of the hat function over those
+//!   facets);
+//! - normal `ν_i`: the weighted average `Σ_{F ∈ 𝓕_i} |F| ν_F` of the facets' outward
+//!   normals, normalized;
 //! - tangents: 2D, `τ = (−ν_y, ν_x)` (counter-clockwise along the boundary); 3D,
 //!   `τ₁ = e × ν / ‖e × ν‖` with `e` the axis least aligned with ν, `τ₂ = ν × τ₁`.
 //!
-//! Points are ordered by boundary, then by node number.
+//! # Corners
+//!
+//! The facets of one boundary around a node are grouped by direction: two facets are in
+//! the same group when their normals differ by at most [`CORNER_ANGLE_DEG`] (30°), and
+//! groups are closed under this relation (single linkage). Each group is one contact point,
+//! with the weight and averaged normal of its own facets, exactly as if the boundary were
+//! split into several parts at the node. On a smooth boundary every node is one point; at a
+//! corner (the bottom and the side of a square in one part) the law is imposed along each
+//! side's normal instead of along an average of them, which would let the body penetrate
+//! the foundation of each side.
+//!
+//! Why 30°: consecutive facets of a curve of radius R with facets of length h turn by h/R
+//! radians, so 30° is h ≈ R/2: any resolution that represents a curve (12 facets or more
+//! per full circle) stays below it and keeps one point per node, while a corner keeps its
+//! angle under refinement and is split at any resolution: the corner of a square (normals
+//! 90° apart), and any kink that turns the boundary by more than 30°.
+//!
+//! Points are ordered by boundary, then by node number, then (at a corner) by the first
+//! facet of each group.
 
 use super::ContactBoundary;
 use crate::fem::simplex::cross;
@@ -32,43 +52,78 @@ pub struct ContactNodes {
     pub tangent: Vec<[[f64; 3]; 2]>,
 }
 
+/// Angle between facet normals above which one contact boundary is split at a node into
+/// one contact point per direction (degrees); see the module documentation.
+pub const CORNER_ANGLE_DEG: f64 = 30.0;
+
 impl ContactNodes {
     /// Builds the contact points of `boundaries` on `mesh`, skipping nodes where
     /// `excluded[node]` is true (nodes with all components prescribed).
     pub fn new(mesh: &Mesh, boundaries: &[ContactBoundary], excluded: &[bool]) -> Self {
         let d = mesh.dim();
+        let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
         let mut out = ContactNodes::default();
-        let mut acc_w = vec![0.0; mesh.n_nodes()];
-        let mut acc_n = vec![[0.0; 3]; mesh.n_nodes()];
         for (b, cb) in boundaries.iter().enumerate() {
-            let nodes = mesh.part_nodes(cb.part);
-            for &v in &nodes {
-                acc_w[v as usize] = 0.0;
-                acc_n[v as usize] = [0.0; 3];
-            }
-            for f in mesh.part_facets(cb.part) {
-                let (measure, n) = mesh.facet_measure_normal(f);
-                for &v in mesh.facet(f) {
-                    acc_w[v as usize] += measure / d as f64;
-                    for i in 0..3 {
-                        acc_n[v as usize][i] += measure * n[i];
-                    }
-                }
-            }
-            for &v in &nodes {
+            let facets: Vec<(f64, [f64; 3])> = mesh
+                .part_facets(cb.part)
+                .map(|f| mesh.facet_measure_normal(f))
+                .collect();
+            // (node, facet of the part) pairs, by node.
+            let mut incidence: Vec<(u32, u32)> = mesh
+                .part_facets(cb.part)
+                .enumerate()
+                .flat_map(|(k, f)| mesh.facet(f).iter().map(move |&v| (v, k as u32)))
+                .collect();
+            incidence.sort_unstable();
+            let mut group = Vec::new();
+            let mut stack = Vec::new();
+            for around in incidence.chunk_by(|a, b| a.0 == b.0) {
+                let v = around[0].0;
                 if excluded[v as usize] {
                     continue;
                 }
-                let mut n = acc_n[v as usize];
-                let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-                for x in n.iter_mut() {
-                    *x /= len;
+                // Group the facets around v by direction (single linkage).
+                let normal = |k: usize| &facets[around[k].1 as usize].1;
+                group.clear();
+                group.resize(around.len(), usize::MAX);
+                let mut n_groups = 0;
+                for seed in 0..around.len() {
+                    if group[seed] != usize::MAX {
+                        continue;
+                    }
+                    group[seed] = n_groups;
+                    stack.push(seed);
+                    while let Some(k) = stack.pop() {
+                        for m in 0..around.len() {
+                            let cos: f64 = (0..3).map(|i| normal(k)[i] * normal(m)[i]).sum();
+                            if group[m] == usize::MAX && cos >= cos_corner {
+                                group[m] = n_groups;
+                                stack.push(m);
+                            }
+                        }
+                    }
+                    n_groups += 1;
                 }
-                out.node.push(v);
-                out.boundary.push(b as u16);
-                out.weight.push(acc_w[v as usize]);
-                out.normal.push(n);
-                out.tangent.push(tangent_basis(d, &n));
+                for g in 0..n_groups {
+                    let mut w = 0.0;
+                    let mut n = [0.0; 3];
+                    for (&(_, f), _) in around.iter().zip(&group).filter(|(_, &k)| k == g) {
+                        let (measure, nf) = &facets[f as usize];
+                        w += measure / d as f64;
+                        for i in 0..3 {
+                            n[i] += measure * nf[i];
+                        }
+                    }
+                    let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    for x in n.iter_mut() {
+                        *x /= len;
+                    }
+                    out.node.push(v);
+                    out.boundary.push(b as u16);
+                    out.weight.push(w);
+                    out.normal.push(n);
+                    out.tangent.push(tangent_basis(d, &n));
+                }
             }
         }
         out

@@ -184,8 +184,9 @@ pub fn write_results(
 /// 1 stick, 2 slip), `contact_pressure`, `slip`,
 /// `interface_force` (the force of the foundation on the node, N), and the contact
 /// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
-/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is on two
-/// contact boundaries, the last one's values are shown and the forces are summed.
+/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is several
+/// contact points (on two contact boundaries, or at a corner of one), the last point's
+/// values are shown and the forces are summed.
 /// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
 /// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
 /// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly

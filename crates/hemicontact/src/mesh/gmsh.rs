@@ -25,9 +25,15 @@
 //!   and other lower-dimensional entities); the others keep their order in the file, so a
 //!   file whose node tags are `1..=N` in order and all used gives mesh node `i` = tag `i + 1`.
 //!   [`GmshMesh::node_tags`] maps back.
-//! - **Cells** keep their order in the file. Negatively oriented cells (Gmsh's orientation
-//!   depends on the geometry) are reoriented silently by swapping their last two vertices;
-//!   degenerate cells (zero measure up to round-off) are an error naming the element.
+//! - **Cells** keep their order in the file. Gmsh orients the cells of a geometric entity
+//!   (a surface in 2D, a volume in 3D) alike, but the orientation depends on the geometry:
+//!   an entity whose cells are *all* negatively oriented (clockwise triangles, left-handed
+//!   tetrahedra) is reoriented by swapping the last two vertices of each cell, with a note.
+//!   An entity with cells of both orientations is tangled (a node moved past its
+//!   neighbours): an error naming the elements of the minority orientation. Degenerate cells
+//!   (zero measure up to round-off) are an error naming the element, and so are cells that
+//!   overlap although each is oriented like its neighbours (the cell measures do not sum to
+//!   the measure enclosed by the boundary; see [`crate::mesh`]).
 //! - **Boundary parts** are the physical groups of dimension d − 1, named by
 //!   `$PhysicalNames` (a group without a name is named by its tag, e.g. `"3"`; groups with
 //!   equal names form one part), in the order of their physical tags. Facets keep their order
@@ -42,8 +48,8 @@
 //!   the region [`UNTAGGED`]). They are informational: one material applies to the whole
 //!   mesh.
 //!
-//! Facts worth telling the user (untagged facets, dropped nodes, ignored interior facets,
-//! several cell regions) are returned in [`GmshMesh::notes`].
+//! Facts worth telling the user (reoriented entities, untagged facets, dropped nodes, ignored
+//! interior facets, several cell regions) are returned in [`GmshMesh::notes`].
 //!
 //! # Errors
 //!
@@ -52,7 +58,8 @@
 //! file, malformed number, a count that does not match the data or that the rest of the file
 //! cannot hold (checked before anything is allocated, so a small file claiming 10¹⁸ nodes
 //! fails at once), duplicate or undefined node tags, non-finite coordinates, unsupported
-//! element types, missing sections, degenerate or duplicate cells, non-manifold facets.
+//! element types, missing sections, degenerate or duplicate cells, cells of both orientations
+//! in one entity, overlapping cells, non-manifold facets.
 //!
 //! # Example
 //!
@@ -101,8 +108,8 @@ pub struct GmshMesh {
     /// Names of the cell regions: the physical groups of dimension d, in the order of their
     /// tags, then [`UNTAGGED`] if some cell is in no group.
     pub region_names: Vec<String>,
-    /// Facts worth telling the user (untagged boundary facets, dropped nodes, ignored
-    /// interior facets, several cell regions), one sentence each.
+    /// Facts worth telling the user (reoriented entities, untagged boundary facets, dropped
+    /// nodes, ignored interior facets, several cell regions), one sentence each.
     pub notes: Vec<String>,
 }
 
@@ -132,7 +139,8 @@ pub fn read_msh(path: &Path) -> Result<GmshMesh> {
 /// problem: the file is not in format 4.1, is truncated or malformed, its counts do not
 /// match its data, a node tag is duplicated or undefined, a coordinate is not finite, an
 /// element type other than P1 simplices is used in the cell or facet dimension, a section is
-/// missing, a cell is degenerate or duplicated, or a facet is in two boundary parts.
+/// missing, a cell is degenerate or duplicated, an entity has cells of both orientations,
+/// cells overlap, or a facet is in two boundary parts.
 pub fn parse_msh(bytes: &[u8], source: &str) -> Result<GmshMesh> {
     let sections = Reader::new(bytes, source).read()?;
     assemble(sections, source)
@@ -1005,7 +1013,7 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
         );
     }
 
-    // Cells, reoriented; their regions.
+    // Cells, their orientations and regions.
     let nv = d + 1;
     let mut cells: Vec<u32> = Vec::new();
     let mut element_tags: Vec<u64> = Vec::new();
@@ -1014,7 +1022,11 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
     let mut untagged_region = None;
     let mut multi_region = 0usize;
     let tags_of = |v: &[u32]| -> Vec<u64> { v.iter().map(|&i| nodes.tags[i as usize]).collect() };
+    // Orientation of each cell, and the cells of each element block.
+    let mut negative: Vec<bool> = Vec::new();
+    let mut cell_blocks: Vec<(i32, FileLocation, std::ops::Range<usize>)> = Vec::new();
     for b in s.blocks.iter().filter(|b| b.dim as usize == d) {
+        let start = element_tags.len();
         let groups = physical(d, b)?;
         let region = match groups.first() {
             Some(&t) => regions.get(group_name(d, t), i64::from(t)),
@@ -1072,18 +1084,26 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
                     ),
                 ));
             }
-            if m < 0.0 {
-                c.swap(d - 1, d);
-            }
             cells.extend_from_slice(&c[..nv]);
             element_tags.push(tag);
             region_of.push(region);
+            negative.push(m < 0.0);
         }
+        cell_blocks.push((b.entity, b.at, start..element_tags.len()));
     }
     let n_cells = element_tags.len();
     if n_cells == 0 {
         return Err(whole("the file has no cells".into()));
     }
+    reorient(
+        d,
+        &mut cells,
+        &negative,
+        &cell_blocks,
+        &element_tags,
+        &mut notes,
+    )
+    .map_err(|(at, message)| err(at, message))?;
     if n_cells > u32::MAX as usize / 8 {
         return Err(whole(format!("{n_cells} cells: more than supported")));
     }
@@ -1338,8 +1358,9 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
         ));
     }
 
-    let mesh =
-        Mesh::try_new(d, coords, cells, facets, facet_part, part_names).map_err(|e| match e {
+    let element = |c: usize| format!("element {}", element_tags[c]);
+    let mesh = Mesh::try_new_named(d, coords, cells, facets, facet_part, part_names, &element)
+        .map_err(|e| match e {
             Error::Mesh(m) => whole(format!("invalid mesh: {m}")),
             other => other,
         })?;
@@ -1351,6 +1372,86 @@ fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
         region_names,
         notes,
     })
+}
+
+/// Orients the cells positively, entity by entity: an entity whose cells are all negatively
+/// oriented (a surface meshed clockwise) is reoriented by swapping the last two vertices of
+/// each cell, with a note; an entity with cells of both orientations is an error naming the
+/// cells of the minority orientation (those whose orientation differs from the rest).
+/// `blocks` lists (entity, location, cell range) per element block.
+fn reorient(
+    d: usize,
+    cells: &mut [u32],
+    negative: &[bool],
+    blocks: &[(i32, FileLocation, std::ops::Range<usize>)],
+    element_tags: &[u64],
+    notes: &mut Vec<String>,
+) -> std::result::Result<(), (FileLocation, String)> {
+    let nv = d + 1;
+    let (kind, entity_kind, neg, pos) = if d == 2 {
+        ("triangles", "surface", "clockwise", "counterclockwise")
+    } else {
+        ("tetrahedra", "volume", "left-handed", "right-handed")
+    };
+    let mut entities: Vec<i32> = blocks.iter().map(|b| b.0).collect();
+    entities.sort_unstable();
+    entities.dedup();
+    let mut flipped: Vec<(i32, usize)> = Vec::new();
+    for &e in &entities {
+        let ranges = || blocks.iter().filter(move |b| b.0 == e).map(|b| b.2.clone());
+        let n_neg = ranges().flatten().filter(|&c| negative[c]).count();
+        let n_all: usize = ranges().map(|r| r.len()).sum();
+        if n_neg == 0 {
+            continue;
+        }
+        if n_neg == n_all {
+            for c in ranges().flatten() {
+                cells.swap(c * nv + d - 1, c * nv + d);
+            }
+            flipped.push((e, n_all));
+            continue;
+        }
+        // Mixed: the minority orientation is the inverted one.
+        let odd_is_negative = 2 * n_neg <= n_all;
+        let odd: Vec<usize> = ranges()
+            .flatten()
+            .filter(|&c| negative[c] == odd_is_negative)
+            .collect();
+        let (odd_word, rest_word) = if odd_is_negative {
+            (neg, pos)
+        } else {
+            (pos, neg)
+        };
+        let at = blocks
+            .iter()
+            .find(|b| b.0 == e && b.2.contains(&odd[0]))
+            .map_or(FileLocation::Whole, |b| b.1);
+        let names = crate::mesh::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
+        return Err((
+            at,
+            format!(
+                "{} of the {n_all} {kind} of {entity_kind} {e} {} inverted: {names} {} ordered \
+                 {odd_word}, the others {rest_word} (a tangled mesh, e.g. a node moved past its \
+                 neighbours). The cells of one {entity_kind} must all have the same \
+                 orientation: {pos} is used as is, {neg} throughout is reoriented",
+                odd.len(),
+                if odd.len() == 1 { "is" } else { "are" },
+                if odd.len() == 1 { "is" } else { "are" },
+            ),
+        ));
+    }
+    if !flipped.is_empty() {
+        let list: Vec<String> = flipped
+            .iter()
+            .map(|(e, n)| format!("{entity_kind} {e} ({n} {kind})"))
+            .collect();
+        notes.push(format!(
+            "the {kind} of {} are all ordered {neg}: they were reoriented ({pos}) by swapping \
+             their last two vertices",
+            list.join(", ")
+        ));
+    }
+    Ok(())
 }
 
 // ---------------------------------------------------------------------------------------

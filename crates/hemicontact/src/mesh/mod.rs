@@ -13,7 +13,38 @@
 //! Boundary parts carry names (`bottom`, `top`, `left`, `right` for generated rectangles,
 //! Gmsh physical-group names for read meshes) which a scenario maps to Γ_D, Γ_N and Γ_C.
 //! A mesh is validated on construction ([`Mesh::try_new`]) and immutable afterwards: every
-//! cell is positively oriented and non-degenerate, and every boundary facet carries a part.
+//! cell is positively oriented and non-degenerate, every boundary facet carries a part, and
+//! the cells cover the domain once.
+//!
+//! # The cells cover the domain once
+//!
+//! Cells that are each positively oriented may still overlap: a mesh folded over itself (a
+//! node moved past its neighbour, the cells around it reoriented by hand or by a tool) has
+//! interior facets with both of their cells on the same side. Such a mesh is caught by the
+//! divergence theorem applied to the position field `x` (`div x = d`):
+//!
+//! ```text
+//! Σ_T |T|  =  |Ω|  =  (1/d) ∮_∂Ω x·n dS  =  (1/d) Σ_F (x_F − o)·n_F |F|
+//! ```
+//!
+//! over the boundary facets F with their outward normals n_F (away from the opposite vertex
+//! of their cell), x_F any vertex of F and o the centre of the bounding box (the identity
+//! holds for any o; the centre keeps the terms small). For a mesh whose cells tile the
+//! domain the two sides are equal up to round-off, as the contributions of each interior
+//! facet cancel; each interior facet whose two cells lie on the same side adds
+//! `(2/d) (x_F − o)·n_F |F|` instead, and a folded region R changes the cell sum by `2 |R|`.
+//!
+//! Tolerance: each term is a determinant of coordinate differences (a 2 × 2 or 3 × 3
+//! determinant for a cell, a cross product dotted with `x_F − o` for a facet). Standard
+//! floating-point error analysis bounds its rounding error by a few (at most 4d) units of
+//! round-off ε times its *scale*: `h_T^d` for a cell of diameter h_T, `|x_F − o| h_F^{d−1}`
+//! for a facet (h_F its longest edge). Both sums are compensated (Neumaier), so summation
+//! adds only ε relative. The mesh is accepted when
+//! `|Σ_T |T| − (1/d) Σ_F (x_F − o)·n_F |F|| ≤ 8d ε (Σ_T h_T^d + Σ_F |x_F − o| h_F^{d−1})`,
+//! twice the rounding bound; since `h_T^d > |T|`, this is at least `8d ε |Ω|`. A fold is
+//! missed only when `2 |R|` is below that tolerance, about `8d ε N h^d` for N cells of size h:
+//! a region of the order of the round-off of the whole domain's measure. (Folds with cells
+//! of both orientations, the usual tangle, are refused before, as inverted cells.)
 
 pub mod generate;
 pub mod gmsh;
@@ -36,6 +67,46 @@ pub struct Mesh {
 /// Relative tolerance below which a cell counts as degenerate: `|T| ≤ tol · h_T^d`.
 pub(crate) const DEGENERATE_TOL: f64 = 1e-12;
 
+/// Cells named in one error message at most (then "and N more").
+const LISTED: usize = 10;
+
+/// Names of at most [`LISTED`] cells, then how many more: "cell 3, cell 7 and 2 more".
+pub(crate) fn list_cells(cells: &[usize], name: &dyn Fn(usize) -> String) -> String {
+    let mut out: Vec<String> = cells.iter().take(LISTED).map(|&c| name(c)).collect();
+    if cells.len() > LISTED {
+        out.push(format!("{} more", cells.len() - LISTED));
+    }
+    match out.len() {
+        0 => String::new(),
+        1 => out.remove(0),
+        n => format!("{} and {}", out[..n - 1].join(", "), out[n - 1]),
+    }
+}
+
+/// Compensated (Neumaier) sum: the rounding error of the sum is ε relative to its value
+/// plus ε² relative to the sum of absolute values, whatever the number of terms.
+#[derive(Clone, Copy, Default)]
+struct CompensatedSum {
+    sum: f64,
+    carry: f64,
+}
+
+impl CompensatedSum {
+    fn add(&mut self, x: f64) {
+        let t = self.sum + x;
+        if self.sum.abs() >= x.abs() {
+            self.carry += (self.sum - t) + x;
+        } else {
+            self.carry += (x - t) + self.sum;
+        }
+        self.sum = t;
+    }
+
+    fn value(self) -> f64 {
+        self.sum + self.carry
+    }
+}
+
 impl Mesh {
     /// Builds and validates a mesh.
     ///
@@ -44,8 +115,11 @@ impl Mesh {
     ///
     /// # Errors
     /// [`Error::Mesh`] if the dimension is not 2 or 3, array lengths do not match, a vertex
-    /// index is out of range, a coordinate is not finite, a cell is inverted or degenerate,
-    /// a tagged facet is not on the boundary, or a boundary facet has no part.
+    /// index is out of range, a coordinate is not finite, a cell is inverted (negatively
+    /// oriented: a clockwise triangle, a left-handed tetrahedron) or degenerate, a tagged
+    /// facet is not on the boundary, a boundary facet has no part, or the cells overlap (their
+    /// measures do not sum to the measure enclosed by the boundary; see the module
+    /// documentation).
     pub fn try_new(
         dim: usize,
         coords: Vec<f64>,
@@ -53,6 +127,22 @@ impl Mesh {
         facets: Vec<u32>,
         facet_part: Vec<u16>,
         part_names: Vec<String>,
+    ) -> Result<Self> {
+        Self::try_new_named(dim, coords, cells, facets, facet_part, part_names, &|c| {
+            format!("cell {c}")
+        })
+    }
+
+    /// [`Mesh::try_new`], naming cell `c` in error messages by `name(c)` (a file reader names
+    /// its elements by their tags).
+    pub(crate) fn try_new_named(
+        dim: usize,
+        coords: Vec<f64>,
+        cells: Vec<u32>,
+        facets: Vec<u32>,
+        facet_part: Vec<u16>,
+        part_names: Vec<String>,
+        name: &dyn Fn(usize) -> String,
     ) -> Result<Self> {
         if dim != 2 && dim != 3 {
             return Err(Error::Mesh(format!(
@@ -115,12 +205,14 @@ impl Mesh {
             facet_cell: Vec::new(),
             part_names,
         };
-        mesh.check_cells()?;
+        mesh.check_cells(name)?;
         mesh.facet_cell = mesh.match_boundary_facets()?;
+        mesh.check_cover(name)?;
         Ok(mesh)
     }
 
-    fn check_cells(&self) -> Result<()> {
+    fn check_cells(&self, name: &dyn Fn(usize) -> String) -> Result<()> {
+        let mut inverted = Vec::new();
         for c in 0..self.n_cells() {
             let x = self.cell_coords(c);
             let m = simplex::signed_measure(self.dim, &x);
@@ -133,25 +225,146 @@ impl Mesh {
             }
             if !m.is_finite() || !h.is_finite() {
                 return Err(Error::Mesh(format!(
-                    "cell {c} (vertices {:?}) has a non-finite measure: coordinates too large",
+                    "{} (vertices {:?}) has a non-finite measure: coordinates too large",
+                    name(c),
                     self.cell(c)
                 )));
             }
             // (NaN measures were rejected just above.)
             if m.abs() <= DEGENERATE_TOL * h.powi(self.dim as i32) {
                 return Err(Error::Mesh(format!(
-                    "cell {c} (vertices {:?}) is degenerate: measure {m:e}",
+                    "{} (vertices {:?}) is degenerate: measure {m:e}",
+                    name(c),
                     self.cell(c)
                 )));
             }
             if m < 0.0 {
-                return Err(Error::Mesh(format!(
-                    "cell {c} (vertices {:?}) is inverted: signed measure {m:e}",
-                    self.cell(c)
-                )));
+                inverted.push(c);
             }
         }
+        if let Some(&first) = inverted.first() {
+            let (negative, positive) = if self.dim == 2 {
+                ("clockwise", "counterclockwise triangles")
+            } else {
+                ("left-handed", "right-handed tetrahedra")
+            };
+            return Err(Error::Mesh(format!(
+                "{} of {} cells are inverted ({negative}, negative signed measure): {} (the \
+                 first has vertices {:?} and signed measure {:e}); every cell must be positively \
+                 oriented ({positive})",
+                inverted.len(),
+                self.n_cells(),
+                list_cells(&inverted, name),
+                self.cell(first),
+                simplex::signed_measure(self.dim, &self.cell_coords(first))
+            )));
+        }
         Ok(())
+    }
+
+    /// Checks that the cells cover the domain once: their measures sum to the measure
+    /// enclosed by the boundary (see the module documentation). Requires `facet_cell`.
+    fn check_cover(&self, name: &dyn Fn(usize) -> String) -> Result<()> {
+        let d = self.dim;
+        let (lo, hi) = self.bounding_box();
+        let o: [f64; 3] = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+        let mut cells = CompensatedSum::default();
+        let mut scale = CompensatedSum::default();
+        for c in 0..self.n_cells() {
+            let x = self.cell_coords(c);
+            cells.add(simplex::signed_measure(d, &x));
+            scale.add(diameter(d, &x[..=d]).powi(d as i32));
+        }
+        let mut enclosed = CompensatedSum::default();
+        for f in 0..self.n_facets() {
+            let (measure, n) = self.facet_measure_normal(f);
+            let v = self.facet(f);
+            let x0 = self.node(v[0] as usize);
+            let r: [f64; 3] = std::array::from_fn(|i| if i < d { x0[i] - o[i] } else { 0.0 });
+            let dot: f64 = (0..d).map(|i| r[i] * n[i]).sum();
+            enclosed.add(dot * measure / d as f64);
+            let mut p = [[0.0; 3]; 3];
+            for (a, &w) in v.iter().enumerate() {
+                p[a][..d].copy_from_slice(self.node(w as usize));
+            }
+            let len = (0..d).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
+            scale.add(len * diameter(d, &p[..d]).powi(d as i32 - 1));
+        }
+        let (sum, enclosed) = (cells.value(), enclosed.value());
+        let tol = 8.0 * d as f64 * f64::EPSILON * scale.value();
+        if (sum - enclosed).abs() <= tol {
+            return Ok(());
+        }
+        let folds = self.folded_facets();
+        let (what, measure) = if d == 2 {
+            ("areas", "an area")
+        } else {
+            ("volumes", "a volume")
+        };
+        let located = if folds.is_empty() {
+            String::new()
+        } else {
+            let pairs: Vec<String> = folds
+                .iter()
+                .take(LISTED)
+                .map(|&(a, b)| format!("{} and {}", name(a), name(b)))
+                .collect();
+            format!(
+                "; the cells on both sides of {} interior facet(s) lie on the same side of it \
+                 (they overlap): {}{}",
+                folds.len(),
+                pairs.join("; "),
+                if folds.len() > LISTED {
+                    format!(" and {} more", folds.len() - LISTED)
+                } else {
+                    String::new()
+                }
+            )
+        };
+        Err(Error::Mesh(format!(
+            "the cell {what} sum to {sum:e} but the boundary encloses {measure} of {enclosed:e} \
+             (divergence theorem, (1/d) ∮ x·n dS over the boundary facets; round-off allows a \
+             difference of {tol:.1e}): cells overlap or the mesh is folded over \
+             itself{located}; every point of the domain must be covered by exactly one cell"
+        )))
+    }
+
+    /// Interior facets whose two cells lie on the same side of them (a fold), as pairs of
+    /// cells.
+    fn folded_facets(&self) -> Vec<(usize, usize)> {
+        let d = self.dim;
+        let mut all: Vec<([u32; 3], u32)> = Vec::with_capacity(self.n_cells() * (d + 1));
+        for c in 0..self.n_cells() {
+            for skip in 0..=d {
+                all.push((facet_key(self.cell(c), skip), c as u32));
+            }
+        }
+        all.sort_unstable();
+        // The side of the facet `key` (vertices in sorted order) that vertex `v` is on: the
+        // sign of the simplex (facet, v).
+        let side = |key: &[u32; 3], v: u32| -> bool {
+            let mut x = [[0.0; 3]; 4];
+            for (a, &w) in key[..d].iter().enumerate() {
+                x[a][..d].copy_from_slice(self.node(w as usize));
+            }
+            x[d][..d].copy_from_slice(self.node(v as usize));
+            simplex::signed_measure(d, &x) > 0.0
+        };
+        let opposite = |c: u32, key: &[u32; 3]| -> u32 {
+            self.cell(c as usize)
+                .iter()
+                .copied()
+                .find(|v| !key[..d].contains(v))
+                .unwrap_or(0)
+        };
+        all.windows(2)
+            .filter(|w| w[0].0 == w[1].0)
+            .filter(|w| {
+                let key = &w[0].0;
+                side(key, opposite(w[0].1, key)) == side(key, opposite(w[1].1, key))
+            })
+            .map(|w| (w[0].1 as usize, w[1].1 as usize))
+            .collect()
     }
 
     /// Finds the boundary facets (facets of exactly one cell) and matches them against the
@@ -427,6 +640,18 @@ impl Mesh {
         let adj = pairs.into_iter().map(|(_, b)| b).collect();
         (ptr, adj)
     }
+}
+
+/// Largest distance between two of the points `x` (the first d coordinates).
+fn diameter(d: usize, x: &[[f64; 3]]) -> f64 {
+    let mut h: f64 = 0.0;
+    for a in 0..x.len() {
+        for b in 0..a {
+            let e: f64 = (0..d).map(|i| (x[a][i] - x[b][i]).powi(2)).sum();
+            h = h.max(e);
+        }
+    }
+    h.sqrt()
 }
 
 fn sorted_key(v: &[u32]) -> [u32; 3] {
