@@ -14,9 +14,10 @@
 //!   them while writing) leaves the complete old set or the complete new set; after
 //!   `SIGINT` the message says which; the next run cleans up every temporary and lock.
 //! - Temporaries and a lock file left by dead processes are removed by the next run.
-//! - A write that fails (file size limit exceeded while writing `solution.vtu`, as on a full
-//!   disk) exits with 1 naming the file and leaves the old set, no temporary and no lock; a
-//!   file in the way of the folder is refused before solving, the file untouched.
+//! - A write that fails after most of the new set was written (a file size limit exceeded by
+//!   the last file of `paper`, as on a full disk) exits with 1 naming the file and leaves the
+//!   old set, no temporary and no lock; a file in the way of the folder is refused before
+//!   solving, the file untouched.
 //! - Two runs into one folder at the same time: one fails at once naming the folder and the
 //!   other process, the other completes.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -286,25 +287,33 @@ fn stale_temporaries_and_lock_of_dead_processes_are_removed() {
 
 #[test]
 fn failing_write_keeps_the_old_set_and_leaves_nothing_behind() {
-    let w = Work::new(32);
-    assert_success(&w.run("old"));
+    let w = Work::new(16);
+    let paper = |n: &str| {
+        let mut c = bin();
+        c.current_dir(&w.dir)
+            .args(["paper", "--n", n, "--out", "out"]);
+        c
+    };
+    assert_success(&paper("8").output().unwrap());
     let old = snapshot(&w.out());
-    // The new solution.vtu (33² points) is far larger than 16 KiB: its write fails with
-    // "file too large" as it would on a full disk (SIGXFSZ ignored, so write returns the
-    // error instead of killing the process).
-    let out = Command::new("sh")
+    // The paper example at n = 10 writes its two cases (every file below 110 kB), then
+    // the side-by-side comparison.png (about 140 kB). A file size limit of 120 kB makes that
+    // last write fail with "file too large", as a full disk would, after most of the new
+    // set was written (SIGXFSZ ignored, so the write returns the error instead of killing
+    // the process).
+    let out = Command::new("bash")
         .current_dir(&w.dir)
         .arg("-c")
         .arg(format!(
-            "trap '' XFSZ; ulimit -f 32; exec '{}' solve new.toml --out out",
+            "trap '' XFSZ; ulimit -f 120; exec '{}' paper --n 10 --out out",
             env!("CARGO_BIN_EXE_hemicontact")
         ))
         .output()
         .unwrap();
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("solution.vtu"), "{stderr}");
-    assert_eq!(snapshot(&w.out()), old);
+    assert!(stderr.contains("comparison.png"), "{stderr}");
+    assert!(snapshot(&w.out()) == old, "the old set changed:\n{stderr}");
     assert_eq!(w.beside(), ["out"]);
 }
 
