@@ -1,6 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Python packages the test suite uses to read outputs with real readers
-# (meshio for .vtu). Tests that need them skip with a message when they are missing.
+# (meshio for .vtu) into a virtual environment, and prints its interpreter.
+#
+# Usage: scripts/install-test-deps.sh [VENV]   (default: target/test-venv)
+# Then: export HEMICONTACT_PYTHON="$PWD/VENV/bin/python" before `cargo test`.
+# Fails (non-zero exit) if the environment cannot be created or the install fails.
 set -euo pipefail
-python3 -c "import meshio" 2>/dev/null && exit 0
-python3 -m pip install --quiet --disable-pip-version-check meshio
+venv="${1:-target/test-venv}"
+python3 -m venv "$venv"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check meshio
+"$venv/bin/python" -c "import meshio, numpy"
+echo "$venv/bin/python"

@@ -3,7 +3,9 @@
 //! Commands: `check FILE`, `solve FILE [--out DIR]`, `paper [--n N] [--out DIR]`,
 //! `bench [--n LIST]`, `convergence FILE`. Exit codes: 0 success, 1 invalid input or failed
 //! solve, 2 usage error, 3 solve did not converge (results are still written, marked as not
-//! converged), 130 interrupted by Ctrl-C (no partial files are left).
+//! converged), 130 interrupted by Ctrl-C. Each run writes its output folder as one result
+//! set ([`hemicontact::io::result_set`]): the folder holds the previous complete set or the
+//! new complete set, never a mix; a second run into a folder being written fails at once.
 
 mod bench;
 mod study;
@@ -20,6 +22,7 @@ macro_rules! say {
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
+use hemicontact::io::result_set::ResultSet;
 use hemicontact::io::summary::{write_results, Summary};
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
@@ -58,14 +61,15 @@ enum Command {
     /// Solve the paper's example (SPEC §5) on an n × n mesh, with C_κ = 10 000 and C_κ = 0;
     /// write each case's results and figures into DIR/locking and DIR/no-locking and the
     /// side-by-side figure DIR/comparison.{png,svg}. With --study, run the paper's
-    /// convergence study for both cases instead (results in DIR/study).
+    /// convergence study for both cases instead (results in DIR).
     Paper {
         /// Squares per side (even).
         #[arg(long, default_value_t = 128)]
         n: usize,
-        /// Output folder.
-        #[arg(long, default_value = "out/paper")]
-        out: PathBuf,
+        /// Output folder, replaced as a whole by this run's results (default `out/paper`;
+        /// with --study `out/paper-study`).
+        #[arg(long)]
+        out: Option<PathBuf>,
         /// Run the convergence study (levels and reference below).
         #[arg(long)]
         study: bool,
@@ -144,40 +148,96 @@ pub fn parse_scenario(text: &str, source: &str) -> Result<Scenario> {
     Ok(apply_memory_flag(Scenario::from_str(text, source)?))
 }
 
-/// Output folders of this run: on Ctrl-C their temporary files are removed.
-static OUTPUT_DIRS: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+/// The result set this run is writing (one output folder per run), shared with the Ctrl-C
+/// handler: every write and the commit happen under this lock, so the handler sees the set
+/// either being written (and discards it) or in place.
+static OUTPUT: std::sync::Mutex<Output> = std::sync::Mutex::new(Output::None);
 
-/// Creates an output folder (failing before any solve if it cannot be written) and
-/// registers it for clean-up on interruption.
-pub fn prepare_output(dir: &Path) -> Result<()> {
-    hemicontact::io::atomic::prepare_dir(dir)?;
-    if let Ok(mut dirs) = OUTPUT_DIRS.lock() {
-        dirs.push(dir.to_path_buf());
-    }
+/// State of this run's output folder.
+enum Output {
+    /// No result set begun.
+    None,
+    /// A result set is being written into its staging folder.
+    Writing(ResultSet),
+    /// The result set is in place in this folder.
+    Done(PathBuf),
+}
+
+fn output() -> std::sync::MutexGuard<'static, Output> {
+    OUTPUT
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Starts this run's result set for the folder `dir` (failing before any solve if another
+/// run writes there or the folder cannot be written). Nothing in `dir` changes until
+/// [`commit_output`]; see [`hemicontact::io::result_set`].
+pub fn begin_output(dir: &Path) -> Result<()> {
+    let set = ResultSet::begin(dir)?;
+    *output() = Output::Writing(set);
     Ok(())
+}
+
+/// Runs `f` on this run's result set (begun by [`begin_output`]).
+pub fn with_output<T>(f: impl FnOnce(&mut ResultSet) -> Result<T>) -> Result<T> {
+    match &mut *output() {
+        Output::Writing(set) => f(set),
+        _ => anyhow::bail!("internal error: no result set is being written"),
+    }
+}
+
+/// Puts this run's result set in place as a unit. Returns the final paths of its files.
+pub fn commit_output() -> Result<Vec<PathBuf>> {
+    let mut state = output();
+    match std::mem::replace(&mut *state, Output::None) {
+        Output::Writing(set) => {
+            let dir = set.target().to_path_buf();
+            let files = set.commit()?;
+            *state = Output::Done(dir);
+            Ok(files)
+        }
+        other => {
+            *state = other;
+            anyhow::bail!("internal error: no result set is being written")
+        }
+    }
+}
+
+/// Discards this run's result set if it was not committed (after an error): the output
+/// folder keeps its previous content.
+fn discard_output() {
+    let mut state = output();
+    if matches!(*state, Output::Writing(_)) {
+        *state = Output::None;
+    }
 }
 
 /// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, the shell convention).
 const INTERRUPTED: i32 = 130;
 
-/// On Ctrl-C: remove this process's temporary files (every result is written to a temporary
-/// file and renamed, so no partial result exists under a final name) and exit with 130.
+/// On Ctrl-C: wait for a write or commit in progress to finish, discard a result set not
+/// yet in place (its staging folder and lock are removed, the output folder keeps its
+/// previous content), say which of the two happened, and exit with 130.
 fn install_interrupt_handler() {
     let _ = ctrlc::set_handler(|| {
-        let suffix = format!(".tmp-{}", std::process::id());
-        if let Ok(dirs) = OUTPUT_DIRS.lock() {
-            for dir in dirs.iter() {
-                let Ok(entries) = std::fs::read_dir(dir) else {
-                    continue;
-                };
-                for e in entries.flatten() {
-                    if e.file_name().to_string_lossy().ends_with(&suffix) {
-                        let _ = std::fs::remove_file(e.path());
-                    }
-                }
+        // Held until exit: no file is written after this point.
+        let mut state = output();
+        let message = match std::mem::replace(&mut *state, Output::None) {
+            Output::None => "interrupted before any result was written".to_string(),
+            Output::Writing(set) => {
+                let dir = set.target().display().to_string();
+                drop(set);
+                format!(
+                    "interrupted: {dir} was left as it was (its previous results, if any, \
+                     are intact); the unfinished new results were discarded"
+                )
             }
-        }
-        eprintln!("interrupted: no partial result files were left");
+            Output::Done(dir) => format!(
+                "interrupted after the results were complete: {} holds the new results",
+                dir.display()
+            ),
+        };
+        eprintln!("{message}");
         std::process::exit(INTERRUPTED);
     });
 }
@@ -197,9 +257,10 @@ fn main() -> ExitCode {
             reference,
         } => {
             if study {
-                paper_study(&levels, reference, &out.join("study"))
+                let out = out.unwrap_or_else(|| PathBuf::from("out/paper-study"));
+                paper_study(&levels, reference, &out)
             } else {
-                paper(n, &out)
+                paper(n, &out.unwrap_or_else(|| PathBuf::from("out/paper")))
             }
         }
         Command::Convergence {
@@ -222,14 +283,28 @@ fn main() -> ExitCode {
         }
         .map(|_| Outcome::Done),
     };
+    discard_output();
     match result {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
         Err(e) => {
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", error_chain(&e));
             ExitCode::from(1)
         }
     }
+}
+
+/// The error and its causes, `: `-separated, without repeating a cause that the message
+/// before it already ends with (an I/O error's message includes its source).
+fn error_chain(e: &anyhow::Error) -> String {
+    let mut message = e.to_string();
+    for cause in e.chain().skip(1) {
+        let cause = cause.to_string();
+        if !message.ends_with(&cause) {
+            message = format!("{message}: {cause}");
+        }
+    }
+    message
 }
 
 fn check(file: &Path) -> Result<()> {
@@ -377,15 +452,18 @@ fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
             Path::new("out").join(stem)
         }
     };
+    // Fail before the solve if the results could not be written.
+    begin_output(&dir)?;
     let case = run_and_write(
         problem,
         &scenario,
         notes,
-        &dir,
+        "",
         settings.vtu,
         settings.summary,
         "scenario",
     )?;
+    print_written(&commit_output()?);
     let cases = [case];
     print_table(&cases);
     Ok(outcome(&cases))
@@ -399,17 +477,24 @@ struct Case {
     summary: Summary,
 }
 
+/// Prints the files of a result set once it is in place.
+fn print_written(files: &[PathBuf]) {
+    for p in files {
+        say!("  wrote {}", p.display());
+    }
+}
+
+/// Solves `problem` and writes its results into the sub-folder `folder` (`""`: the root)
+/// of this run's result set.
 fn run_and_write(
     problem: Problem,
     scenario: &Scenario,
     notes: Vec<String>,
-    dir: &Path,
+    folder: &str,
     vtu: bool,
     json: bool,
     label: &str,
 ) -> Result<Case> {
-    // Fail before the solve if the results could not be written.
-    prepare_output(dir)?;
     let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
     let mut summary = Summary::new(
         &problem,
@@ -418,18 +503,27 @@ fn run_and_write(
         &scenario.source,
     );
     summary.notes = notes;
-    let mut written = write_results(dir, &problem, &solution, &summary, vtu, json)?;
-    {
-        let title = scenario
-            .file
-            .title
-            .clone()
-            .unwrap_or_else(|| label.to_string());
-        written.extend(deformed::figure(&problem, &solution, &title).write(dir, "deformed")?);
-    }
-    for p in &written {
-        say!("  wrote {}", p.display());
-    }
+    let title = scenario
+        .file
+        .title
+        .clone()
+        .unwrap_or_else(|| label.to_string());
+    let figure = deformed::figure(&problem, &solution, &title);
+    let extra = [
+        ("deformed.svg", figure.to_svg().into_bytes()),
+        ("deformed.png", figure.to_png()?),
+    ];
+    with_output(|set| {
+        Ok(write_results(
+            set,
+            folder,
+            &problem,
+            &solution,
+            json.then_some(&summary),
+            vtu,
+            &extra,
+        )?)
+    })?;
     let r = &solution.report;
     if !r.converged {
         eprintln!(
@@ -534,6 +628,8 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         n * n,
         16.0 / (2.0 * (n * n) as f64)
     );
+    // Fail before the solves if the results could not be written.
+    begin_output(out)?;
     let mut cases = Vec::new();
     for (label, c_kappa, sub) in [
         ("C_kappa = 10000", 10000.0, "locking"),
@@ -549,7 +645,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
             problem,
             &scenario,
             Vec::new(),
-            &out.join(sub),
+            sub,
             true,
             true,
             label,
@@ -559,9 +655,14 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         .iter()
         .map(|c| (&c.problem, &c.solution, format!("{}, n = {n}", c.label)))
         .collect();
-    for p in deformed::side_by_side(&panels).write(out, "comparison")? {
-        say!("  wrote {}", p.display());
-    }
+    let comparison = deformed::side_by_side(&panels);
+    let (svg, png) = (comparison.to_svg(), comparison.to_png()?);
+    with_output(|set| {
+        set.write("comparison.svg", svg.as_bytes())?;
+        set.write("comparison.png", &png)?;
+        Ok(())
+    })?;
+    print_written(&commit_output()?);
     print_table(&cases);
     Ok(outcome(&cases))
 }

@@ -2,7 +2,7 @@
 //! progress bar (drawn only on a terminal) and their outputs.
 
 use anyhow::Result;
-use hemicontact::io::atomic::write;
+use hemicontact::io::summary::SUMMARY_FILE;
 use hemicontact::plot::convergence;
 use hemicontact::scenario::Scenario;
 use hemicontact::study::{self, Progress, Study, StudySettings};
@@ -18,7 +18,8 @@ pub fn run(
     out: &Path,
     title: &str,
 ) -> Result<Vec<Study>> {
-    crate::prepare_output(out)?;
+    // Fail before the solves if the results could not be written.
+    crate::begin_output(out)?;
     let solves = cases.len() * (settings.levels.len() + 1);
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(solves as u64)
@@ -48,21 +49,31 @@ pub fn run(
     bar.finish_and_clear();
     let total = started.elapsed().as_secs_f64();
     let table = study::markdown(&studies);
-    write(&out.join("table.md"), table.as_bytes())?;
-    write(&out.join("table.csv"), study::csv(&studies).as_bytes())?;
-    convergence::figure(&studies, title).write(out, "convergence")?;
-    let summary = serde_json::json!({
-        "version": env!("CARGO_PKG_VERSION"),
-        "levels": settings.levels,
-        "reference": settings.reference,
-        "nested_iteration": settings.nested_iteration,
-        "total_seconds": total,
-        "studies": studies,
-    });
-    write(
-        &out.join("summary.json"),
-        serde_json::to_string_pretty(&summary)?.as_bytes(),
-    )?;
+    let figure = convergence::figure(&studies, title);
+    let (svg, png) = (figure.to_svg(), figure.to_png()?);
+    crate::with_output(|set| {
+        set.write("table.md", table.as_bytes())?;
+        set.write("table.csv", study::csv(&studies).as_bytes())?;
+        set.write("convergence.svg", svg.as_bytes())?;
+        set.write("convergence.png", &png)?;
+        let mut files = set.files_in("");
+        files.push(SUMMARY_FILE.to_string());
+        let summary = serde_json::json!({
+            "version": env!("CARGO_PKG_VERSION"),
+            "levels": settings.levels,
+            "reference": settings.reference,
+            "nested_iteration": settings.nested_iteration,
+            "total_seconds": total,
+            "studies": studies,
+            "files": files,
+        });
+        set.write(
+            SUMMARY_FILE,
+            serde_json::to_string_pretty(&summary)?.as_bytes(),
+        )?;
+        Ok(())
+    })?;
+    crate::commit_output()?;
     crate::say!("{table}");
     crate::say!("total {total:.2} s; wrote {}/{{table.md, table.csv, convergence.png, convergence.svg, summary.json}}", out.display());
     Ok(studies)

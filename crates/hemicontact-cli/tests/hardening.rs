@@ -1,5 +1,6 @@
 //! Hardening of the command-line program: oversized requests fail fast with a memory
-//! estimate; Ctrl-C leaves no partial files and exits with 130.
+//! estimate; Ctrl-C leaves no partial files and exits with 130; a device as scenario,
+//! contradictory boundary conditions and a study without load are refused with a message.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::process::Command;
@@ -32,15 +33,16 @@ fn oversized_mesh_fails_fast_with_memory_estimate() {
     assert!(elapsed < Duration::from_secs(2), "took {elapsed:?}");
 }
 
-/// Ctrl-C during a solve: exit code 130 and no file, partial or temporary, in the output
-/// folder.
+/// Ctrl-C during a solve: exit code 130, a message saying the folder was left as it was,
+/// and nothing in the work folder: no output folder, no temporary, no lock.
 #[test]
 fn interrupt_exits_130_and_leaves_no_partial_files() {
     let dir = tempfile::tempdir().unwrap();
     let out_dir = dir.path().join("out");
-    let mut child = bin()
+    let child = bin()
         .args(["paper", "--n", "512", "--out"])
         .arg(&out_dir)
+        .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
     std::thread::sleep(Duration::from_millis(1500));
@@ -49,15 +51,80 @@ fn interrupt_exits_130_and_leaves_no_partial_files() {
         .status()
         .unwrap();
     assert!(status.success());
-    let code = child.wait().unwrap().code();
-    assert_eq!(code, Some(130));
-    let mut files = Vec::new();
-    for case in ["locking", "no-locking"] {
-        if let Ok(entries) = std::fs::read_dir(out_dir.join(case)) {
-            files.extend(entries.flatten().map(|e| e.path()));
-        }
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("was left as it was"), "{stderr}");
+    let left: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name())
+        .collect();
+    assert!(left.is_empty(), "left behind: {left:?}");
+}
+
+/// A device that never ends (`/dev/zero`) is refused at once as a scenario: it is not a
+/// regular file.
+#[test]
+fn check_dev_zero_is_refused_at_once() {
+    let start = Instant::now();
+    let out = bin().args(["check", "/dev/zero"]).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("/dev/zero") && stderr.contains("not a regular file"),
+        "{stderr}"
+    );
+    assert!(start.elapsed() < Duration::from_secs(2));
+}
+
+/// Contradictory Dirichlet values at the corner shared by two parts: exit 1, naming both
+/// entries.
+#[test]
+fn contradictory_dirichlet_entries_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("corner.toml");
+    std::fs::write(
+        &file,
+        "[mesh]\nkind = \"rectangle\"\nsize = [1.0, 1.0]\nn = [4, 4]\n\
+         [material]\nyoung = 1000.0\npoisson = 0.3\n\
+         [[dirichlet]]\npart = \"bottom\"\n\
+         [[dirichlet]]\npart = \"left\"\ncomponents = [\"x\"]\nvalue = [0.1, 0.0]\n",
+    )
+    .unwrap();
+    let out = bin().arg("check").arg(&file).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    for part in ["corner.toml", "dirichlet[1].value", "dirichlet[0]", "u_x"] {
+        assert!(stderr.contains(part), "`{part}` missing: {stderr}");
     }
-    assert!(files.is_empty(), "files left behind: {files:?}");
+}
+
+/// A convergence study of a scenario without load has nothing to measure (the relative
+/// error is 0/0): exit 1 with that message, no NaN table, no output folder.
+#[test]
+fn convergence_without_load_has_nothing_to_measure() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("zero.toml");
+    std::fs::write(
+        &file,
+        "[mesh]\nkind = \"rectangle\"\nsize = [1.0, 1.0]\nn = [4, 4]\n\
+         [material]\nyoung = 1000.0\npoisson = 0.3\n[[dirichlet]]\npart = \"bottom\"\n",
+    )
+    .unwrap();
+    let out = bin()
+        .current_dir(dir.path())
+        .arg("convergence")
+        .arg(&file)
+        .args(["--levels", "2,4", "--reference", "8", "--out", "conv"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+    assert!(stderr.contains("nothing to measure"), "{stderr}");
+    assert!(!stdout.contains("NaN"), "{stdout}");
+    assert!(!dir.path().join("conv").exists());
 }
 
 /// A body whose rigid motion is not blocked (rollers in x only: it can translate in y) has

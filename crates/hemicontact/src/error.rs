@@ -61,6 +61,23 @@ pub enum Error {
     /// Not enough memory for a requested allocation.
     #[error("out of memory: {0}")]
     OutOfMemory(String),
+    /// Another process is writing results into the same output folder (it holds the
+    /// folder's lock, see [`crate::io::result_set`]).
+    #[error(
+        "{}: another process{} is writing results into this folder (lock file {}); wait for \
+         it to finish or choose another output folder",
+        .dir.display(),
+        .pid.map(|p| format!(" (PID {p})")).unwrap_or_default(),
+        .lock.display()
+    )]
+    OutputBusy {
+        /// The output folder.
+        dir: PathBuf,
+        /// The id of the process holding the lock, if it could be read.
+        pid: Option<u32>,
+        /// The lock file.
+        lock: PathBuf,
+    },
     /// An input/output error on a file.
     #[error("{path}: {source}")]
     Io {

@@ -33,7 +33,8 @@ pub struct Level {
     pub dofs: usize,
     /// Relative energy-norm error against the reference.
     pub error: f64,
-    /// Observed order in h (area) from the previous level (None for the first).
+    /// Observed order in h (area) from the previous level (None for the first, and where
+    /// an error is zero).
     pub order_area: Option<f64>,
     /// Observed order in the edge length from the previous level.
     pub order_edge: Option<f64>,
@@ -106,15 +107,19 @@ impl Default for StudySettings {
     }
 }
 
-fn order(e0: f64, e1: f64, h0: f64, h1: f64) -> f64 {
-    (e0 / e1).ln() / (h0 / h1).ln()
+/// Observed order `ln(e₀/e₁) / ln(h₀/h₁)` between two levels; `None` where it is undefined
+/// (an error of zero: the level is exact to rounding, there is no rate to observe).
+fn order(e0: f64, e1: f64, h0: f64, h1: f64) -> Option<f64> {
+    let p = (e0 / e1).ln() / (h0 / h1).ln();
+    (e0 > 0.0 && e1 > 0.0 && p.is_finite()).then_some(p)
 }
 
 /// Runs the study of `scenario` (a generated rectangle) under the label `label`.
 ///
 /// # Errors
-/// [`Error::Scenario`] if the scenario is not a generated rectangle or a level is invalid;
-/// any error of the solves.
+/// [`Error::Scenario`] if the scenario is not a generated rectangle, a level is invalid, or
+/// the reference solution is zero (no load: the relative error is undefined, nothing to
+/// measure); any error of the solves.
 pub fn run(
     scenario: &Scenario,
     label: &str,
@@ -158,6 +163,18 @@ pub fn run(
         .elasticity
         .small_strain_hooke(reference.mesh.dim());
     let reference_norm = energy_norm(&reference.mesh, &hooke, &ref_sol.u);
+    if !(reference_norm > 0.0 && reference_norm.is_finite()) {
+        return Err(Error::Scenario {
+            file: scenario.source.clone(),
+            field: "loads".into(),
+            value: format!("‖u_ref‖_E = {reference_norm} (the reference solution)"),
+            allowed: "a scenario that deforms the body (a load, a body force or a non-zero \
+                      prescribed displacement): with a zero reference solution the relative \
+                      error ‖u_ref − u^h‖_E / ‖u_ref‖_E and its orders are undefined, so there \
+                      is nothing to measure"
+                .into(),
+        });
+    }
     let mut levels: Vec<Level> = Vec::new();
     let mut previous: Option<(Problem, Solution)> = None;
     for &n in &settings.levels {
@@ -185,8 +202,8 @@ pub fn run(
         let h_area = problem.mesh.measure() / problem.mesh.n_cells() as f64;
         let (order_area, order_edge) = match levels.last() {
             Some(p) => (
-                Some(order(p.error, error, p.h_area, h_area)),
-                Some(order(p.error, error, p.h_edge, h_edge)),
+                order(p.error, error, p.h_area, h_area),
+                order(p.error, error, p.h_edge, h_edge),
             ),
             None => (None, None),
         };

@@ -9,6 +9,7 @@
 //!    (2 % on errors, ±0.15 on orders). The table is a regression guard, regenerated only
 //!    with `HEMICONTACT_BLESS=1` in a commit that says why.
 //! 3. Nested iteration does not change the results beyond the solver tolerance.
+//! 4. A scenario without load (zero reference solution) is refused: nothing to measure.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
@@ -124,5 +125,34 @@ fn nested_iteration_does_not_change_the_result() {
             x.error,
             y.error
         );
+    }
+}
+
+/// A scenario without load has the zero solution at every level: the relative error
+/// `‖u_ref − u^h‖_E / ‖u_ref‖_E` is 0/0, so the study is refused instead of reporting NaN.
+#[test]
+fn zero_load_has_nothing_to_measure() {
+    let text = r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [4, 4]
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "bottom"
+"#;
+    let scenario = Scenario::from_str(text, "zero-load.toml").unwrap();
+    let settings = StudySettings {
+        levels: vec![2, 4],
+        reference: 8,
+        nested_iteration: true,
+    };
+    let e = run(&scenario, "zero load", &settings, &mut |_| {})
+        .unwrap_err()
+        .to_string();
+    for part in ["zero-load.toml", "loads", "nothing to measure"] {
+        assert!(e.contains(part), "`{part}` missing from: {e}");
     }
 }

@@ -1,5 +1,7 @@
-//! Output files: VTK UnstructuredGrid (`.vtu`), JSON summaries, atomic file writing.
+//! Output files: VTK UnstructuredGrid (`.vtu`), JSON summaries, atomic file writing, and
+//! result sets (the files of one run, put in place as a unit).
 
 pub mod atomic;
+pub mod result_set;
 pub mod summary;
 pub mod vtu;

@@ -1,5 +1,7 @@
-//! The JSON summary of a solve, and the writer of all result files of a solution.
+//! The JSON summary of a solve, and the writer of all result files of a solution into a
+//! [`ResultSet`].
 
+use super::result_set::ResultSet;
 use super::vtu::{pad_vector, VtuWriter};
 use crate::assembly::BulkAssembler;
 use crate::error::Result;
@@ -8,7 +10,7 @@ use crate::problem::Problem;
 use crate::solver::{Solution, SolveReport};
 use crate::tensor::von_mises;
 use serde::Serialize;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Sizes of the discrete problem.
 #[derive(Clone, Debug, Serialize)]
@@ -70,6 +72,10 @@ pub struct Summary {
     pub notes: Vec<String>,
     /// The solver report (iterations, residuals, timings).
     pub report: SolveReport,
+    /// The names of the files of this summary's result folder, `summary.json` included:
+    /// the folder holds exactly these (filled in by [`write_results`]; empty from
+    /// [`Summary::new`]).
+    pub files: Vec<String>,
 }
 
 impl Summary {
@@ -131,43 +137,65 @@ impl Summary {
             uniqueness: crate::solver::uniqueness::evaluate(problem),
             notes: Vec::new(),
             report: solution.report.clone(),
+            files: Vec::new(),
         }
     }
 }
 
-/// Writes `solution.vtu` (if `vtu`), `contact.csv` (if the problem has contact) and
-/// `summary.json` (if `json`) into `dir`, which must exist. Returns the paths written.
+/// Writes the result files of a solution into the sub-folder `folder` of the result set
+/// `set` (`""`: its root): `solution.vtu` (if `vtu`), `contact.csv` (if the problem has
+/// contact), the `extra` files (name within the folder, content), and last, if `summary` is
+/// given, `summary.json`, whose `files` lists every file of the folder, itself included.
+/// Returns the final paths written.
 ///
 /// # Errors
 /// [`crate::Error::Io`] if a file cannot be written.
 pub fn write_results(
-    dir: &Path,
+    set: &mut ResultSet,
+    folder: &str,
     problem: &Problem,
     solution: &Solution,
-    summary: &Summary,
+    summary: Option<&Summary>,
     vtu: bool,
-    json: bool,
+    extra: &[(&str, Vec<u8>)],
 ) -> Result<Vec<PathBuf>> {
+    let name = |file: &str| {
+        if folder.is_empty() {
+            file.to_string()
+        } else {
+            format!("{}/{file}", folder.trim_end_matches('/'))
+        }
+    };
     let mut written = Vec::new();
     if vtu {
-        let path = dir.join("solution.vtu");
-        solution_vtu(problem, solution).write(&path)?;
-        written.push(path);
+        written.push(set.write(
+            &name("solution.vtu"),
+            &solution_vtu(problem, solution).to_bytes(),
+        )?);
     }
     if !problem.contact.is_empty() {
-        let path = dir.join("contact.csv");
-        super::atomic::write(&path, contact_csv(problem, solution).as_bytes())?;
-        written.push(path);
+        written.push(set.write(
+            &name("contact.csv"),
+            contact_csv(problem, solution).as_bytes(),
+        )?);
     }
-    if json {
-        let path = dir.join("summary.json");
-        let text = serde_json::to_string_pretty(summary)
+    for (file, bytes) in extra {
+        written.push(set.write(&name(file), bytes)?);
+    }
+    if let Some(summary) = summary {
+        let mut summary = summary.clone();
+        summary.files = set.files_in(folder);
+        summary.files.push(SUMMARY_FILE.to_string());
+        summary.files.dedup();
+        let text = serde_json::to_string_pretty(&summary)
             .map_err(|e| crate::Error::Breakdown(format!("summary serialization: {e}")))?;
-        super::atomic::write(&path, text.as_bytes())?;
-        written.push(path);
+        written.push(set.write(&name(SUMMARY_FILE), text.as_bytes())?);
     }
     Ok(written)
 }
+
+/// The name of the summary file of a result folder.
+pub const SUMMARY_FILE: &str = "summary.json";
 
 /// The `.vtu` content of a solution: displacement, reactions and contact data at points;
 /// strain, stress, von Mises stress, tr ε and locking activity per cell.

@@ -20,6 +20,10 @@ use schema::{
 };
 use std::path::{Path, PathBuf};
 
+/// Largest scenario file [`Scenario::from_file`] reads (bytes): 1 MiB, far above any
+/// hand-written scenario (the examples are below 2 kB); meshes come from separate files.
+pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
+
 /// A parsed scenario file (not yet validated).
 #[derive(Clone, Debug)]
 pub struct Scenario {
@@ -49,13 +53,46 @@ pub struct OutputSettings {
 }
 
 impl Scenario {
-    /// Reads and parses a scenario file.
+    /// Reads and parses a scenario file: a regular file of at most
+    /// [`MAX_SCENARIO_BYTES`] bytes, UTF-8 encoded.
     ///
     /// # Errors
-    /// [`Error::Io`] if the file cannot be read, [`Error::Parse`] on a syntax error, an
-    /// unknown field or a wrongly typed value.
+    /// [`Error::Io`] if the file cannot be read, is not a regular file (a folder, a device
+    /// such as `/dev/zero`, a pipe: reading it could take without end) or is larger than
+    /// [`MAX_SCENARIO_BYTES`]; [`Error::Parse`] on a syntax error, an unknown field or a
+    /// wrongly typed value.
     pub fn from_file(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        use std::io::Read as _;
+        let refuse = |why: String| {
+            Error::io(
+                path,
+                std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+            )
+        };
+        let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+        if !meta.is_file() {
+            return Err(refuse(
+                "not a regular file (a scenario is a TOML text file)".into(),
+            ));
+        }
+        let too_large = |size: u64| {
+            refuse(format!(
+                "{size} bytes: larger than the {MAX_SCENARIO_BYTES} bytes allowed for a \
+                 scenario file (meshes belong in a separate .msh file)"
+            ))
+        };
+        if meta.len() > MAX_SCENARIO_BYTES {
+            return Err(too_large(meta.len()));
+        }
+        // The limit also holds if the file grows between the size check and the read.
+        let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+        let mut text = String::new();
+        file.take(MAX_SCENARIO_BYTES + 1)
+            .read_to_string(&mut text)
+            .map_err(|e| Error::io(path, e))?;
+        if text.len() as u64 > MAX_SCENARIO_BYTES {
+            return Err(too_large(text.len() as u64));
+        }
         let mut scenario = Self::from_str(&text, &path.display().to_string())?;
         scenario.dir = path.parent().map(Path::to_path_buf);
         Ok(scenario)
@@ -666,6 +703,86 @@ impl Scenario {
         Ok(out)
     }
 
+    /// Rejects boundary conditions that contradict each other, naming both entries:
+    ///
+    /// - two `[[dirichlet]]` entries that prescribe the same displacement component with
+    ///   different values at a common node (the same part, or two parts sharing nodes such as
+    ///   a corner): a node has one displacement. Equal values are consistent and accepted.
+    /// - a `[[loads.traction]]` with a non-zero component on a part where a `[[dirichlet]]`
+    ///   entry prescribes that component: the traction would do no work and vanish into the
+    ///   reaction. Tractions on the free components of a roller part are accepted.
+    ///
+    /// (Contact parts are checked in [`Scenario::into_problem_with_notes`]: a contact part
+    /// may be neither a Dirichlet part nor given twice.) Several tractions on one part add
+    /// up and are not a contradiction.
+    fn check_contradictions(
+        &self,
+        mesh: &Mesh,
+        dirichlet: &[Dirichlet],
+        tractions: &[Traction],
+    ) -> Result<()> {
+        let dim = mesh.dim();
+        let axes = ["x", "y", "z"];
+        let names = mesh.part_names();
+        let vector = |v: &[f64; 3]| format!("{:?}", &v[..dim]);
+        let nodes: Vec<Vec<u32>> = dirichlet.iter().map(|d| mesh.part_nodes(d.part)).collect();
+        for (k, b) in dirichlet.iter().enumerate() {
+            for (j, a) in dirichlet[..k].iter().enumerate() {
+                let Some(i) = (0..dim)
+                    .find(|&i| a.components[i] && b.components[i] && a.value[i] != b.value[i])
+                else {
+                    continue;
+                };
+                let Some(&shared) = nodes[k].iter().find(|v| nodes[j].binary_search(v).is_ok())
+                else {
+                    continue;
+                };
+                let at = format!("{:?}", mesh.node(shared as usize));
+                let place = if a.part == b.part {
+                    format!("on the same part `{}`", names[b.part])
+                } else {
+                    format!(
+                        "at the node {at} shared by parts `{}` and `{}`",
+                        names[a.part], names[b.part]
+                    )
+                };
+                return Err(self.err(
+                    &format!("dirichlet[{k}].value"),
+                    format!("{} (part `{}`)", vector(&b.value), names[b.part]),
+                    &format!(
+                        "a value that agrees with dirichlet[{j}].value = {} (part `{}`): both \
+                         prescribe u_{} {place}, as {} and {}; a node has one displacement",
+                        vector(&a.value),
+                        names[a.part],
+                        axes[i],
+                        a.value[i],
+                        b.value[i]
+                    ),
+                ));
+            }
+        }
+        for (k, t) in tractions.iter().enumerate() {
+            for (j, b) in dirichlet.iter().enumerate() {
+                if b.part != t.part {
+                    continue;
+                }
+                if let Some(i) = (0..dim).find(|&i| b.components[i] && t.value[i] != 0.0) {
+                    return Err(self.err(
+                        &format!("loads.traction[{k}].value"),
+                        format!("{} (part `{}`)", vector(&t.value), names[t.part]),
+                        &format!(
+                            "zero in the components that dirichlet[{j}] prescribes on the same \
+                             part: u_{} is prescribed there, so a traction {} in that direction \
+                             would do no work and vanish into the reaction",
+                            axes[i], t.value[i]
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Resolves and validates the scenario into a [`Problem`].
     ///
     /// # Errors
@@ -738,6 +855,7 @@ impl Scenario {
             let value = self.finite(&format!("loads.traction[{k}].value"), &t.value, dim)?;
             tractions.push(Traction { part, value });
         }
+        self.check_contradictions(&mesh, &dirichlet, &tractions)?;
         let body_force = match &self.file.loads.body_force {
             None => [0.0; 3],
             Some(v) => self.finite("loads.body_force", v, dim)?,
@@ -837,11 +955,25 @@ impl Scenario {
         }
         let contact = self.build_contact(&mesh)?;
         for (k, c) in contact.iter().enumerate() {
-            if dirichlet.iter().any(|d| d.part == c.part) {
+            let name = &mesh.part_names()[c.part];
+            if let Some(j) = dirichlet.iter().position(|d| d.part == c.part) {
                 return Err(self.err(
                     &format!("contact[{k}].part"),
-                    format!("\"{}\"", mesh.part_names()[c.part]),
-                    "a part that is not also a Dirichlet part (nodes on Γ_D are never contact nodes)",
+                    format!("\"{name}\""),
+                    &format!(
+                        "a part that is not also a Dirichlet part: dirichlet[{j}] prescribes \
+                         part `{name}` (nodes on Γ_D are never contact nodes)"
+                    ),
+                ));
+            }
+            if let Some(j) = contact[..k].iter().position(|o| o.part == c.part) {
+                return Err(self.err(
+                    &format!("contact[{k}].part"),
+                    format!("\"{name}\""),
+                    &format!(
+                        "a part not already given by contact[{j}]: one [[contact]] entry per \
+                         part (two laws on one boundary contradict each other)"
+                    ),
                 ));
             }
         }

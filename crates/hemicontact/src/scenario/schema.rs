@@ -64,6 +64,14 @@
 //! [output]
 //! dir = "out/example"       # default: given on the command line
 //! ```
+//!
+//! Entries that contradict each other are refused, naming both: two `[[dirichlet]]`
+//! prescribing one component with different values at a common node (one part, or a corner
+//! shared by two parts); a `[[loads.traction]]` component that a `[[dirichlet]]` of the same
+//! part prescribes (it would do no work); a `[[contact]]` part given twice, or also a
+//! Dirichlet part. Equal repeated values, several tractions on one part (they add up) and a
+//! traction on the free components of a roller are consistent and accepted. A scenario file
+//! is read only if it is a regular file of at most 1 MiB.
 
 use crate::contact::{FrictionBound, FrictionCoefficient};
 use crate::material::Plane;
