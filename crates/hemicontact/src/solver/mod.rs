@@ -215,6 +215,9 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             &mut report,
         ) {
             Ok(outcome) => outcome,
+            // The load pulls a body off the contact carrying its free rigid motions: no
+            // solution to report.
+            Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
             // Before any step succeeded there is no iterate worth keeping: the problem
             // itself is at fault (e.g. rigid motions not blocked).
             Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
@@ -322,6 +325,10 @@ pub fn solve_from(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
     }
     report.certificate = certificate;
+    // Equilibrium along the free rigid motions carried by contact, at the answer.
+    report.rigid_residual =
+        system.rigid.generalized_force(&problem.mesh, &system.grad) / last.force_scale;
+    report.rigid_shift = system.rigid_shift;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,

@@ -153,7 +153,10 @@ pub fn check(problem: &Problem) -> Result<Uniqueness> {
         alpha_j = alpha_j.max(e);
         factor = factor.max(a * e + c * b);
     }
-    let (gamma, iterations) = if coulomb {
+    // Free rigid motions (carried by contact): the elastic energy alone does not control
+    // the trace, the constant is infinite.
+    let rigid = !coulomb && problem.rigid_motions().any_free();
+    let (gamma, iterations) = if coulomb || rigid {
         (None, 0)
     } else {
         let (g, it) = trace_constant(problem)?;
@@ -162,11 +165,13 @@ pub fn check(problem: &Problem) -> Result<Uniqueness> {
     let lhs = gamma.map_or(f64::NAN, |g| factor * g * g);
     let note = if coulomb {
         Some("Theorem 4 covers Tresca-type friction bounds F = μ(‖u_τ‖); a Coulomb-type bound F = μ p(u_ν) is not covered".to_string())
+    } else if rigid {
+        Some("the Dirichlet conditions leave rigid motions free (contact carries them), so the elastic energy does not bound the trace on Γ_C".to_string())
     } else {
         None
     };
     Ok(Uniqueness {
-        applies: !coulomb,
+        applies: !coulomb && !rigid,
         note,
         m_a,
         mu0,
@@ -177,6 +182,6 @@ pub fn check(problem: &Problem) -> Result<Uniqueness> {
         iterations,
         lhs,
         margin: m_a - lhs,
-        holds: !coulomb && lhs < m_a,
+        holds: !coulomb && !rigid && lhs < m_a,
     })
 }
