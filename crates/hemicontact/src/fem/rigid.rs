@@ -612,18 +612,20 @@ fn remedy(d: usize, body: &Body, c: &[f64; 6]) -> String {
         let dir = direction(d, &a);
         if dir.len() == 1 {
             format!(
-                "prescribe u_{dir} on some part of this body, or add a contact part whose \
-                 normal has a nonzero {dir} component"
+                "prescribe u_{dir} on some part of this body ([[dirichlet]]), or add a \
+                 [[contact]] part whose normal has a nonzero {dir} component"
             )
         } else {
             format!(
-                "prescribe the displacement component along {dir} on some part of this body, \
-                 or add a contact part whose normal has a component along it"
+                "prescribe the displacement component along {dir} on some part of this body \
+                 ([[dirichlet]]), or add a [[contact]] part whose normal has a component along \
+                 it"
             )
         }
     } else {
-        "prescribe displacements on a part away from the rotation axis, or two parts apart, \
-         or add a contact part whose normal does not point through the axis"
+        "prescribe displacements ([[dirichlet]]) on a part away from the rotation axis, or \
+         on two parts apart, or add a [[contact]] part whose normal does not point through \
+         the axis"
             .to_string()
     }
 }
