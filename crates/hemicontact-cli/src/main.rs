@@ -412,7 +412,8 @@ fn run_and_write(
 ) -> Result<Case> {
     // Fail before the solve if the results could not be written.
     prepare_output(dir)?;
-    let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
+    let solution = hemicontact::solver::solve(&problem)
+        .with_context(|| format!("{}: solve failed", scenario.source))?;
     let mut summary = Summary::new(
         &problem,
         &solution,

@@ -415,7 +415,8 @@ fn malformed_scenarios_are_rejected_naming_the_field() {
 /// on the two sides and a vertical load leave the vertical translation free. `check` and
 /// `solve` refuse it (exit 1) naming the file and the motion, and `solve` writes nothing.
 /// The same block resting on a foundation is accepted and solved (exit 0), and `check`
-/// names the motion the contact carries.
+/// names the motion the contact carries; pulled off that foundation, it has no equilibrium
+/// (exit 1).
 #[test]
 fn free_rigid_motions_are_refused_unless_contact_carries_them() {
     let tmp = tempfile::tempdir().unwrap();
@@ -470,6 +471,16 @@ fn free_rigid_motions_are_refused_unless_contact_carries_them() {
     assert!(
         num(&summary["report"]["rigid_residual"]) <= 1e-10,
         "{summary:#}"
+    );
+    // Pulled upwards, off the foundation: no equilibrium, exit 1 naming the file and why.
+    let pulled = on_foundation.replace("value = [0.0, -900.0]", "value = [0.0, 900.0]");
+    assert_ne!(pulled, on_foundation, "test bug: the load was not reversed");
+    assert_rejected(
+        dir,
+        "solve",
+        "pulled-off.toml",
+        &pulled,
+        &["pulls the body off its contact", "translation along y"],
     );
 }
 
