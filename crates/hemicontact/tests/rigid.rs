@@ -11,6 +11,7 @@
 //!    balances the consistent traction load `p w_i` node by node, so (outward normal
 //!    `ν = (0, −1)` at the bottom `y = 0`, `u_ν = −u_y`)
 //!    `u_y(x, y) = −p/c_ν − p y/(λ + 2μ)`, `u_x = 0`, total contact force `p × width`.
+//!    The same in 3D for a cube between four rollers.
 //! 3. The same block **held sideways only by Coulomb friction** (no Dirichlet condition at
 //!    all) under a load symmetric about the centre line, on a mirror-symmetric mesh: the
 //!    contact force balances the load (vertical sum `= p × width`, horizontal sum 0), `u_x`
@@ -306,6 +307,73 @@ components = ["x"]
         assert!((total - P * 2.0).abs() <= 1e-10 * P * 2.0, "{total}");
         let balance: f64 = sol.contact.iter().map(|c| c.force[1]).sum();
         assert!((balance - P * 2.0).abs() <= 1e-9 * P * 2.0, "{balance}");
+    }
+}
+
+/// The 3D version: a cube between rollers on its four sides (u_x = 0 on left and right,
+/// u_y = 0 on front and back) on a foundation at z = 0, pressed by `p` on top: the free
+/// motion is the vertical translation and `u_z = −p/c_ν − p z/(λ + 2μ)`, with both linear
+/// solvers.
+#[test]
+fn cube_on_a_foundation_between_rollers_is_in_uniaxial_strain() {
+    let (lambda, mu) = lame(YOUNG, POISSON, false);
+    let m = lambda + 2.0 * mu;
+    let scale = P / C_NU + P / m;
+    for linear_solver in ["direct", "iterative"] {
+        let text = format!(
+            r#"
+[mesh]
+kind = "box"
+size = [1.0, 1.0, 1.0]
+n = [4, 4, 4]
+[material]
+young = {YOUNG}
+poisson = {POISSON}
+[[dirichlet]]
+part = "left"
+components = ["x"]
+[[dirichlet]]
+part = "right"
+components = ["x"]
+[[dirichlet]]
+part = "front"
+components = ["y"]
+[[dirichlet]]
+part = "back"
+components = ["y"]
+[[contact]]
+part = "bottom"
+gap = 0.0
+c_nu = {C_NU}
+[[loads.traction]]
+part = "top"
+value = [0.0, 0.0, -{P}]
+[solver]
+linear_solver = "{linear_solver}"
+"#
+        );
+        let pr = problem(&text);
+        let sol = hemicontact::solver::solve(&pr).unwrap();
+        assert!(sol.report.converged, "{}", sol.report.message);
+        assert_eq!(sol.report.free_rigid_motions, vec!["translation along z"]);
+        assert!(
+            sol.report.rigid_residual <= 1e-10,
+            "{}",
+            sol.report.rigid_residual
+        );
+        for v in 0..pr.mesh.n_nodes() {
+            let x = pr.mesh.node(v);
+            let exact = -P / C_NU - P * x[2] / m;
+            for (i, e) in [0.0, 0.0, exact].iter().enumerate() {
+                assert!(
+                    (sol.u[3 * v + i] - e).abs() <= 1e-10 * scale,
+                    "{linear_solver}: u_{i} at {x:?}: {} vs {e}",
+                    sol.u[3 * v + i]
+                );
+            }
+        }
+        let total: f64 = sol.contact.iter().map(|c| c.pressure * c.weight).sum();
+        assert!((total - P).abs() <= 1e-10 * P, "{total}");
     }
 }
 
