@@ -312,6 +312,11 @@ fn check(file: &Path) -> Result<()> {
     let (problem, notes) = scenario.into_problem_with_notes()?;
     print_problem(&problem, &scenario.source);
     print_notes(&notes);
+    // Rigid motions not blocked by a Dirichlet condition that contact carries (those it
+    // does not carry were refused above).
+    for motion in problem.rigid_motions().describe_all() {
+        say!("free rigid motion carried by contact: {motion}");
+    }
     let iterative = problem
         .solver
         .linear_solver
@@ -495,7 +500,8 @@ fn run_and_write(
     json: bool,
     label: &str,
 ) -> Result<Case> {
-    let solution = hemicontact::solver::solve(&problem).context("solve failed")?;
+    let solution = hemicontact::solver::solve(&problem)
+        .with_context(|| format!("{}: solve failed", scenario.source))?;
     let mut summary = Summary::new(
         &problem,
         &solution,

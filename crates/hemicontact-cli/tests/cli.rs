@@ -413,6 +413,79 @@ fn malformed_scenarios_are_rejected_naming_the_field() {
     );
 }
 
+/// Rigid motions that the Dirichlet conditions leave free and no contact part carries: rollers
+/// on the two sides and a vertical load leave the vertical translation free. `check` and
+/// `solve` refuse it (exit 1) naming the file and the motion, and `solve` writes nothing.
+/// The same block resting on a foundation is accepted and solved (exit 0), and `check`
+/// names the motion the contact carries; pulled off that foundation, it has no equilibrium
+/// (exit 1).
+#[test]
+fn free_rigid_motions_are_refused_unless_contact_carries_them() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let rollers = VALID.replacen(
+        "[[dirichlet]]\npart = \"bottom\"\n",
+        "[[dirichlet]]\npart = \"left\"\ncomponents = [\"x\"]\n\
+         [[dirichlet]]\npart = \"right\"\ncomponents = [\"x\"]\n",
+        1,
+    );
+    assert_ne!(rollers, VALID, "test bug: the clamp was not replaced");
+    for cmd in ["check", "solve"] {
+        assert_rejected(
+            dir,
+            cmd,
+            "rollers-only.toml",
+            &rollers,
+            &["translation along y", "prescribe u_y"],
+        );
+    }
+    assert!(
+        !dir.join("out").exists(),
+        "an output folder was created for a singular problem"
+    );
+    let on_foundation =
+        format!("{rollers}\n[[contact]]\npart = \"bottom\"\ngap = 0.0\nc_nu = 2000.0\n");
+    let path = write_scenario(dir, "on-foundation.toml", &on_foundation);
+    let out = run(dir, &["check", path.to_str().unwrap()]);
+    assert_success(&out);
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("free rigid motion carried by contact: translation along y"),
+        "{stdout}"
+    );
+    let out_dir = dir.join("on-foundation");
+    let out = run(
+        dir,
+        &[
+            "solve",
+            path.to_str().unwrap(),
+            "--out",
+            out_dir.to_str().unwrap(),
+        ],
+    );
+    assert_success(&out);
+    let summary = read_summary(&out_dir.join("summary.json"));
+    assert_eq!(
+        summary["report"]["free_rigid_motions"][0].as_str(),
+        Some("translation along y"),
+        "{summary:#}"
+    );
+    assert!(
+        num(&summary["report"]["rigid_residual"]) <= 1e-10,
+        "{summary:#}"
+    );
+    // Pulled upwards, off the foundation: no equilibrium, exit 1 naming the file and why.
+    let pulled = on_foundation.replace("value = [0.0, -900.0]", "value = [0.0, 900.0]");
+    assert_ne!(pulled, on_foundation, "test bug: the load was not reversed");
+    assert_rejected(
+        dir,
+        "solve",
+        "pulled-off.toml",
+        &pulled,
+        &["pulls the body off its contact", "translation along y"],
+    );
+}
+
 /// A solve that does not converge says so with exit code 3 and still writes its last
 /// iterate, marked `converged = false` (SPEC §6). A relative residual tolerance of 1e-300
 /// cannot be met in floating point, and two Newton steps are allowed.

@@ -55,6 +55,30 @@ pub enum Error {
         /// Where it happened.
         context: String,
     },
+    /// Rigid motions of a body that neither the Dirichlet conditions nor a contact part
+    /// block (see [`crate::fem::rigid`]): the stiffness matrix is singular, and the solution
+    /// does not exist or is not unique.
+    #[error(
+        "{file}: the problem is singular: no Dirichlet condition blocks, and no contact part \
+         carries, the rigid motion(s) {motions}"
+    )]
+    RigidMotion {
+        /// The scenario file (or `problem` for a problem built in code).
+        file: String,
+        /// Each free motion in words with what would block it, per mesh component.
+        motions: String,
+    },
+    /// The load pulls a body off the contact that was to carry its free rigid motions (see
+    /// [`crate::fem::rigid::RigidMotions::check_runaway`]): there is no equilibrium.
+    #[error(
+        "the load pulls the body off its contact: no equilibrium along the rigid motions \
+         that the Dirichlet conditions leave free: {motions}; block them by Dirichlet \
+         conditions or change the load"
+    )]
+    ContactLost {
+        /// The free motions in words and how far the body moved.
+        motions: String,
+    },
     /// A numerical breakdown (NaN or infinity) during a solve.
     #[error("numerical breakdown: {0}")]
     Breakdown(String),

@@ -5,6 +5,7 @@ use crate::assembly::loads;
 use crate::contact::{ContactBoundary, ContactNodes};
 use crate::error::{Error, Result};
 use crate::fem::dofs::DofMap;
+use crate::fem::rigid::RigidMotions;
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::solver::SolverSettings;
@@ -57,8 +58,9 @@ impl Problem {
     ///
     /// # Errors
     /// [`Error::Mesh`] if a part index is out of range or a part has no facets;
-    /// [`Error::Breakdown`] if a datum is not finite; [`Error::NotPositiveDefinite`] if no
-    /// displacement component is prescribed anywhere (rigid motions are then free).
+    /// [`Error::Breakdown`] if a datum is not finite; [`Error::RigidMotion`] if a rigid motion
+    /// of some mesh component is neither prescribed nor carried by a contact part (see
+    /// [`RigidMotions::check`]).
     pub fn validate(&self) -> Result<()> {
         let n_parts = self.mesh.part_names().len();
         let parts = self
@@ -88,16 +90,21 @@ impl Problem {
                 "a load or prescribed value is not finite".into(),
             ));
         }
-        if self
-            .dirichlet
-            .iter()
-            .all(|b| !b.components.iter().take(self.mesh.dim()).any(|&c| c))
-        {
-            return Err(Error::NotPositiveDefinite {
-                context: "no Dirichlet condition: the body can move rigidly".into(),
-            });
-        }
+        self.rigid_motions().check("problem")?;
         Ok(())
+    }
+
+    /// The rigid motions of each mesh component that the Dirichlet conditions leave free,
+    /// and those of them that no contact point carries (see [`crate::fem::rigid`]).
+    pub fn rigid_motions(&self) -> RigidMotions {
+        let dofs = self.dof_map();
+        let frictional: Vec<bool> = self.contact.iter().map(|c| c.friction.is_some()).collect();
+        RigidMotions::new(
+            &self.mesh,
+            |k| dofs.is_fixed(k),
+            &self.contact_nodes(),
+            &frictional,
+        )
     }
 
     /// The DOF map with the Dirichlet DOFs eliminated.

@@ -220,7 +220,7 @@ fn legend(prims: &mut Vec<Prim>, solution: &Solution, max_t: f64, rect: [f64; 4]
         (format!("contact {n_contact}"), DARK),
         (format!("slip {n_slip}"), RED),
         (format!("stick {n_stick}"), BLUE),
-        (format!("traction max {max_t:.3e}"), GREEN),
+        (format!("|t| max {max_t:.2e}"), GREEN),
     ] {
         prims.push(Prim::Circle {
             center: [lx + 4.0, ly - 4.0],

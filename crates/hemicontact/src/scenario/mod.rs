@@ -805,13 +805,6 @@ impl Scenario {
         let material = self.build_material(dim)?;
         let axes = ["x", "y", "z"];
         let mut dirichlet = Vec::new();
-        if self.file.dirichlet.is_empty() {
-            return Err(self.err(
-                "dirichlet",
-                "[]",
-                "at least one [[dirichlet]] part: without one the body can move rigidly and the problem is singular",
-            ));
-        }
         for (k, bc) in self.file.dirichlet.iter().enumerate() {
             let part = self.part(&mesh, &format!("dirichlet[{k}].part"), &bc.part)?;
             let mut components = [false; 3];
@@ -987,7 +980,14 @@ impl Scenario {
             contact,
             solver,
         };
-        problem.validate()?;
+        // Rigid motions left free are named with this file (the library says `problem`).
+        problem.validate().map_err(|e| match e {
+            Error::RigidMotion { motions, .. } => Error::RigidMotion {
+                file: self.source.clone(),
+                motions,
+            },
+            e => e,
+        })?;
         notes.extend(problem.notes());
         Ok((problem, notes))
     }

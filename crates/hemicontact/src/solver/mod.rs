@@ -177,16 +177,32 @@ pub fn solve_from(problem: &Problem, u: Vec<f64>) -> Result<Solution> {
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
-    let mut solution = scales.dimensional(solve_dimensionless(&scaled, u)?);
+    let solution = match solve_dimensionless(&scaled, u, scales.length / scales.displacement) {
+        Ok(s) => s,
+        // Described again in the user's coordinates.
+        Err(crate::Error::ContactLost { .. }) => {
+            return Err(crate::Error::ContactLost {
+                motions: format!(
+                    "{} (the body moved by more than its size)",
+                    problem.rigid_motions().describe_all().join("; ")
+                ),
+            })
+        }
+        Err(e) => return Err(e),
+    };
+    let mut solution = scales.dimensional(solution);
+    solution.report.free_rigid_motions = problem.rigid_motions().describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
     Ok(solution)
 }
 
 /// [`solve_from`] for a problem in dimensionless variables ([`scaling`]): every tolerance,
 /// regularization and threshold below is a pure number relative to the problem's scales.
-fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
+/// `length_unit` is the length scale in units of the displacement scale.
+fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> Result<Solution> {
     let start = Instant::now();
     let mut system = System::new(problem)?;
+    system.length_unit = length_unit;
     let prescribed = problem.prescribed_displacement();
     for (k, x) in u.iter_mut().enumerate() {
         if system.dofs.is_fixed(k) {
@@ -235,6 +251,9 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
             &mut report,
         ) {
             Ok(outcome) => outcome,
+            // The load pulls a body off the contact carrying its free rigid motions: no
+            // solution to report.
+            Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
             // Before any step succeeded there is no iterate worth keeping: the problem
             // itself is at fault (e.g. rigid motions not blocked).
             Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
@@ -375,6 +394,10 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>) -> Result<Solution> {
         );
     }
     report.certificate = certificate;
+    // Equilibrium along the free rigid motions carried by contact, at the answer.
+    report.rigid_residual =
+        system.rigid.generalized_force(&problem.mesh, &system.grad) / last.force_scale;
+    report.rigid_shift = system.rigid_shift;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,

@@ -101,7 +101,8 @@ pub struct NewtonOutcome {
 ///
 /// # Errors
 /// [`Error::NotPositiveDefinite`] if a Hessian cannot be factorized, [`Error::Breakdown`] if
-/// the energy or residual is not finite.
+/// the energy or residual is not finite, [`Error::ContactLost`] if a body whose free rigid
+/// motions only contact carries leaves its contact.
 #[allow(clippy::too_many_arguments)]
 pub fn minimize(
     system: &mut System,
@@ -311,6 +312,11 @@ pub fn minimize(
             if eq != crate::fem::dofs::FIXED {
                 u[dof] += step * delta[eq as usize];
             }
+        }
+        // A body whose free rigid motions only contact carries, pulled off that contact,
+        // moves without bound: stop with `Error::ContactLost`.
+        if system.rigid_shift > 0.0 {
+            system.rigid.check_runaway(u, system.length_unit)?;
         }
     }
 }

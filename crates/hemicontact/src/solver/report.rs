@@ -95,6 +95,17 @@ pub struct SolveReport {
     /// Largest relative residual at which a Newton solve stopped at the round-off floor
     /// above the tolerance (0: never; see [`super::newton`]).
     pub round_off_floor: f64,
+    /// The rigid motions that the Dirichlet conditions leave free and contact carries, in
+    /// words (empty: none; see [`crate::fem::rigid`]).
+    pub free_rigid_motions: Vec<String>,
+    /// Shift α added to the diagonal of the Newton matrix on their bodies (N/m in 2D per
+    /// unit thickness, N/m in 3D; 0: none). It changes Newton directions only, never the
+    /// energy or the gradient, so it exerts no force on the answer.
+    pub rigid_shift: f64,
+    /// Largest unbalanced generalized force along those motions at the final iterate,
+    /// relative to the force scale of the Newton criterion (0 without them): how well
+    /// contact balances the load along them.
+    pub rigid_residual: f64,
     /// Timings per phase.
     pub timings: Timings,
 }
@@ -121,6 +132,9 @@ impl SolveReport {
             residual_tolerance: f64::NAN,
             round_off_floor: 0.0,
             scales: None,
+            free_rigid_motions: system.rigid.describe_all(),
+            rigid_shift: 0.0,
+            rigid_residual: 0.0,
             timings: Timings {
                 pattern: system.setup_time.0,
                 symbolic: system.setup_time.1,

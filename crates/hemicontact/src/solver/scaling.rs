@@ -225,6 +225,7 @@ impl Scales {
             step.energy *= self.energy();
         }
         r.residual *= f;
+        r.rigid_shift *= f / u;
         r.residual_tolerance *= f;
         r.certificate.force_scale *= f;
         r.certificate.stick_threshold *= u;

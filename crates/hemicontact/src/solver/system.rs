@@ -9,6 +9,7 @@ use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
+use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{Cholesky, Multigrid};
 use crate::problem::Problem;
 use std::time::Instant;
@@ -75,6 +76,18 @@ pub struct System {
     pcg_spent: f64,
     /// Parallel assembly buffers.
     workspace: Workspace,
+    /// Rigid motions left free by the Dirichlet conditions (carried by contact, else
+    /// [`Problem::validate`] refused the problem).
+    pub rigid: RigidMotions,
+    /// Diagonal slots of the free equations of the bodies with free rigid motions.
+    rigid_slots: Vec<usize>,
+    /// Shift α added there to the Newton matrix (0 until the first Hessian; see
+    /// [`crate::fem::rigid::NEWTON_SHIFT`]).
+    pub rigid_shift: f64,
+    /// The unit of the coordinates in units of the displacements: 1 for a problem in
+    /// metres, `L/U` when it is solved in the dimensionless variables of
+    /// [`super::scaling`] (set by the solver).
+    pub length_unit: f64,
 }
 
 /// Friction regularization (relative to the displacement scale) at which the continuation
@@ -183,6 +196,13 @@ impl System {
         };
         let n = dofs.n_dofs();
         let hess = vec![0.0; pattern.nnz()];
+        let rigid = problem.rigid_motions();
+        let rigid_slots = rigid
+            .shifted_dofs()
+            .into_iter()
+            .filter(|&k| !dofs.is_fixed(k))
+            .map(|k| pattern.diagonal_slot(dofs.equation(k) as usize))
+            .collect();
         Ok(System {
             dofs,
             pattern,
@@ -210,6 +230,10 @@ impl System {
                 0 => rayon::current_num_threads(),
                 t => t,
             }),
+            rigid,
+            rigid_slots,
+            rigid_shift: 0.0,
+            length_unit: 1.0,
         })
     }
 
@@ -335,6 +359,20 @@ impl System {
             None
         };
         let e_contact = contact.assemble(u, frozen, &mut self.grad, hc);
+        if hessian && !self.rigid_slots.is_empty() {
+            // Free rigid motions carried by contact: shift the Newton matrix (not the
+            // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
+            if self.rigid_shift == 0.0 {
+                let max = self
+                    .rigid_slots
+                    .iter()
+                    .fold(0.0f64, |m, &k| m.max(self.hess[k]));
+                self.rigid_shift = NEWTON_SHIFT * max;
+            }
+            for &k in &self.rigid_slots {
+                self.hess[k] += self.rigid_shift;
+            }
+        }
         e_bulk + e_contact - work
     }
 

@@ -179,13 +179,18 @@ fn constants(problem: &Problem) -> Uniqueness {
         alpha_j = alpha_j.max(e);
         factor = factor.max(a * e + c * b);
     }
+    // Free rigid motions (carried by contact): the elastic energy alone does not control
+    // the trace, the constant is infinite.
+    let rigid = !coulomb && problem.rigid_motions().any_free();
     let note = if coulomb {
         Some("Theorem 4 covers Tresca-type friction bounds F = μ(‖u_τ‖); a Coulomb-type bound F = μ p(u_ν) is not covered".to_string())
+    } else if rigid {
+        Some("the Dirichlet conditions leave rigid motions free (contact carries them), so the elastic energy does not bound the trace on Γ_C".to_string())
     } else {
         None
     };
     Uniqueness {
-        applies: !coulomb,
+        applies: !coulomb && !rigid,
         note,
         m_a,
         mu0,

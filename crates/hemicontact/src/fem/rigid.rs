@@ -1,0 +1,750 @@
+//! Rigid motions left free by the Dirichlet conditions, found algebraically from the mesh
+//! and the pattern of prescribed components (independent of loads and of the linear solver).
+//!
+//! The linear elastic energy of a connected body vanishes exactly on its rigid motions. On
+//! each connected component of the cell graph (a *body*) these are, in coefficients
+//! `c ∈ ℝ^m` (m = 3 in 2D, 6 in 3D),
+//!
+//! ```text
+//!     r(x) = a + ω × (x − x̄),   a = (c_1, …, c_d),   ω = (c_{d+1}, …, c_m) / L
+//! ```
+//!
+//! about the body's centroid `x̄` (mean of its node coordinates), with `L` the largest
+//! distance of a node from `x̄`; so every basis field has components of size at most 1 at
+//! every node, and the matrices below are well scaled whatever the units and the size.
+//!
+//! Each prescribed DOF (node `v`, component `i`) is a row `C_{·j} = φ_j(x_v)_i` of the
+//! constraint matrix acting on `c`; the free motions are the null space of the normal
+//! matrix `N = CᵀC` (m × m), computed by a Jacobi eigendecomposition. An eigenvalue counts
+//! as zero when it is at most [`NULL_TOLERANCE`] times `tr N`. Every row has norm between 1
+//! (its translation entry) and √2, so `tr N` lies between the row count and twice it, the
+//! round-off of `N` is about `10⁻¹⁶ tr N`, and the tolerance `10⁻¹⁰ tr N` sits six orders
+//! above it; the price is that a rotation held only by lever arms below about `10⁻⁵ L`
+//! counts as free — such a constraint would leave the stiffness matrix with a condition
+//! number above 10¹⁰ anyway.
+//!
+//! A free motion is *carried* by contact when a contact point's normal (or, on a part with
+//! friction, a tangent) moves under it: the same construction with one row `ν_i · r(x_i)`
+//! per contact point (and `τ_i · r(x_i)` with friction), restricted to the free motions,
+//! has no null space. Motions neither prescribed nor carried make the problem singular:
+//! [`RigidMotions::check`] turns them into an [`Error::RigidMotion`] that names the motion
+//! (translation along x, rotation about z through a point, …) and what would block it.
+
+use crate::contact::ContactNodes;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+
+/// Relative tolerance on the eigenvalues of the normal matrices: an eigenvalue at most
+/// `NULL_TOLERANCE · tr N` spans a free motion (see the module documentation).
+pub const NULL_TOLERANCE: f64 = 1e-10;
+
+/// A connected component of the mesh (cells sharing a vertex are connected).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// Its nodes, increasing.
+    pub nodes: Vec<u32>,
+    /// Centroid `x̄` of its nodes (m).
+    pub centroid: [f64; 3],
+    /// Largest distance `L` of a node from the centroid (m).
+    pub size: f64,
+    /// Bounding box (min, max) of its nodes (m).
+    pub bounding_box: ([f64; 3], [f64; 3]),
+}
+
+/// The rigid motions of every body of a mesh that the Dirichlet conditions leave free.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidMotions {
+    /// Dimension d.
+    pub dim: usize,
+    /// The bodies (connected components), ordered by their smallest node.
+    pub bodies: Vec<Body>,
+    /// Per body: orthonormal basis of the free motions, as coefficient vectors `c` (first
+    /// m = 3 or 6 entries used; see the module documentation).
+    pub free: Vec<Vec<[f64; 6]>>,
+    /// Per body: orthonormal basis of the free motions that no contact point carries
+    /// either (a subspace of `free`).
+    pub uncarried: Vec<Vec<[f64; 6]>>,
+}
+
+impl RigidMotions {
+    /// Finds the free and uncarried rigid motions of every body of `mesh`: `fixed(k)` tells
+    /// whether DOF `k = d·node + i` is prescribed, `contact` are the contact points and
+    /// `frictional[b]` whether contact boundary `b` has friction.
+    pub fn new(
+        mesh: &Mesh,
+        fixed: impl Fn(usize) -> bool,
+        contact: &ContactNodes,
+        frictional: &[bool],
+    ) -> Self {
+        let d = mesh.dim();
+        let m = n_modes(d);
+        let (body_of, bodies) = bodies(mesh);
+        let mut free = Vec::with_capacity(bodies.len());
+        let mut uncarried = Vec::with_capacity(bodies.len());
+        for (b, body) in bodies.iter().enumerate() {
+            // Constraint rows of the prescribed DOFs.
+            let mut normal = Normal::new(m);
+            for &v in &body.nodes {
+                let x = mesh.node(v as usize);
+                for i in 0..d {
+                    if fixed(d * v as usize + i) {
+                        let mut dir = [0.0; 3];
+                        dir[i] = 1.0;
+                        normal.add(&mode_row(d, body, x, &dir));
+                    }
+                }
+            }
+            let z = normal.null_space();
+            // Contact rows of this body, restricted to the free motions.
+            let mut carried = Normal::new(z.len());
+            if !z.is_empty() {
+                for p in 0..contact.len() {
+                    let v = contact.node[p] as usize;
+                    if body_of[v] as usize != b {
+                        continue;
+                    }
+                    let x = mesh.node(v);
+                    let mut add = |dir: &[f64; 3]| {
+                        let row = mode_row(d, body, x, dir);
+                        let mut r = [0.0; 6];
+                        for (l, zl) in z.iter().enumerate() {
+                            r[l] = (0..m).map(|j| row[j] * zl[j]).sum();
+                        }
+                        carried.add_weighted(&r, mode_row_norm2(&row, m));
+                    };
+                    add(&contact.normal[p]);
+                    if frictional[contact.boundary[p] as usize] {
+                        for t in &contact.tangent[p][..d - 1] {
+                            add(t);
+                        }
+                    }
+                }
+            }
+            let y = carried.null_space();
+            let u = y
+                .iter()
+                .map(|yl| {
+                    let mut c = [0.0; 6];
+                    for (l, zl) in z.iter().enumerate() {
+                        for j in 0..m {
+                            c[j] += yl[l] * zl[j];
+                        }
+                    }
+                    c
+                })
+                .collect();
+            free.push(z);
+            uncarried.push(u);
+        }
+        RigidMotions {
+            dim: d,
+            bodies,
+            free,
+            uncarried,
+        }
+    }
+
+    /// Whether some body has a free rigid motion (carried by contact or not).
+    pub fn any_free(&self) -> bool {
+        self.free.iter().any(|f| !f.is_empty())
+    }
+
+    /// The displacement (m) at `x` of the rigid motion with coefficients `c` of body `b`.
+    pub fn displacement(&self, b: usize, c: &[f64; 6], x: &[f64]) -> [f64; 3] {
+        let body = &self.bodies[b];
+        let mut r = [0.0; 3];
+        for (i, ri) in r.iter_mut().enumerate().take(self.dim) {
+            let mut dir = [0.0; 3];
+            dir[i] = 1.0;
+            let row = mode_row(self.dim, body, x, &dir);
+            *ri = (0..n_modes(self.dim)).map(|j| row[j] * c[j]).sum();
+        }
+        r
+    }
+
+    /// The free motions of body `b` in words, one per basis vector (see [`describe`]).
+    pub fn describe_free(&self, b: usize) -> Vec<String> {
+        reduced(self.dim, &self.free[b])
+            .iter()
+            .map(|c| describe(self.dim, &self.bodies[b], c))
+            .collect()
+    }
+
+    /// # Errors
+    /// [`Error::RigidMotion`] (with `source` as the file) if some body has a rigid motion
+    /// that is neither prescribed nor carried by contact: the message names the body (when
+    /// the mesh has several), each such motion, and what would block it.
+    pub fn check(&self, source: &str) -> Result<()> {
+        let several = self.bodies.len() > 1;
+        let mut parts = Vec::new();
+        for (b, body) in self.bodies.iter().enumerate() {
+            if self.uncarried[b].is_empty() {
+                continue;
+            }
+            let motions: Vec<String> = reduced(self.dim, &self.uncarried[b])
+                .iter()
+                .map(|c| {
+                    format!(
+                        "{} ({})",
+                        describe(self.dim, body, c),
+                        remedy(self.dim, body, c)
+                    )
+                })
+                .collect();
+            let which = if several {
+                let (lo, hi) = body.bounding_box;
+                let d = self.dim;
+                format!(
+                    "mesh component {} of {} ({} nodes, from node {}, bounding box {} to {}): ",
+                    b + 1,
+                    self.bodies.len(),
+                    body.nodes.len(),
+                    body.nodes[0],
+                    point(&lo[..d]),
+                    point(&hi[..d])
+                )
+            } else {
+                String::new()
+            };
+            parts.push(format!("{which}{}", motions.join("; ")));
+        }
+        if parts.is_empty() {
+            return Ok(());
+        }
+        Err(Error::RigidMotion {
+            file: source.to_string(),
+            motions: parts.join(" | "),
+        })
+    }
+}
+
+/// Number of rigid modes in dimension `d`: 3 in 2D, 6 in 3D.
+pub fn n_modes(d: usize) -> usize {
+    if d == 2 {
+        3
+    } else {
+        6
+    }
+}
+
+/// The connected components of the cell graph: the body of each node (`u32::MAX` for a
+/// node in no cell) and the bodies, ordered by their smallest node.
+pub fn bodies(mesh: &Mesh) -> (Vec<u32>, Vec<Body>) {
+    let n = mesh.n_nodes();
+    let d = mesh.dim();
+    // Union–find with path halving; the root of a set is its smallest node.
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn find(parent: &mut [u32], mut v: u32) -> u32 {
+        while parent[v as usize] != v {
+            parent[v as usize] = parent[parent[v as usize] as usize];
+            v = parent[v as usize];
+        }
+        v
+    }
+    let mut used = vec![false; n];
+    for c in 0..mesh.n_cells() {
+        let cell = mesh.cell(c);
+        used[cell[0] as usize] = true;
+        for &v in &cell[1..] {
+            used[v as usize] = true;
+            let (r0, r) = (find(&mut parent, cell[0]), find(&mut parent, v));
+            parent[r0.max(r) as usize] = r0.min(r);
+        }
+    }
+    let mut body_of = vec![u32::MAX; n];
+    let mut bodies: Vec<Body> = Vec::new();
+    let mut index_of_root = vec![u32::MAX; n];
+    for v in 0..n {
+        if !used[v] {
+            continue;
+        }
+        let r = find(&mut parent, v as u32) as usize;
+        if index_of_root[r] == u32::MAX {
+            index_of_root[r] = bodies.len() as u32;
+            bodies.push(Body {
+                nodes: Vec::new(),
+                centroid: [0.0; 3],
+                size: 0.0,
+                bounding_box: ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+            });
+        }
+        body_of[v] = index_of_root[r];
+        bodies[index_of_root[r] as usize].nodes.push(v as u32);
+    }
+    for body in &mut bodies {
+        let k = body.nodes.len() as f64;
+        for &v in &body.nodes {
+            let x = mesh.node(v as usize);
+            for i in 0..d {
+                body.centroid[i] += x[i] / k;
+                body.bounding_box.0[i] = body.bounding_box.0[i].min(x[i]);
+                body.bounding_box.1[i] = body.bounding_box.1[i].max(x[i]);
+            }
+        }
+        for i in d..3 {
+            body.bounding_box = (
+                {
+                    let mut lo = body.bounding_box.0;
+                    lo[i] = 0.0;
+                    lo
+                },
+                {
+                    let mut hi = body.bounding_box.1;
+                    hi[i] = 0.0;
+                    hi
+                },
+            );
+        }
+        body.size = body
+            .nodes
+            .iter()
+            .map(|&v| {
+                let x = mesh.node(v as usize);
+                (0..d)
+                    .map(|i| (x[i] - body.centroid[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+    }
+    (body_of, bodies)
+}
+
+/// The row `dir · φ_j(x)`, j = 1…m, of the rigid-mode basis of `body` (module
+/// documentation): translations `e_i`, then rotations `e_k × (x − x̄) / L` (2D: the one
+/// rotation about z).
+fn mode_row(d: usize, body: &Body, x: &[f64], dir: &[f64; 3]) -> [f64; 6] {
+    let mut q = [0.0; 3];
+    for i in 0..d {
+        q[i] = (x[i] - body.centroid[i]) / body.size;
+    }
+    let mut row = [0.0; 6];
+    row[..d].copy_from_slice(&dir[..d]);
+    if d == 2 {
+        // e_z × q = (−q_y, q_x).
+        row[2] = -q[1] * dir[0] + q[0] * dir[1];
+    } else {
+        for k in 0..3 {
+            let mut e = [0.0; 3];
+            e[k] = 1.0;
+            let w = crate::fem::simplex::cross(&e, &q);
+            row[3 + k] = (0..3).map(|i| w[i] * dir[i]).sum();
+        }
+    }
+    row
+}
+
+fn mode_row_norm2(row: &[f64; 6], m: usize) -> f64 {
+    row[..m].iter().map(|x| x * x).sum()
+}
+
+/// Accumulated normal matrix `Σ r rᵀ` (k × k, k ≤ 6) with its trace reference.
+struct Normal {
+    k: usize,
+    a: [[f64; 6]; 6],
+    /// Sum of the squared norms of the rows in the full coefficient space (the trace
+    /// reference of the tolerance: restricted rows can be shorter).
+    scale: f64,
+}
+
+impl Normal {
+    fn new(k: usize) -> Self {
+        Normal {
+            k,
+            a: [[0.0; 6]; 6],
+            scale: 0.0,
+        }
+    }
+
+    fn add(&mut self, r: &[f64; 6]) {
+        let n2 = mode_row_norm2(r, self.k);
+        self.add_weighted(r, n2);
+    }
+
+    fn add_weighted(&mut self, r: &[f64; 6], full_norm2: f64) {
+        for i in 0..self.k {
+            for j in 0..self.k {
+                self.a[i][j] += r[i] * r[j];
+            }
+        }
+        self.scale += full_norm2;
+    }
+
+    /// Orthonormal basis (k coefficients each) of the eigenvectors with
+    /// eigenvalue at most `NULL_TOLERANCE · scale`; all of them without any row.
+    fn null_space(&self) -> Vec<[f64; 6]> {
+        let (values, vectors) = jacobi_eigen(self.a, self.k);
+        let tol = NULL_TOLERANCE * self.scale;
+        (0..self.k)
+            .filter(|&j| values[j] <= tol)
+            .map(|j| {
+                let mut c = [0.0; 6];
+                for (l, cl) in c.iter_mut().enumerate().take(self.k) {
+                    *cl = vectors[l][j];
+                }
+                c
+            })
+            .collect()
+    }
+}
+
+/// Eigenvalues and eigenvectors (columns) of the symmetric `k × k` leading block of `a`
+/// by the cyclic Jacobi method (converges quadratically; at most 50 sweeps).
+fn jacobi_eigen(mut a: [[f64; 6]; 6], k: usize) -> ([f64; 6], [[f64; 6]; 6]) {
+    let mut v = [[0.0; 6]; 6];
+    for (i, row) in v.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for _ in 0..50 {
+        let off: f64 = (0..k)
+            .flat_map(|i| (0..k).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum();
+        let diag: f64 = (0..k).map(|i| a[i][i] * a[i][i]).sum();
+        if off <= 1e-32 * diag || off == 0.0 {
+            break;
+        }
+        for p in 0..k {
+            for q in p + 1..k {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                // Rotation annihilating a[p][q] (Golub–Van Loan, Algorithm 8.4.1).
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for r in 0..k {
+                    let (arp, arq) = (a[r][p], a[r][q]);
+                    a[r][p] = c * arp - s * arq;
+                    a[r][q] = s * arp + c * arq;
+                }
+                for r in 0..k {
+                    let (apr, aqr) = (a[p][r], a[q][r]);
+                    a[p][r] = c * apr - s * aqr;
+                    a[q][r] = s * apr + c * aqr;
+                }
+                for row in v.iter_mut().take(k) {
+                    let (vp, vq) = (row[p], row[q]);
+                    row[p] = c * vp - s * vq;
+                    row[q] = s * vp + c * vq;
+                }
+            }
+        }
+    }
+    let mut values = [0.0; 6];
+    for (i, x) in values.iter_mut().enumerate().take(k) {
+        *x = a[i][i];
+    }
+    (values, v)
+}
+
+/// A basis of the span of `basis` in reduced row echelon form with the rotation
+/// coefficients first: so a span containing pure translations shows them as such, and
+/// every other vector is a rotation (about a point or axis found by [`describe`]).
+fn reduced(d: usize, basis: &[[f64; 6]]) -> Vec<[f64; 6]> {
+    let m = n_modes(d);
+    // Column order: rotations, then translations.
+    let order: Vec<usize> = (d..m).chain(0..d).collect();
+    let mut rows: Vec<[f64; 6]> = basis.to_vec();
+    let mut lead = 0;
+    for &col in &order {
+        if lead == rows.len() {
+            break;
+        }
+        let Some(p) =
+            (lead..rows.len()).max_by(|&i, &j| rows[i][col].abs().total_cmp(&rows[j][col].abs()))
+        else {
+            break;
+        };
+        if rows[p][col].abs() <= 1e-8 {
+            continue;
+        }
+        rows.swap(lead, p);
+        let pivot = rows[lead][col];
+        for x in rows[lead].iter_mut() {
+            *x /= pivot;
+        }
+        for i in 0..rows.len() {
+            if i != lead {
+                let f = rows[i][col];
+                let r = rows[lead];
+                for (x, y) in rows[i].iter_mut().zip(r) {
+                    *x -= f * y;
+                }
+            }
+        }
+        lead += 1;
+    }
+    for r in &mut rows {
+        for x in r.iter_mut() {
+            if x.abs() <= 1e-9 {
+                *x = 0.0;
+            }
+        }
+    }
+    rows
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+fn point(x: &[f64]) -> String {
+    point_at_scale(x, 0.0)
+}
+
+/// `(x, y[, z])` with 6 significant digits, coordinates below `10⁻⁹ scale` shown as 0 (the
+/// round-off of a point computed on a body of that size).
+fn point_at_scale(x: &[f64], scale: f64) -> String {
+    let parts: Vec<String> = x
+        .iter()
+        .map(|&v| {
+            format!(
+                "{}",
+                if v.abs() <= 1e-9 * scale {
+                    0.0
+                } else {
+                    round(v)
+                }
+            )
+        })
+        .collect();
+    format!("({})", parts.join(", "))
+}
+
+/// Rounds to 6 significant digits for display (and −0 to 0).
+fn round(v: f64) -> f64 {
+    if v == 0.0 || !v.is_finite() {
+        return 0.0;
+    }
+    let e = 10f64.powi(5 - v.abs().log10().floor() as i32);
+    (v * e).round() / e + 0.0
+}
+
+/// A direction in words: "x" for a coordinate axis, else "(a, b[, c])" normalized.
+fn direction(d: usize, a: &[f64]) -> String {
+    let n = a[..d].iter().map(|x| x * x).sum::<f64>().sqrt();
+    for (i, name) in AXES.iter().enumerate().take(d) {
+        if (a[i].abs() - n).abs() <= 1e-9 * n {
+            return (*name).to_string();
+        }
+    }
+    let unit: Vec<f64> = a[..d].iter().map(|x| x / n).collect();
+    point(&unit)
+}
+
+/// Splits coefficients `c` of `body` into translation `a` (m/unit), physical angular
+/// velocity `ω` (rad/unit) and, for a rotation, a point on its axis `p` (m) and the
+/// translation along the axis.
+fn kinematics(d: usize, body: &Body, c: &[f64; 6]) -> ([f64; 3], [f64; 3], [f64; 3], f64) {
+    let mut a = [0.0; 3];
+    a[..d].copy_from_slice(&c[..d]);
+    let mut w = [0.0; 3];
+    if d == 2 {
+        w[2] = c[2] / body.size;
+    } else {
+        for k in 0..3 {
+            w[k] = c[3 + k] / body.size;
+        }
+    }
+    let w2: f64 = w.iter().map(|x| x * x).sum();
+    let mut p = body.centroid;
+    let mut along = 0.0;
+    if w2 > 0.0 {
+        // a = a_par + a_perp; the axis passes through p = x̄ + ω × a_perp / |ω|².
+        let wn = w2.sqrt();
+        along = (0..3).map(|i| a[i] * w[i]).sum::<f64>() / wn;
+        let mut perp = a;
+        for i in 0..3 {
+            perp[i] -= along * w[i] / wn;
+        }
+        let q = crate::fem::simplex::cross(&w, &perp);
+        for i in 0..3 {
+            p[i] += q[i] / w2;
+        }
+    }
+    (a, w, p, along)
+}
+
+/// The rigid motion with coefficients `c` of `body` in a mechanician's words: "translation
+/// along x", "translation along (0.6, 0.8)", "rotation about z through (1, 2)", "rotation
+/// about the axis (0, 0.6, 0.8) through (…)" and, for a helical motion, "… combined with a
+/// translation along that axis".
+pub fn describe(d: usize, body: &Body, c: &[f64; 6]) -> String {
+    let (a, w, p, along) = kinematics(d, body, c);
+    let wn = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if wn == 0.0 {
+        return format!("translation along {}", direction(d, &a));
+    }
+    let axis = if d == 2 {
+        "z".to_string()
+    } else {
+        let dir = direction(3, &w);
+        if dir.len() == 1 {
+            dir
+        } else {
+            format!("the axis {dir}")
+        }
+    };
+    let reach = body.size + body.centroid.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut s = format!(
+        "rotation about {axis} through {}",
+        point_at_scale(&p[..d], reach)
+    );
+    let scale = a
+        .iter()
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt()
+        .max(wn * body.size);
+    if along.abs() > 1e-9 * scale {
+        s.push_str(" combined with a translation along that axis");
+    }
+    s
+}
+
+/// What would block the motion `c` of `body`, in words.
+fn remedy(d: usize, body: &Body, c: &[f64; 6]) -> String {
+    let (a, w, _, _) = kinematics(d, body, c);
+    let wn = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if wn == 0.0 {
+        let dir = direction(d, &a);
+        if dir.len() == 1 {
+            format!(
+                "prescribe u_{dir} on some part of this body ([[dirichlet]]), or add a \
+                 [[contact]] part whose normal has a nonzero {dir} component"
+            )
+        } else {
+            format!(
+                "prescribe the displacement component along {dir} on some part of this body \
+                 ([[dirichlet]]), or add a [[contact]] part whose normal has a component along \
+                 it"
+            )
+        }
+    } else {
+        "prescribe displacements ([[dirichlet]]) on a part away from the rotation axis, or \
+         on two parts apart, or add a [[contact]] part whose normal does not point through \
+         the axis"
+            .to_string()
+    }
+}
+
+/// Relative size of the shift added to the diagonal of the Newton matrix on bodies with
+/// free rigid motions carried by contact: `α = NEWTON_SHIFT · max_k H_kk` over their free
+/// equations, at the first assembly.
+///
+/// While the contact holding such a body is not yet active (a gap, or the kink at zero
+/// gap), its rigid motions have no stiffness and the Newton matrix is singular. The shift
+/// `α I` (Levenberg–Marquardt) makes it definite; it enters the Newton *matrix* only, never
+/// the energy or its gradient, so the line search, the convergence test, the certificate
+/// and therefore the converged displacement are those of the unmodified problem — the
+/// stabilizing force is identically zero. Along an unloaded rigid motion the step is
+/// `f_r / (α n)`: far beyond the contact, where the line search stops it at the first
+/// contact kink (exactly: the energy is linear until the kink). Once contact is active,
+/// the shift slows Newton's convergence to the linear rate `α / λ_min(H)`, negligible for
+/// `10⁻⁸` against the smallest stiffness of any mesh solved here (`λ_min / max H_kk ≳ h²`).
+pub const NEWTON_SHIFT: f64 = 1e-8;
+
+impl RigidMotions {
+    /// The DOFs (`d·node + i`) of the bodies that have a free rigid motion: where the
+    /// Newton matrix is shifted (see [`NEWTON_SHIFT`]).
+    pub fn shifted_dofs(&self) -> Vec<usize> {
+        let d = self.dim;
+        let mut dofs = Vec::new();
+        for (body, free) in self.bodies.iter().zip(&self.free) {
+            if !free.is_empty() {
+                dofs.extend(
+                    body.nodes
+                        .iter()
+                        .flat_map(|&v| (0..d).map(move |i| d * v as usize + i)),
+                );
+            }
+        }
+        dofs.sort_unstable();
+        dofs
+    }
+
+    /// The free rigid motions of all bodies in words (empty if none), each prefixed with
+    /// its mesh component when the mesh has several.
+    pub fn describe_all(&self) -> Vec<String> {
+        let several = self.bodies.len() > 1;
+        (0..self.bodies.len())
+            .flat_map(|b| {
+                self.describe_free(b).into_iter().map(move |s| {
+                    if several {
+                        format!("mesh component {}: {s}", b + 1)
+                    } else {
+                        s
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// The largest generalized force `|Σ_v r(x_v) · g_v| / max_v |r(x_v)|` (N) over the
+    /// orthonormal free motions `r` of every body, for the nodal force vector `g` (DOF
+    /// order): for a translation the net force along it, for a rotation the moment about
+    /// its axis divided by the body's size. Zero without free motions.
+    pub fn generalized_force(&self, mesh: &Mesh, g: &[f64]) -> f64 {
+        let d = self.dim;
+        let mut worst = 0.0f64;
+        for (b, body) in self.bodies.iter().enumerate() {
+            for c in &self.free[b] {
+                let (mut force, mut reach) = (0.0, 0.0f64);
+                for &v in &body.nodes {
+                    let r = self.displacement(b, c, mesh.node(v as usize));
+                    let n = (0..d).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
+                    reach = reach.max(n);
+                    force += (0..d).map(|i| r[i] * g[d * v as usize + i]).sum::<f64>();
+                }
+                if reach > 0.0 {
+                    worst = worst.max(force.abs() / reach);
+                }
+            }
+        }
+        worst
+    }
+
+    /// # Errors
+    /// [`Error::ContactLost`] if a body with a free rigid motion has moved by more than
+    /// its size under the displacement `u` (DOF order): the load then pulls it off the
+    /// contact that was to carry the motion (small-strain displacements never approach
+    /// the size of the body). `length` is the unit of the coordinates in units of the
+    /// displacements (1 when both are in metres; `L/U` in the dimensionless variables of
+    /// [`crate::solver::scaling`]).
+    pub fn check_runaway(&self, u: &[f64], length: f64) -> Result<()> {
+        let d = self.dim;
+        for (b, body) in self.bodies.iter().enumerate() {
+            if self.free[b].is_empty() {
+                continue;
+            }
+            let moved = body
+                .nodes
+                .iter()
+                .map(|&v| {
+                    (0..d)
+                        .map(|i| u[d * v as usize + i].powi(2))
+                        .sum::<f64>()
+                        .sqrt()
+                })
+                .fold(0.0, f64::max);
+            if moved > body.size * length || !moved.is_finite() {
+                let which = if self.bodies.len() > 1 {
+                    format!("mesh component {} of {}: ", b + 1, self.bodies.len())
+                } else {
+                    String::new()
+                };
+                return Err(Error::ContactLost {
+                    motions: format!(
+                        "{which}{} (the body moved by {moved:.3e} m, more than its size \
+                         {:.3e} m)",
+                        self.describe_free(b).join("; "),
+                        body.size * length
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+}
