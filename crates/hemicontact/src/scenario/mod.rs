@@ -910,7 +910,7 @@ impl Scenario {
             ));
         }
         let tol = solver.certificate_tolerance;
-        if !(tol.is_finite() && tol >= 1e-14 && tol < 1.0) {
+        if !(tol.is_finite() && (1e-14..1.0).contains(&tol)) {
             return Err(self.err(
                 "solver.certificate_tolerance",
                 tol,
