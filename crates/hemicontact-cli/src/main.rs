@@ -58,7 +58,7 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Solve the paper's example (SPEC §5) on an n × n mesh, with C_κ = 10 000 and C_κ = 0;
+    /// Solve the paper's example on an n × n mesh, with C_κ = 10 000 and C_κ = 0;
     /// write each case's results and figures into DIR/locking and DIR/no-locking and the
     /// side-by-side figure DIR/comparison.{png,svg}. With --study, run the paper's
     /// convergence study for both cases instead (results in DIR).
@@ -630,7 +630,7 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         );
     }
     say!(
-        "paper example (SPEC §5), n = {n}: {} squares, h = {}",
+        "paper example, n = {n}: {} squares, h = {}",
         n * n,
         16.0 / (2.0 * (n * n) as f64)
     );

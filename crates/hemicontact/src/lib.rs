@@ -7,8 +7,8 @@
 //! An elastic body `Ω ⊂ R^d` (P1 triangles or tetrahedra) is clamped on Γ_D, loaded on Γ_N and may touch
 //! rigid foundations on Γ_C (normal compliance) with slip-dependent (nonmonotone) friction;
 //! the material may *lock* (its strain is confined to a convex set B, here through the
-//! nearly-locking penalty). The solver ([`solver::solve`]) is the convexification method of
-//! SPEC §4: each outer iteration freezes the friction bound `F = μ(‖u_τ‖) p(u_ν)` (and the
+//! nearly-locking penalty). The solver ([`solver::solve`]) is the convexification method:
+//! each outer iteration freezes the friction bound `F = μ(‖u_τ‖) p(u_ν)` (and the
 //! linearized concave part of a nonconvex potential) at the contact nodes and minimizes the
 //! remaining convex energy
 //! `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + Σ_i w_i [P(u_ν,i) + F_i^k j_cvx(u_τ,i) − b_i^k·u_τ,i] − ⟨f, u⟩`

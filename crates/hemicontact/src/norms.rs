@@ -4,7 +4,7 @@ use crate::assembly::element;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
 
-/// Energy norm of SPEC §5, `‖v‖_E = (1/√2) (A ε(v), ε(v))^{1/2}_{L²}` with A the Hooke
+/// Energy norm of the paper's example, `‖v‖_E = (1/√2) (A ε(v), ε(v))^{1/2}_{L²}` with A the Hooke
 /// operator `hooke`; since `W(ε) = ½ Aε:ε`, this is `(Σ_T |T| W(ε_T(v)))^{1/2}`.
 /// `v` is in DOF order (length `d · n_nodes`).
 ///

@@ -124,7 +124,7 @@ impl Problem {
     }
 
     /// Whether each node has all its displacement components prescribed (a node of Γ_D in
-    /// the SPEC's sense, `u = 0` on Γ_D; such nodes are never contact nodes). A node on a
+    /// the model's sense, `u = 0` on Γ_D; such nodes are never contact nodes). A node on a
     /// roller (some components free) stays a contact node: the foundation acts on its free
     /// components.
     pub fn fully_prescribed(&self) -> Vec<bool> {
@@ -137,7 +137,7 @@ impl Problem {
 
     /// Notes worth telling the user, warnings that do not stop a run: each contact part that
     /// shares nodes with a Dirichlet part (nodes with every displacement component
-    /// prescribed are not contact nodes (SPEC §3: a node on Γ_D is never a contact node);
+    /// prescribed are not contact nodes (a node on Γ_D is never a contact node);
     /// nodes on a roller keep contact on their free components), and each contact part that
     /// turns corners (nodes split into one contact point per direction; see
     /// [`crate::contact::nodes`]).
@@ -165,8 +165,7 @@ impl Problem {
                 };
                 notes.push(format!(
                     "contact part `{}` shares {} node(s) with Dirichlet part `{}`: {excluded} of \
-                     them, with every displacement component prescribed, are not contact nodes \
-                     (SPEC §3){others}",
+                     them, with every displacement component prescribed, are not contact nodes{others}",
                     names[c.part],
                     shared.len(),
                     names[b.part]
@@ -195,7 +194,7 @@ impl Problem {
         notes
     }
 
-    /// The contact points of the problem (SPEC §3).
+    /// The contact points of the problem.
     pub fn contact_nodes(&self) -> ContactNodes {
         ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())
     }

@@ -1,9 +1,9 @@
-//! Convergence study (SPEC §5): solve a scenario on a sequence of meshes and measure the
+//! Convergence study: solve a scenario on a sequence of meshes and measure the
 //! relative energy-norm error against a reference solution on a fine mesh.
 //!
 //! For each level, the solution `u^h` is carried onto the reference mesh by P1
 //! interpolation ([`crate::fem::transfer`]: exact for nested meshes) and the error
-//! `‖u_ref − u^h‖_E / ‖u_ref‖_E` is computed with the energy norm of SPEC §5
+//! `‖u_ref − u^h‖_E / ‖u_ref‖_E` is computed with the energy norm of the paper's example
 //! ([`crate::norms::energy_norm`], the small-strain Hooke operator of the material). The
 //! paper's mesh parameter `h` is the element *area*; the element edge (square side) is
 //! reported too, with the observed orders between consecutive levels in both.

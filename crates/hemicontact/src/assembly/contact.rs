@@ -1,4 +1,4 @@
-//! Contact terms of the convexified energy (SPEC §4): for every contact point i,
+//! Contact terms of the convexified energy: for every contact point i,
 //!
 //! `w_i [ P(u_ν,i) + F_i^k j_cvx(u_τ,i) − b_i^k · u_τ,i ]`,
 //!
@@ -99,7 +99,7 @@ pub struct ContactAssembler<'a> {
 
 impl<'a> ContactAssembler<'a> {
     /// State of point `i` at displacement `u`, with the friction bound evaluated at that
-    /// state (SPEC §1). At a Signorini point the pressure is the updated multiplier
+    /// state. At a Signorini point the pressure is the updated multiplier
     /// `(λ_i + r_i (u_ν − g))_+` of the frozen multiplier λ_i in `frozen`.
     #[inline]
     pub fn state(&self, u: &[f64], i: usize, frozen: &Frozen) -> PointState {
@@ -123,7 +123,7 @@ impl<'a> ContactAssembler<'a> {
         }
     }
 
-    /// The frozen quantities at displacement `u` (the convexification step of SPEC §4)
+    /// The frozen quantities at displacement `u` (the convexification step)
     /// and the multiplier updates of the exact constraints, from the current ones in
     /// `current`: `λ_i ← (λ_i + r_i(u_ν − g))_+`, `τ_i ← proj_{B_F}(τ_i + r_i u_τ)` with the
     /// frozen bound F of `current` (so that τ_i is the friction traction of the subproblem

@@ -1,4 +1,4 @@
-//! Friction laws (SPEC §2): slip-dependent coefficient μ(r), friction bound F, and the
+//! Friction laws: slip-dependent coefficient μ(r), friction bound F, and the
 //! friction potential j with its difference-of-convex split `j = j_cvx − h`.
 //!
 //! The friction condition is `−σ_τ ∈ F ∂j(u_τ)` (Clarke subdifferential), with
@@ -144,7 +144,7 @@ impl FrictionCoefficient {
     }
 }
 
-/// How the friction bound F depends on the state (SPEC §1).
+/// How the friction bound F depends on the state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FrictionBound {

@@ -1,7 +1,7 @@
 //! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`]) and the contact
 //! nodes with their lumped weights, normals and tangents ([`nodes`]).
 //!
-//! Conventions (SPEC §1): `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
+//! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
 //! normal displacement and `g ≥ 0` the initial gap to the foundation, so `u_ν − g > 0` is a
 //! penetration. The tangential displacement `u_τ = u − u_ν ν` is stored in the coordinates of
 //! an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the

@@ -1,4 +1,4 @@
-//! Contact nodes (SPEC §3): the nodes of Γ_C with their lumped weights, averaged normals and
+//! Contact nodes: the nodes of Γ_C with their lumped weights, averaged normals and
 //! tangent bases.
 //!
 //! A *contact point* is a node of a contact boundary with one direction of contact: a node on

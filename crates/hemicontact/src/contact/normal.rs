@@ -1,5 +1,5 @@
-//! Normal compliance (SPEC §1): `−σ_ν = p(u_ν) = c_ν (u_ν − g)_+`, the reaction of
-//! deformable asperities, with energy `P(u_ν) = (c_ν/2)(u_ν − g)_+²` (SPEC §4).
+//! Normal compliance: `−σ_ν = p(u_ν) = c_ν (u_ν − g)_+`, the reaction of
+//! deformable asperities, with energy `P(u_ν) = (c_ν/2)(u_ν − g)_+²`.
 
 /// Normal compliance with stiffness `c_nu` (Pa/m, i.e. pressure per penetration).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,7 +36,7 @@ impl NormalCompliance {
 /// The normal contact law of a contact boundary.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum NormalLaw {
-    /// Normal compliance `p = c_ν (u_ν − g)_+` (deformable asperities, SPEC §1).
+    /// Normal compliance `p = c_ν (u_ν − g)_+` (deformable asperities).
     Compliance(NormalCompliance),
     /// The Signorini condition of a rigid foundation: `u_ν ≤ g`, `p ≥ 0`, `p (u_ν − g) = 0`,
     /// the contact pressure p being the Lagrange multiplier of the constraint (imposed by

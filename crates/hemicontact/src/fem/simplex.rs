@@ -4,7 +4,7 @@
 //! maps the reference simplex onto it. The measure is `det J / d!` and the gradients of the
 //! barycentric (hat) functions are the rows of `J^{-1}` for `k ≥ 1`, with
 //! `∇φ_0 = −Σ_{k≥1} ∇φ_k`. Gradients are constant on the cell, so the strain of a P1 field
-//! is constant per cell (SPEC §3).
+//! is constant per cell.
 
 /// Measure and hat-function gradients of one simplex.
 #[derive(Clone, Copy, Debug)]

@@ -44,7 +44,7 @@ pub struct Summary {
     pub lame: [f64; 2],
     /// Total potential energy at the solution (J).
     pub energy: f64,
-    /// Energy norm `‖u‖_E` of SPEC §5 (√J).
+    /// Energy norm `‖u‖_E` of the paper's example (√J).
     pub energy_norm: f64,
     /// Largest displacement magnitude over the nodes (m).
     pub max_displacement: f64,

@@ -1,4 +1,4 @@
-//! A strain-stiffening Hencky law satisfying the paper's hypotheses on A (SPEC §2):
+//! A strain-stiffening Hencky law satisfying the paper's hypotheses on A:
 //! `W(ε) = ½ K (tr ε)² + Φ(‖ε^D‖²)` with
 //! `Φ(s) = G_∞ s − (G_∞ − G) s₀ (1 − e^{−s/s₀})`, so that
 //! `Φ'(s) = G_∞ − (G_∞ − G) e^{−s/s₀}` rises from `G` (small strains) to `G_∞ ≥ G`

@@ -1,4 +1,4 @@
-//! Isotropic Hooke's law (SPEC §2): `A ε = λ tr(ε) I + 2G ε`.
+//! Isotropic Hooke's law: `A ε = λ tr(ε) I + 2G ε`.
 //!
 //! Energy `W(ε) = λ/2 (tr ε)² + G ε:ε`; stress `σ = λ tr(ε) I + 2G ε`;
 //! tangent `λ I ⊗ I + 2G 𝕀`; out-of-plane stress in plane strain `σ_zz = λ tr ε`. Strongly monotone with constant `m_A = 2G` when `λ ≥ 0`

@@ -1,4 +1,4 @@
-//! Locking sets `B = {ε : Q(ε) ≤ 0}` and the nearly-locking penalty (SPEC §2, paper eq. (40)).
+//! Locking sets `B = {ε : Q(ε) ≤ 0}` and the nearly-locking penalty (paper eq. (40)).
 //!
 //! | set | Q(ε) | ∂Q | ∂²Q |
 //! |-----|------|----|-----|
@@ -199,7 +199,7 @@ impl StrainEnergy for LockingPenalty {
     }
 }
 
-/// The augmented Lagrangian term of *ideal* locking in one cell (SPEC §1, the constraint
+/// The augmented Lagrangian term of *ideal* locking in one cell (the constraint
 /// `ε_T ∈ B`): with multiplier `λ ≥ 0` (Pa) and penalty `r > 0` (Pa per unit of Q²),
 ///
 /// `Ψ_λ(ε) = (1/2r) [ (λ + r Q(ε))_+² − λ² ]`,

@@ -1,6 +1,6 @@
 //! Pointwise constitutive laws: a constant strain in, energy density, stress and tangent out.
 //!
-//! The stored energy density of the body is `W(ε) + Ψ(ε)` (SPEC §2 and §4: `A = ∂W`, Ψ the
+//! The stored energy density of the body is `W(ε) + Ψ(ε)` (`A = ∂W`, Ψ the
 //! nearly-locking penalty); the laws here know nothing of meshes or DOFs, so each is
 //! testable on its own (finite-difference checks of stress against energy and of tangent
 //! against stress live in `tests/`).
@@ -46,7 +46,7 @@ pub trait StrainEnergy {
     fn plane_strain_stress_zz(&self, eps: &Sym) -> f64;
 }
 
-/// The elasticity operator A = ∂W (SPEC §2).
+/// The elasticity operator A = ∂W.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Elasticity {
     /// Isotropic Hooke's law.
@@ -64,7 +64,7 @@ impl Elasticity {
         }
     }
 
-    /// The Hooke operator used for the energy norm of SPEC §5: Hooke's law itself, or the
+    /// The Hooke operator used for the energy norm of the paper's example: Hooke's law itself, or the
     /// small-strain Hooke law of the Hencky model (`λ = K − 2G/d`, `G`).
     pub fn small_strain_hooke(&self, dim: usize) -> Hooke {
         match *self {

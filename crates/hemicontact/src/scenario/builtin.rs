@@ -1,6 +1,6 @@
 //! Built-in scenarios.
 
-/// The paper's example (SPEC §5) as plain elasticity: the square (0,4)², clamped at the
+/// The paper's example as plain elasticity: the square (0,4)², clamped at the
 /// bottom, compressed by `f_N = (0, −900)` N/m on top, E = 2000 Pa, ν = 0.3, plane strain,
 /// with the symmetric nested cut pattern. Contact, friction and locking are added by the
 /// paper-model issue. `{n}` is replaced by the number of squares per side.
@@ -56,7 +56,7 @@ potential = "norm"
 mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 "#;
 
-/// The paper's example (SPEC §5) with `n × n` squares and locking compliance `c_kappa` (Pa):
+/// The paper's example with `n × n` squares and locking compliance `c_kappa` (Pa):
 /// [`PAPER_ELASTIC`] (E = 2000 Pa, ν = 0.3, plane strain — the paper's printed formula —
 /// clamped at the bottom, `f_N = (0, −900)` N/m on top) plus the locking penalty and both
 /// vertical sides in frictional contact (see the constants above).

@@ -1,5 +1,5 @@
 //! The certificate of a solve: residuals that let a user trust the answer without trusting
-//! the code (SPEC §4).
+//! the code.
 //!
 //! The interface force at contact point i is recovered from *equilibrium of the body*:
 //! the node's balance `f_i − ∇W_i(u) + R_i = 0` gives the force the foundation exerts on

@@ -1,4 +1,4 @@
-//! The solution method of SPEC §4: a fixed-pattern system prepared once, the
+//! The solution method: a fixed-pattern system prepared once, the
 //! convexification outer loop, and a globalized Newton method for each convex problem.
 //!
 //! The program reads like the method: [`solve`] builds the DOF map, the sparsity pattern

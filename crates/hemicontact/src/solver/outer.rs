@@ -1,4 +1,4 @@
-//! The convexification outer loop (SPEC §4) and its acceleration.
+//! The convexification outer loop and its acceleration.
 //!
 //! Outer iteration k freezes, at every contact point, the friction bound `F_i^k` (which
 //! depends on the slip through μ, and for Coulomb-type bounds on the pressure) and the
@@ -46,7 +46,7 @@ pub enum Acceleration {
 pub struct OuterSettings {
     /// Maximum number of outer iterations (convex solves). Default 100.
     pub max_iterations: usize,
-    /// Tolerance on the relative change of u in the energy norm. Default 1e-10 (SPEC §4).
+    /// Tolerance on the relative change of u in the energy norm. Default 1e-10.
     pub tolerance: f64,
     /// Acceleration. Default Anderson.
     pub acceleration: Acceleration,

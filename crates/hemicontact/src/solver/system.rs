@@ -1,6 +1,6 @@
 //! The discrete system, prepared once per problem: DOF map, sparsity pattern, symbolic
 //! factorization, contact points, external forces, and the work arrays of the Newton
-//! iteration. [`System::evaluate`] computes the convexified energy `E_k` of SPEC §4 with its
+//! iteration. [`System::evaluate`] computes the convexified energy `E_k` with its
 //! gradient and generalized Hessian for given frozen contact quantities.
 
 use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};

@@ -1,4 +1,4 @@
-//! The uniqueness condition of the paper's Theorem 4 (SPEC §1):
+//! The uniqueness condition of the paper's Theorem 4:
 //! `(μ₀ α_j + c_j L_μ) ‖γ‖² < m_A`.
 //!
 //! - `m_A`: strong monotonicity constant of the elasticity operator
