@@ -349,6 +349,19 @@ fn print_problem(problem: &Problem, source: &str) {
     );
     let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
     say!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+    match hemicontact::solver::scaling::Scales::of(problem) {
+        Ok(scales) => say!(
+            "scales     length {:e} m, stress {:e} Pa, displacement {:e} m (the solve is dimensionless in these)",
+            scales.length,
+            scales.stress,
+            scales.displacement
+        ),
+        Err(e) => say!("scales     {e}"),
+    }
+    say!(
+        "certificate tolerance {:e} (relative residuals of every law)",
+        problem.solver.certificate_tolerance
+    );
     let lock = &problem.material.locking;
     if let Some(set) = &problem.material.ideal_locking {
         say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)");
