@@ -310,6 +310,10 @@ fn error_chain(e: &anyhow::Error) -> String {
 fn check(file: &Path) -> Result<()> {
     let scenario = read_scenario(file)?;
     let (problem, notes) = scenario.into_problem_with_notes()?;
+    // The scales of the dimensionless solve: data too far apart to represent the
+    // displacements would fail every solve, so they fail the check too.
+    hemicontact::solver::scaling::Scales::of(&problem)
+        .with_context(|| format!("{}: the problem cannot be solved", scenario.source))?;
     print_problem(&problem, &scenario.source);
     print_notes(&notes);
     // Rigid motions not blocked by a Dirichlet condition that contact carries (those it

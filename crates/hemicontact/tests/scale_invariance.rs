@@ -305,3 +305,26 @@ fn coarse_friction_regularization_is_refused_not_certified() {
     );
     assert!(s.report.certificate.friction_law > s.report.certificate.tolerance);
 }
+
+/// Data so far apart that the displacements they cause cannot be represented in double
+/// precision (E = 1e-300 Pa under 1e300 Pa: u ≈ 1e600 m) are refused with an error naming
+/// the displacement scale, not solved into infinities.
+#[test]
+fn unrepresentable_displacements_are_refused() {
+    let text = r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [2, 2]
+[material]
+young = 1e-300
+poisson = 0.3
+[[dirichlet]]
+part = "bottom"
+[[loads.traction]]
+part = "top"
+value = [0.0, -1e300]
+"#;
+    let err = solve(&problem(text)).unwrap_err().to_string();
+    assert!(err.contains("displacement scale"), "{err}");
+}
