@@ -42,7 +42,8 @@
 //! ([`crate::solver::System::reactions`]), so reactions and interface forces together
 //! balance the loads.
 //!
-//! At a node shared by several contact points (an edge between two contact parts), the
+//! At a node shared by several contact points (an edge between two contact parts, or a
+//! corner of one part, see [`crate::contact::nodes`]), the
 //! equilibrium force is one vector for several points: the force attributed to a point is
 //! what remains after subtracting the model forces of the node's other points.
 //!
