@@ -32,15 +32,3 @@ pub fn write(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     Ok(())
 }
-
-/// Creates the folder `dir` (and its parents) and checks that a file can be written in it.
-///
-/// # Errors
-/// [`Error::Io`] if the folder cannot be created or is not writable.
-pub fn prepare_dir(dir: &Path) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let probe = dir.join(format!(".write-test-{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(|e| Error::io(dir, e))?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
-}
