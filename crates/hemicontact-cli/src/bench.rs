@@ -143,10 +143,11 @@ pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>)
         "peak MiB"
     );
     for &n in sizes {
-        let paper = match &scenario {
-            Some(s) => s.with_resolution(n)?.into_problem()?,
-            None => crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?.into_problem()?,
+        let case = match &scenario {
+            Some(s) => s.with_resolution(n)?,
+            None => crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?,
         };
+        let (paper, settings) = (case.into_problem()?, case.settings()?);
         // The linear elastic reference: the same mesh, material, supports and loads, without
         // contact and locking.
         let mut linear = paper.clone();
@@ -159,11 +160,11 @@ pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>)
         let mut last = None;
         for _ in 0..repeat {
             let t = Instant::now();
-            let s = hemicontact::solver::solve(&linear)?;
+            let s = hemicontact::solver::solve(&linear, &settings)?;
             t_lin.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(s.report.converged, "linear solve did not converge");
             let t = Instant::now();
-            let s = hemicontact::solver::solve(&paper)?;
+            let s = hemicontact::solver::solve(&paper, &settings)?;
             t_pap.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(
                 s.report.converged,

@@ -27,7 +27,7 @@ use hemicontact::io::summary::{write_results, Summary};
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
-use hemicontact::solver::Solution;
+use hemicontact::solver::{Solution, SolverSettings};
 use hemicontact::study::StudySettings;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -310,19 +310,19 @@ fn error_chain(e: &anyhow::Error) -> String {
 fn check(file: &Path) -> Result<()> {
     let scenario = read_scenario(file)?;
     let (problem, notes) = scenario.into_problem_with_notes()?;
+    let settings = scenario.settings()?;
     // The scales of the dimensionless solve: data too far apart to represent the
     // displacements would fail every solve, so they fail the check too.
     hemicontact::solver::scaling::Scales::of(&problem)
         .with_context(|| format!("{}: the problem cannot be solved", scenario.source))?;
-    print_problem(&problem, &scenario.source);
+    print_problem(&problem, &settings, &scenario.source);
     print_notes(&notes);
     // Rigid motions not blocked by a Dirichlet condition that contact carries (those it
     // does not carry were refused above).
     for motion in problem.rigid_motions().describe_all() {
         say!("free rigid motion carried by contact: {motion}");
     }
-    let iterative = problem
-        .solver
+    let iterative = settings
         .linear_solver
         .resolve(problem.mesh.dim(), problem.dof_map().n_free())
         == hemicontact::solver::LinearSolver::Iterative;
@@ -332,13 +332,15 @@ fn check(file: &Path) -> Result<()> {
              factorization, and this scenario uses the iterative linear solver"
         );
     } else if !problem.contact.is_empty() {
-        print_uniqueness(&hemicontact::solver::uniqueness::check(&problem)?);
+        print_uniqueness(&hemicontact::solver::uniqueness::check(
+            &problem, &settings,
+        )?);
     }
     say!("ok: {} is valid", file.display());
     Ok(())
 }
 
-fn print_problem(problem: &Problem, source: &str) {
+fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
     let mesh = &problem.mesh;
     let dofs = problem.dof_map();
     say!("scenario   {source}");
@@ -364,7 +366,7 @@ fn print_problem(problem: &Problem, source: &str) {
     }
     say!(
         "certificate tolerance {:e} (relative residuals of every law)",
-        problem.solver.certificate_tolerance
+        settings.certificate_tolerance
     );
     let lock = &problem.material.locking;
     if let Some(set) = &problem.material.ideal_locking {
@@ -517,10 +519,12 @@ fn run_and_write(
     json: bool,
     label: &str,
 ) -> Result<Case> {
-    let solution = hemicontact::solver::solve(&problem)
+    let settings = scenario.settings()?;
+    let solution = hemicontact::solver::solve(&problem, &settings)
         .with_context(|| format!("{}: solve failed", scenario.source))?;
     let mut summary = Summary::new(
         &problem,
+        &settings,
         &solution,
         scenario.file.title.clone(),
         &scenario.source,

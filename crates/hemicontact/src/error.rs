@@ -24,6 +24,20 @@ pub enum Error {
         /// What is allowed instead.
         allowed: String,
     },
+    /// A parameter of a law, a setting or a datum of a problem built in code is out of its
+    /// range. `field` is the path of the parameter in the library's types (e.g.
+    /// `newton.armijo`, `contact[0].friction.mu`); the scenario layer reports the same
+    /// error as [`Error::Scenario`] with the path of the field in the file
+    /// ([`Error::in_file`]).
+    #[error("`{field}` = {value}: {allowed}")]
+    Invalid {
+        /// Dotted path of the offending parameter.
+        field: String,
+        /// The value found.
+        value: String,
+        /// What is allowed instead.
+        allowed: String,
+    },
     /// The scenario file could not be parsed (syntax error, unknown field, wrong type).
     #[error("{file}: {message}")]
     Parse {
@@ -135,11 +149,91 @@ impl std::fmt::Display for FileLocation {
 }
 
 impl Error {
+    /// Shorthand for [`Error::Invalid`].
+    pub fn invalid(
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
+        Error::Invalid {
+            field: field.into(),
+            value: value.to_string(),
+            allowed: allowed.into(),
+        }
+    }
+
+    /// The same error with the field path of an [`Error::Invalid`] prefixed by `prefix`
+    /// (`prefix.field`; `field` alone if `prefix` is empty; indexed paths such as
+    /// `contact[0]` join without a dot before `[`). Other errors pass unchanged. Composite
+    /// settings use it to report the path from their own root.
+    pub fn within(self, prefix: &str) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Invalid {
+                field: join_path(prefix, &field),
+                value,
+                allowed,
+            },
+            e => e,
+        }
+    }
+
+    /// The error as the scenario file `file` reports it: an [`Error::Invalid`] becomes an
+    /// [`Error::Scenario`] whose field is `map(field)`, the path of the parameter in the
+    /// file. Other errors pass unchanged.
+    pub fn in_file(self, file: &str, map: impl FnOnce(&str) -> String) -> Self {
+        match self {
+            Error::Invalid {
+                field,
+                value,
+                allowed,
+            } => Error::Scenario {
+                file: file.to_string(),
+                field: map(&field),
+                value,
+                allowed,
+            },
+            e => e,
+        }
+    }
+
     /// Shorthand for [`Error::Io`].
     pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
         Error::Io {
             path: path.into(),
             source,
         }
+    }
+}
+
+/// `prefix.field`, or `prefix[…]` when `field` starts with an index, or one of the two
+/// alone when the other is empty.
+fn join_path(prefix: &str, field: &str) -> String {
+    if prefix.is_empty() {
+        field.to_string()
+    } else if field.is_empty() {
+        prefix.to_string()
+    } else if field.starts_with('[') {
+        format!("{prefix}{field}")
+    } else {
+        format!("{prefix}.{field}")
+    }
+}
+
+/// `Ok(())` if `ok`, else [`Error::Invalid`] for `field` = `value` with `allowed`: the one
+/// line of every range check of a `validate` method.
+pub(crate) fn require(
+    ok: bool,
+    field: &str,
+    value: impl std::fmt::Display,
+    allowed: &str,
+) -> Result<()> {
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::invalid(field, value, allowed))
     }
 }

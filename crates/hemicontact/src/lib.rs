@@ -41,8 +41,9 @@
 //! bound = "coulomb"
 //! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 //! "#;
-//! let problem = Scenario::from_str(text, "<doc>").unwrap().into_problem().unwrap();
-//! let solution = hemicontact::solver::solve(&problem).unwrap();
+//! let scenario = Scenario::from_str(text, "<doc>").unwrap();
+//! let (problem, settings) = (scenario.into_problem().unwrap(), scenario.settings().unwrap());
+//! let solution = hemicontact::solver::solve(&problem, &settings).unwrap();
 //! assert!(solution.report.converged);
 //! // The block bulges into the wall on the right: some node is in contact.
 //! assert!(solution.report.certificate.n_contact > 0);

@@ -1,14 +1,13 @@
 //! A validated, fully resolved boundary value problem: mesh, material, boundary conditions,
-//! loads, and solver settings.
+//! loads and contact laws.
 
 use crate::assembly::loads;
 use crate::contact::{ContactBoundary, ContactNodes};
-use crate::error::{Error, Result};
+use crate::error::{require, Error, Result};
 use crate::fem::dofs::DofMap;
 use crate::fem::rigid::RigidMotions;
 use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::solver::SolverSettings;
 
 /// A Dirichlet condition: the selected displacement components are prescribed on a part.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,6 +30,9 @@ pub struct Traction {
 }
 
 /// The problem: find the displacement minimizing the total energy under the given data.
+///
+/// A `Problem` is built by [`Problem::builder`] … [`ProblemBuilder::build`], which checks
+/// every law and datum; the solver settings are separate ([`crate::solver::solve`]).
 #[derive(Clone, Debug)]
 pub struct Problem {
     /// The mesh.
@@ -49,48 +51,245 @@ pub struct Problem {
     pub body_force: [f64; 3],
     /// Contact boundaries (Γ_C), each facing a rigid foundation.
     pub contact: Vec<ContactBoundary>,
-    /// Solver settings.
-    pub solver: SolverSettings,
+}
+
+/// The data of a [`Problem`] under construction; [`ProblemBuilder::build`] checks them.
+#[derive(Clone, Debug)]
+pub struct ProblemBuilder {
+    problem: Problem,
+}
+
+impl ProblemBuilder {
+    /// The plane idealization of a 2D problem (default plane strain; must be strain in 3D).
+    pub fn plane(mut self, plane: crate::material::Plane) -> Self {
+        self.problem.plane = plane;
+        self
+    }
+
+    /// Adds a Dirichlet condition (`dirichlet[k]`, k in the order of the calls).
+    pub fn dirichlet(mut self, bc: Dirichlet) -> Self {
+        self.problem.dirichlet.push(bc);
+        self
+    }
+
+    /// Adds a surface traction (`tractions[k]`); tractions on one part add up.
+    pub fn traction(mut self, t: Traction) -> Self {
+        self.problem.tractions.push(t);
+        self
+    }
+
+    /// Sets the constant body force `f_0` (N/m³).
+    pub fn body_force(mut self, f: [f64; 3]) -> Self {
+        self.problem.body_force = f;
+        self
+    }
+
+    /// Adds a contact boundary (`contact[k]`).
+    pub fn contact(mut self, c: ContactBoundary) -> Self {
+        self.problem.contact.push(c);
+        self
+    }
+
+    /// The problem, if its data are consistent; see [`Problem::validate`].
+    ///
+    /// # Errors
+    /// As [`Problem::validate`].
+    pub fn build(self) -> Result<Problem> {
+        self.problem.validate()?;
+        Ok(self.problem)
+    }
 }
 
 impl Problem {
-    /// Checks the consistency of the problem data.
+    /// Starts a problem on `mesh` with `material`: plane strain, no boundary conditions,
+    /// no loads, no contact.
+    pub fn builder(mesh: Mesh, material: Material) -> ProblemBuilder {
+        ProblemBuilder {
+            problem: Problem {
+                mesh,
+                material,
+                plane: crate::material::Plane::Strain,
+                dirichlet: Vec::new(),
+                tractions: Vec::new(),
+                body_force: [0.0; 3],
+                contact: Vec::new(),
+            },
+        }
+    }
+
+    /// A builder holding this problem's data, to derive a changed problem from it.
+    pub fn to_builder(&self) -> ProblemBuilder {
+        ProblemBuilder {
+            problem: self.clone(),
+        }
+    }
+
+    /// Checks the consistency of the problem data. Field paths of the errors are those of
+    /// this type: `material.…`, `plane`, `dirichlet[k].…`, `tractions[k].…`,
+    /// `body_force`, `contact[k].…`.
+    ///
+    /// - every law's parameters ([`Material::validate`], [`ContactBoundary::validate`]);
+    /// - every part index in range and naming a part with facets;
+    /// - finite loads and prescribed values;
+    /// - no contradiction: two Dirichlet conditions prescribing one component of a node
+    ///   with different values; a traction component on a part where that component is
+    ///   prescribed (it would vanish into the reaction); a contact part that is also a
+    ///   Dirichlet part, or given twice;
+    /// - no rigid motion of a mesh component left free by the Dirichlet conditions and not
+    ///   carried by a contact part ([`RigidMotions::check`]).
     ///
     /// # Errors
-    /// [`Error::Mesh`] if a part index is out of range or a part has no facets;
-    /// [`Error::Breakdown`] if a datum is not finite; [`Error::RigidMotion`] if a rigid motion
-    /// of some mesh component is neither prescribed nor carried by a contact part (see
-    /// [`RigidMotions::check`]).
+    /// [`Error::Invalid`] naming the field, value and what is allowed;
+    /// [`Error::RigidMotion`] for a free rigid motion.
     pub fn validate(&self) -> Result<()> {
-        let n_parts = self.mesh.part_names().len();
-        let parts = self
-            .dirichlet
-            .iter()
-            .map(|b| b.part)
-            .chain(self.tractions.iter().map(|t| t.part));
-        for p in parts {
-            if p >= n_parts {
-                return Err(Error::Mesh(format!("boundary part index {p} out of range")));
-            }
-            if self.mesh.part_facets(p).next().is_none() {
-                return Err(Error::Mesh(format!(
-                    "boundary part `{}` has no facets",
-                    self.mesh.part_names()[p]
-                )));
-            }
+        let dim = self.mesh.dim();
+        self.material
+            .validate(dim)
+            .map_err(|e| e.within("material"))?;
+        require(
+            dim == 2 || self.plane == crate::material::Plane::Strain,
+            "plane",
+            "\"stress\"",
+            "\"strain\" in 3D",
+        )?;
+        for (k, b) in self.dirichlet.iter().enumerate() {
+            self.check_part(&format!("dirichlet[{k}].part"), b.part)?;
+            self.check_finite(&format!("dirichlet[{k}].value"), &b.value)?;
         }
-        let data = self
-            .dirichlet
-            .iter()
-            .flat_map(|b| b.value)
-            .chain(self.tractions.iter().flat_map(|t| t.value))
-            .chain(self.body_force);
-        if data.into_iter().any(|x| !x.is_finite()) {
-            return Err(Error::Breakdown(
-                "a load or prescribed value is not finite".into(),
-            ));
+        for (k, t) in self.tractions.iter().enumerate() {
+            self.check_part(&format!("tractions[{k}].part"), t.part)?;
+            self.check_finite(&format!("tractions[{k}].value"), &t.value)?;
         }
+        self.check_finite("body_force", &self.body_force)?;
+        for (k, c) in self.contact.iter().enumerate() {
+            let field = format!("contact[{k}]");
+            self.check_part(&format!("{field}.part"), c.part)?;
+            c.validate().map_err(|e| e.within(&field))?;
+        }
+        self.check_contradictions()?;
         self.rigid_motions().check("problem")?;
+        Ok(())
+    }
+
+    /// A part index in range, naming a part with facets.
+    fn check_part(&self, field: &str, part: usize) -> Result<()> {
+        let names = self.mesh.part_names();
+        require(
+            part < names.len(),
+            field,
+            part,
+            &format!(
+                "the index of one of the mesh's {} boundary parts",
+                names.len()
+            ),
+        )?;
+        require(
+            self.mesh.part_facets(part).next().is_some(),
+            field,
+            format!("`{}`", names[part]),
+            "a boundary part with facets",
+        )
+    }
+
+    /// Finite components (the first d are used).
+    fn check_finite(&self, field: &str, v: &[f64; 3]) -> Result<()> {
+        let v = &v[..self.mesh.dim()];
+        require(
+            v.iter().all(|x| x.is_finite()),
+            field,
+            format!("{v:?}"),
+            "finite numbers",
+        )
+    }
+
+    /// The contradictions listed in [`Problem::validate`], naming both entries. Equal
+    /// prescribed values on shared nodes are consistent; tractions on the free
+    /// components of a roller are accepted; several tractions on one part add up.
+    fn check_contradictions(&self) -> Result<()> {
+        let mesh = &self.mesh;
+        let dim = mesh.dim();
+        let axes = ["x", "y", "z"];
+        let names = mesh.part_names();
+        let vector = |v: &[f64; 3]| format!("{:?}", &v[..dim]);
+        let dirichlet = &self.dirichlet;
+        let nodes: Vec<Vec<u32>> = dirichlet.iter().map(|d| mesh.part_nodes(d.part)).collect();
+        for (k, b) in dirichlet.iter().enumerate() {
+            for (j, a) in dirichlet[..k].iter().enumerate() {
+                let Some(i) = (0..dim)
+                    .find(|&i| a.components[i] && b.components[i] && a.value[i] != b.value[i])
+                else {
+                    continue;
+                };
+                let Some(&shared) = nodes[k].iter().find(|v| nodes[j].binary_search(v).is_ok())
+                else {
+                    continue;
+                };
+                let at = format!("{:?}", mesh.node(shared as usize));
+                let place = if a.part == b.part {
+                    format!("on the same part `{}`", names[b.part])
+                } else {
+                    format!(
+                        "at the node {at} shared by parts `{}` and `{}`",
+                        names[a.part], names[b.part]
+                    )
+                };
+                return Err(Error::invalid(
+                    format!("dirichlet[{k}].value"),
+                    format!("{} (part `{}`)", vector(&b.value), names[b.part]),
+                    format!(
+                        "a value that agrees with dirichlet[{j}].value = {} (part `{}`): both \
+                         prescribe u_{} {place}, as {} and {}; a node has one displacement",
+                        vector(&a.value),
+                        names[a.part],
+                        axes[i],
+                        a.value[i],
+                        b.value[i]
+                    ),
+                ));
+            }
+        }
+        for (k, t) in self.tractions.iter().enumerate() {
+            for (j, b) in dirichlet.iter().enumerate() {
+                if b.part != t.part {
+                    continue;
+                }
+                if let Some(i) = (0..dim).find(|&i| b.components[i] && t.value[i] != 0.0) {
+                    return Err(Error::invalid(
+                        format!("tractions[{k}].value"),
+                        format!("{} (part `{}`)", vector(&t.value), names[t.part]),
+                        format!(
+                            "zero in the components that dirichlet[{j}] prescribes on the same \
+                             part: u_{} is prescribed there, so a traction {} in that direction \
+                             would do no work and vanish into the reaction",
+                            axes[i], t.value[i]
+                        ),
+                    ));
+                }
+            }
+        }
+        for (k, c) in self.contact.iter().enumerate() {
+            let name = &names[c.part];
+            if let Some(j) = dirichlet.iter().position(|d| d.part == c.part) {
+                return Err(Error::invalid(
+                    format!("contact[{k}].part"),
+                    format!("\"{name}\""),
+                    format!(
+                        "a part that is not also a Dirichlet part: dirichlet[{j}] prescribes \
+                         part `{name}` (nodes on Γ_D are never contact nodes)"
+                    ),
+                ));
+            }
+            if let Some(j) = self.contact[..k].iter().position(|o| o.part == c.part) {
+                return Err(Error::invalid(
+                    format!("contact[{k}].part"),
+                    format!("\"{name}\""),
+                    format!(
+                        "a part not already given by contact[{j}]: one contact entry per \
+                         part (two laws on one boundary contradict each other)"
+                    ),
+                ));
+            }
+        }
         Ok(())
     }
 

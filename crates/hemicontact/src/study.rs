@@ -149,11 +149,12 @@ pub fn run(
         n: settings.reference,
         reference: true,
     });
+    let solver = scenario.settings()?;
     let reference = scenario
         .with_resolution(settings.reference)?
         .into_problem()?;
     let t = Instant::now();
-    let ref_sol = crate::solver::solve(&reference)?;
+    let ref_sol = crate::solver::solve(&reference, &solver)?;
     let reference_seconds = t.elapsed().as_secs_f64();
     progress(Progress::Solved {
         seconds: reference_seconds,
@@ -189,7 +190,7 @@ pub fn run(
             _ => problem.prescribed_displacement(),
         };
         let t = Instant::now();
-        let sol = solve_from(&problem, start)?;
+        let sol = solve_from(&problem, &solver, start)?;
         let seconds = t.elapsed().as_secs_f64();
         progress(Progress::Solved { seconds });
         let on_ref = interpolate(&problem.mesh, &sol.u, &reference.mesh);

@@ -13,7 +13,7 @@
 mod common;
 
 use common::problem;
-use hemicontact::solver::{solve, FrictionState, NormalState};
+use hemicontact::solver::{solve, FrictionState, NormalState, SolverSettings};
 
 /// A unit square on rollers at the bottom (u_y = 0) and at the right (u_x = 0), pushed to
 /// the left and down by a traction on its top, bulging into a wall with Coulomb friction on
@@ -55,7 +55,7 @@ exact = {exact}
 fn support_reactions_are_not_contact_forces() {
     for exact in [false, true] {
         let p = problem(&rollers_and_wall(exact));
-        let s = solve(&p).unwrap();
+        let s = solve(&p, &SolverSettings::default()).unwrap();
         assert!(s.report.converged, "{}", s.report.message);
         // The corner node (0, 0): on the bottom rollers and on the contact side.
         let corner = s
@@ -117,7 +117,7 @@ mu = { law = "constant", mu = 0.5 }
 "#;
     let lifted = text.replace("value = [0.0, -0.01]", "value = [0.0, 0.01]");
     let p = problem(&lifted);
-    let s = solve(&p).unwrap();
+    let s = solve(&p, &SolverSettings::default()).unwrap();
     assert!(s.report.converged, "{}", s.report.message);
     let cert = &s.report.certificate;
     assert_eq!(cert.n_contact, 0, "{cert:?}");
@@ -133,7 +133,7 @@ mu = { law = "constant", mu = 0.5 }
     assert_eq!(cert.n_stick + cert.n_slip, s.contact.len());
     // Pressed instead: all in contact.
     let p = problem(text);
-    let s = solve(&p).unwrap();
+    let s = solve(&p, &SolverSettings::default()).unwrap();
     assert!(s.report.converged, "{}", s.report.message);
     assert_eq!(s.report.certificate.n_contact, s.contact.len());
 }
@@ -143,9 +143,12 @@ mu = { law = "constant", mu = 0.5 }
 /// naming the law that fails.
 #[test]
 fn certificate_above_its_tolerance_is_not_converged() {
-    let mut p = problem(&rollers_and_wall(false));
-    p.solver.certificate_tolerance = 1e-14;
-    let s = solve(&p).unwrap();
+    let p = problem(&rollers_and_wall(false));
+    let settings = SolverSettings {
+        certificate_tolerance: 1e-14,
+        ..SolverSettings::default()
+    };
+    let s = solve(&p, &settings).unwrap();
     assert!(!s.report.converged);
     assert!(
         s.report.message.contains("not certified") && s.report.message.contains("residual"),

@@ -27,6 +27,7 @@ use hemicontact::contact::nodes::CORNER_ANGLE_DEG;
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
+use hemicontact::solver::SolverSettings;
 use std::path::Path;
 
 /// `mesh` with the facets of part `from` moved into part `into` (part names unchanged).
@@ -151,8 +152,8 @@ fn corner_split_is_noted() {
 
 /// Largest relative difference of the displacements of two solutions of `two` and `one`.
 fn compare(two: &Problem, one: &Problem) -> (Vec<f64>, f64) {
-    let a = hemicontact::solver::solve(two).unwrap();
-    let b = hemicontact::solver::solve(one).unwrap();
+    let a = hemicontact::solver::solve(two, &SolverSettings::default()).unwrap();
+    let b = hemicontact::solver::solve(one, &SolverSettings::default()).unwrap();
     assert!(a.report.converged && b.report.converged);
     let scale = a.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     assert!(scale > 0.0);
@@ -175,7 +176,7 @@ fn one_part_turning_a_corner_solves_like_two_parts_2d() {
 #[test]
 fn signorini_corner_does_not_penetrate_either_foundation() {
     let (_, one) = two_and_one(&square(SIGNORINI));
-    let s = hemicontact::solver::solve(&one).unwrap();
+    let s = hemicontact::solver::solve(&one, &SolverSettings::default()).unwrap();
     assert!(s.report.converged);
     let corner = (0..one.mesh.n_nodes())
         .find(|&v| one.mesh.node(v) == [1.0, 0.0])

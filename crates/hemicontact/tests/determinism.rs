@@ -10,11 +10,9 @@ use hemicontact::solver::solve;
 fn run(threads: usize) -> hemicontact::solver::Solution {
     // n = 64: 8192 cells, enough for the assembly to run in two chunks.
     let text = builtin::paper(64, 1.0e4) + &format!("\n[solver]\nthreads = {threads}\n");
-    let p = Scenario::from_str(&text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap();
-    solve(&p).unwrap()
+    let scenario = Scenario::from_str(&text, "test").unwrap();
+    let p = scenario.into_problem().unwrap();
+    solve(&p, &scenario.settings().unwrap()).unwrap()
 }
 
 #[test]

@@ -14,6 +14,7 @@
 mod common;
 
 use common::{assert_certified, lame, problem, rel};
+use hemicontact::solver::SolverSettings;
 use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
 
 const E: f64 = 1000.0;
@@ -98,7 +99,7 @@ value = [0.0, {}]
             -p
         );
         let prob = problem(&text);
-        let s = solve(&prob).unwrap();
+        let s = solve(&prob, &SolverSettings::default()).unwrap();
         assert_kkt(&s, 1e-8);
         let (exx, eyy, lm) = if locked {
             (
@@ -195,7 +196,7 @@ fn block_on_signorini_foundation_matches_hand_solution() {
     let gap = 0.01;
     for (delta, touches) in [(0.03, true), (0.005, false)] {
         let prob = problem(&signorini_block(delta, gap, ""));
-        let s = solve(&prob).unwrap();
+        let s = solve(&prob, &SolverSettings::default()).unwrap();
         assert_kkt(&s, 1e-8);
         let p = if touches {
             E / (1.0 - NU * NU) * (delta - gap)
@@ -236,7 +237,7 @@ fn sheared_block_on_tresca_foundation_slides_at_the_bound_or_sticks() {
     for (s_top, f, slides) in [(0.2, 10.0, true), (1e-3, 200.0, false)] {
         let text = sheared_block(s_top, f, "exact = true");
         let prob = problem(&text);
-        let s = solve(&prob).unwrap();
+        let s = solve(&prob, &SolverSettings::default()).unwrap();
         assert_kkt(&s, 1e-8);
         let top = prob.mesh.part_index("top").unwrap();
         let top_nodes = prob.mesh.part_nodes(top);
@@ -297,7 +298,7 @@ fn distances(limit: &Solution, params: &[f64], text: impl Fn(f64) -> String) -> 
     params
         .iter()
         .map(|&p| {
-            let s = solve(&problem(&text(p))).unwrap();
+            let s = solve(&problem(&text(p)), &SolverSettings::default()).unwrap();
             assert!(
                 s.report.converged,
                 "not converged at {p}: {}",
@@ -311,7 +312,11 @@ fn distances(limit: &Solution, params: &[f64], text: impl Fn(f64) -> String) -> 
 /// Nearly locking → ideal locking: the penalty solutions approach the ideal one like 1/C_κ.
 #[test]
 fn nearly_locking_tends_to_ideal_locking_like_one_over_c_kappa() {
-    let ideal = solve(&problem(&paper("paper-ideal.toml", &[]))).unwrap();
+    let ideal = solve(
+        &problem(&paper("paper-ideal.toml", &[])),
+        &SolverSettings::default(),
+    )
+    .unwrap();
     assert_kkt(&ideal, 1e-8);
     let diffs = distances(&ideal, &[1e5, 1e6, 1e7], |c| {
         paper(
@@ -328,7 +333,11 @@ fn nearly_locking_tends_to_ideal_locking_like_one_over_c_kappa() {
 /// Normal compliance → Signorini: like 1/c_ν.
 #[test]
 fn normal_compliance_tends_to_signorini_like_one_over_c_nu() {
-    let sig = solve(&problem(&paper("paper-signorini.toml", &[]))).unwrap();
+    let sig = solve(
+        &problem(&paper("paper-signorini.toml", &[])),
+        &SolverSettings::default(),
+    )
+    .unwrap();
     assert_kkt(&sig, 1e-8);
     let kkt = sig.report.certificate.kkt.as_ref().unwrap();
     assert!(sig.report.certificate.n_contact > 0 && kkt.n_constraints.1 > 0);
@@ -348,7 +357,11 @@ fn normal_compliance_tends_to_signorini_like_one_over_c_nu() {
 /// the regularization matters at first order: a "sticking" point of (19) creeps by O(ρ)).
 #[test]
 fn regularized_friction_tends_to_exact_friction_like_rho() {
-    let exact = solve(&problem(&sheared_block(1e-3, 10.0, "exact = true"))).unwrap();
+    let exact = solve(
+        &problem(&sheared_block(1e-3, 10.0, "exact = true")),
+        &SolverSettings::default(),
+    )
+    .unwrap();
     assert_kkt(&exact, 1e-8);
     let diffs = distances(&exact, &[1e-5, 1e-6, 1e-7], |rho| {
         sheared_block(
@@ -366,7 +379,7 @@ fn regularized_friction_tends_to_exact_friction_like_rho() {
 fn paper_example_with_exact_constraints_is_certified() {
     for file in ["paper-ideal.toml", "paper-signorini.toml"] {
         let prob = problem(&paper(file, &[]));
-        let s = solve(&prob).unwrap();
+        let s = solve(&prob, &SolverSettings::default()).unwrap();
         assert_kkt(&s, 1e-8);
         assert!(s.report.certificate.n_contact > 0, "{file}: no contact");
     }
@@ -400,7 +413,7 @@ fn ideal_locking_of_every_set_and_material_is_certified() {
                     ("poisson = 0.3", mat),
                 ],
             );
-            let s = solve(&problem(&text)).unwrap();
+            let s = solve(&problem(&text), &SolverSettings::default()).unwrap();
             assert_kkt(&s, 1e-8);
             let kkt = s.report.certificate.kkt.as_ref().unwrap();
             assert!(kkt.n_locked > 0, "{set_name} + {mat_name}: nothing locked");
@@ -434,7 +447,7 @@ fn cube_with_all_exact_constraints_is_certified_and_symmetric() {
     assert!(text.contains("signorini") && text.contains("exact = true"));
     text = text.replace("[output]", "[output]\n");
     let prob = problem(&text);
-    let s = solve(&prob).unwrap();
+    let s = solve(&prob, &SolverSettings::default()).unwrap();
     assert_kkt(&s, 1e-8);
     let cert = &s.report.certificate;
     assert!(cert.n_contact > 0, "no contact");
@@ -466,7 +479,7 @@ fn non_finite_start_is_a_reported_breakdown() {
     let dofs = prob.dof_map();
     let free = (0..u.len()).find(|&k| !dofs.is_fixed(k)).unwrap();
     u[free] = f64::NAN;
-    let err = hemicontact::solver::solve_from(&prob, u).unwrap_err();
+    let err = hemicontact::solver::solve_from(&prob, &SolverSettings::default(), u).unwrap_err();
     let msg = err.to_string();
     assert!(
         msg.contains("numerical breakdown") && msg.contains("Newton step 0"),
@@ -487,7 +500,7 @@ fn three_d_figure_is_a_front_view() {
     .replace("n = [16, 16, 16]", "n = [4, 4, 4]")
     .replace("gap = 0.4", "gap = 0.05");
     let prob = problem(&text);
-    let s = solve(&prob).unwrap();
+    let s = solve(&prob, &SolverSettings::default()).unwrap();
     assert!(s.report.converged);
     let fig = deformed::figure(&prob, &s, "3D");
     // Front facets (y = 0): 4 × 4 squares, 2 triangles each, 3 edges each.

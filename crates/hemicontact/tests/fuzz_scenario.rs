@@ -1449,7 +1449,11 @@ fn check_error(
 }
 
 /// Soft checks on an accepted problem: data the solver cannot use.
-fn check_problem(p: &hemicontact::problem::Problem, soft: &mut Vec<(String, String)>) {
+fn check_problem(
+    p: &hemicontact::problem::Problem,
+    settings: &hemicontact::solver::SolverSettings,
+    soft: &mut Vec<(String, String)>,
+) {
     use hemicontact::material::Elasticity;
     let mut bad = |what: &str, v: f64, positive: bool| {
         if !v.is_finite() || (positive && v <= 0.0) {
@@ -1479,10 +1483,10 @@ fn check_problem(p: &hemicontact::problem::Problem, soft: &mut Vec<(String, Stri
     bad("mesh measure", p.mesh.measure(), true);
     bad(
         "friction regularization ρ_num = friction_regularization · diameter",
-        p.solver.outer.friction_regularization * p.diameter(),
+        settings.outer.friction_regularization * p.diameter(),
         true,
     );
-    let pcg = p.solver.newton.pcg_tolerance;
+    let pcg = settings.newton.pcg_tolerance;
     if !(pcg.is_finite() && pcg >= 1e-12) {
         soft.push((
             "accepted: solver.newton.pcg_tolerance < 1e-12 or NaN (solve panics in f64::clamp)"
@@ -1490,7 +1494,7 @@ fn check_problem(p: &hemicontact::problem::Problem, soft: &mut Vec<(String, Stri
             format!("pcg_tolerance = {pcg:e}"),
         ));
     }
-    if p.solver.outer.depth == usize::MAX {
+    if settings.outer.depth == usize::MAX {
         soft.push((
             "accepted: solver.outer.depth = usize::MAX (solve overflows depth + 1)".into(),
             String::new(),
@@ -1530,9 +1534,11 @@ fn check(text: &str) -> Result<Outcome, Failure> {
                         .results
                         .push(check_error(&e, "with_resolution", &mut out.soft)?),
                     Ok(v) if too_large(&v) => out.skipped_large = true,
-                    Ok(v) => match run_caught(stage, || v.into_problem())? {
-                        Ok(p) => {
-                            check_problem(&p, &mut out.soft);
+                    Ok(v) => match run_caught(stage, || {
+                        v.into_problem().and_then(|p| Ok((p, v.settings()?)))
+                    })? {
+                        Ok((p, settings)) => {
+                            check_problem(&p, &settings, &mut out.soft);
                             out.results.push("ok".into());
                         }
                         Err(e) => out.results.push(check_error(&e, stage, &mut out.soft)?),

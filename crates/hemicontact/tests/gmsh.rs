@@ -34,6 +34,7 @@ use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectan
 use hemicontact::mesh::gmsh::{parse_msh, read_msh, write_msh, GmshMesh, MshEncoding, UNTAGGED};
 use hemicontact::mesh::Mesh;
 use hemicontact::scenario::Scenario;
+use hemicontact::solver::SolverSettings;
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
 
@@ -526,8 +527,8 @@ fn round_trip_gives_the_same_solution() {
         let read = parse_msh(&bytes, "round-trip.msh").unwrap();
         let mut from_file = generated.clone();
         from_file.mesh = read.mesh;
-        let a = hemicontact::solver::solve(&generated).unwrap();
-        let b = hemicontact::solver::solve(&from_file).unwrap();
+        let a = hemicontact::solver::solve(&generated, &SolverSettings::default()).unwrap();
+        let b = hemicontact::solver::solve(&from_file, &SolverSettings::default()).unwrap();
         assert!(a.report.converged && b.report.converged);
         let scale = a.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         assert!(scale > 0.0);
@@ -585,7 +586,7 @@ fn gmsh_scenario_resolves_the_file_next_to_the_scenario() {
     assert_eq!(problem.mesh.n_nodes(), 30);
     // The contact side `right` shares its lower corner with the clamped `bottom`.
     assert_eq!(notes.len(), 1, "{notes:?}");
-    let solution = hemicontact::solver::solve(&problem).unwrap();
+    let solution = hemicontact::solver::solve(&problem, &SolverSettings::default()).unwrap();
     assert!(solution.report.converged);
 }
 
@@ -694,7 +695,7 @@ fn half_disc_scenario_solves_with_contact_on_the_arc() {
         notes.iter().any(|n| n.contains("contact part `contact`")),
         "{notes:?}"
     );
-    let solution = hemicontact::solver::solve(&problem).unwrap();
+    let solution = hemicontact::solver::solve(&problem, &SolverSettings::default()).unwrap();
     let r = &solution.report;
     assert!(r.converged, "{}", r.message);
     assert!(r.certificate.n_contact > 10, "{}", r.certificate.n_contact);

@@ -7,7 +7,14 @@
 use hemicontact::linalg::{Cholesky, Multigrid};
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
-use hemicontact::solver::System;
+use hemicontact::solver::{SolverSettings, System};
+
+/// The validated problem and `[solver]` settings of a scenario text.
+fn setup(text: &str) -> (Problem, SolverSettings) {
+    let scenario = Scenario::from_str(text, "test").unwrap();
+    let problem = scenario.into_problem().unwrap();
+    (problem, scenario.settings().unwrap())
+}
 
 fn problem(text: &str) -> Problem {
     Scenario::from_str(text, "test")
@@ -45,7 +52,7 @@ fn rectangle_problem(n: usize) -> Problem {
 
 /// The stiffness matrix (upper values on the system pattern) and the reduced load vector.
 fn linear_system(p: &Problem) -> (System, Vec<f64>) {
-    let mut system = System::new(p).unwrap();
+    let mut system = System::new(p, &SolverSettings::default()).unwrap();
     let u = vec![0.0; p.mesh.dim() * p.mesh.n_nodes()];
     let frozen = system.initial_frozen(p, &u);
     system.evaluate(p, &u, &frozen, true);
@@ -168,11 +175,12 @@ fn paper3d_iterative_matches_direct() {
         .unwrap()
         .with_resolution(8)
         .unwrap();
-    let mut p = scenario.into_problem().unwrap();
-    p.solver.linear_solver = LinearSolver::Direct;
-    let direct = solve(&p).unwrap();
-    p.solver.linear_solver = LinearSolver::Iterative;
-    let iterative = solve(&p).unwrap();
+    let p = scenario.into_problem().unwrap();
+    let mut settings = scenario.settings().unwrap();
+    settings.linear_solver = LinearSolver::Direct;
+    let direct = solve(&p, &settings).unwrap();
+    settings.linear_solver = LinearSolver::Iterative;
+    let iterative = solve(&p, &settings).unwrap();
     assert!(direct.report.converged, "{}", direct.report.message);
     assert!(iterative.report.converged, "{}", iterative.report.message);
     assert!(!iterative.report.multigrid_levels.is_empty());
@@ -181,7 +189,7 @@ fn paper3d_iterative_matches_direct() {
     let e = rel_diff(&iterative.u, &direct.u);
     assert!(e < 1e-7, "relative difference {e:e}");
     // Deterministic: a second iterative solve is bit-identical.
-    let again = solve(&p).unwrap();
+    let again = solve(&p, &settings).unwrap();
     assert_eq!(again.u, iterative.u);
 }
 
@@ -192,13 +200,13 @@ fn linear_solver_setting() {
     use hemicontact::solver::LinearSolver;
     let mut text = box_problem_text(2);
     text.push_str("[solver]\nlinear_solver = \"iterative\"\n");
-    let p = problem(&text);
-    assert_eq!(p.solver.linear_solver, LinearSolver::Iterative);
-    let system = System::new(&p).unwrap();
+    let (p, settings) = setup(&text);
+    assert_eq!(settings.linear_solver, LinearSolver::Iterative);
+    let system = System::new(&p, &settings).unwrap();
     assert!(system.cholesky.is_none() && system.multigrid.is_some());
-    let p = problem(&box_problem_text(2));
-    assert_eq!(p.solver.linear_solver, LinearSolver::Auto);
-    let system = System::new(&p).unwrap();
+    let (p, settings) = setup(&box_problem_text(2));
+    assert_eq!(settings.linear_solver, LinearSolver::Auto);
+    let system = System::new(&p, &settings).unwrap();
     assert!(system.cholesky.is_some() && system.multigrid.is_none());
     let big = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
     assert_eq!(LinearSolver::Auto.resolve(3, big), LinearSolver::Iterative);

@@ -11,15 +11,8 @@
 mod common;
 
 use hemicontact::problem::Problem;
-use hemicontact::scenario::{builtin, Scenario};
-use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
-
-fn problem(text: &str) -> Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
-}
+use hemicontact::scenario::builtin;
+use hemicontact::solver::{solve, FrictionState, NormalState, Solution, SolverSettings};
 
 fn assert_certified(s: &Solution) {
     common::assert_certified(s, 1e-8);
@@ -64,8 +57,8 @@ gap = {g}
 c_nu = {c_nu}
 "#
     );
-    let pr = problem(&text);
-    let s = solve(&pr).unwrap();
+    let (pr, settings) = common::setup(&text);
+    let s = solve(&pr, &settings).unwrap();
     assert_certified(&s);
     let (l, mu) = lame();
     let (a11, a12, a22) = (l + 2.0 * mu + c_nu, l, l + 2.0 * mu);
@@ -135,8 +128,8 @@ potential = "norm"
 mu = {{ law = "constant", mu = {mu} }}
 "#
     );
-    let pr = problem(&text);
-    let s = solve(&pr).unwrap();
+    let (pr, settings) = common::setup(&text);
+    let s = solve(&pr, &settings).unwrap();
     (pr, s)
 }
 
@@ -155,7 +148,7 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     // The numerical regularization of ‖·‖ in the user's units: a fraction
     // (`friction_regularization`, 1e-8) of the displacement scale of the solve.
     let scales = s.report.scales.expect("scales");
-    let rho_num = pr.solver.outer.friction_regularization * scales.displacement;
+    let rho_num = SolverSettings::default().outer.friction_regularization * scales.displacement;
     for c in &s.contact {
         assert_eq!(
             c.friction_state,
@@ -199,8 +192,8 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
 }
 
 fn paper(n: usize, c_kappa: f64, extra: &str) -> (Problem, Solution) {
-    let pr = problem(&(builtin::paper(n, c_kappa) + extra));
-    let s = solve(&pr).unwrap();
+    let (pr, settings) = common::setup(&(builtin::paper(n, c_kappa) + extra));
+    let s = solve(&pr, &settings).unwrap();
     (pr, s)
 }
 
@@ -258,7 +251,13 @@ fn paper_qualitative_result() {
         .iter()
         .any(|c| c.friction_state == FrictionState::Slip));
     // The locking penalty acts: some cell has |tr ε| > θ.
-    let summary = hemicontact::io::summary::Summary::new(&pr, &locked, None, "test");
+    let summary = hemicontact::io::summary::Summary::new(
+        &pr,
+        &SolverSettings::default(),
+        &locked,
+        None,
+        "test",
+    );
     assert!(summary.locked_cells > 0);
 }
 
@@ -307,8 +306,8 @@ fn friction_regularization_does_not_change_reported_digits() {
 fn nonconvex_friction_potential_run() {
     let text = builtin::paper(16, 1.0e4)
         .replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
-    let pr = problem(&text);
-    let s = solve(&pr).unwrap();
+    let (pr, settings) = common::setup(&text);
+    let s = solve(&pr, &settings).unwrap();
     assert_certified(&s);
     assert!(s.report.outer.len() > 1);
     assert!(s
@@ -330,7 +329,7 @@ fn constant_mu(mu: f64, outer: &str) -> String {
 /// in fewer outer iterations.
 #[test]
 fn oscillating_fixed_point_is_detected_and_cured() {
-    let plain = solve(&problem(&constant_mu(2.0, "acceleration = \"none\"\n"))).unwrap();
+    let plain = common::solve_text(&constant_mu(2.0, "acceleration = \"none\"\n")).unwrap();
     assert_certified(&plain);
     assert!(
         plain
@@ -340,7 +339,7 @@ fn oscillating_fixed_point_is_detected_and_cured() {
             .any(|o| o.mixing.contains("oscillation")),
         "oscillation should be detected"
     );
-    let anderson = solve(&problem(&constant_mu(2.0, ""))).unwrap();
+    let anderson = common::solve_text(&constant_mu(2.0, "")).unwrap();
     assert_certified(&anderson);
     assert!(anderson.report.outer.len() < plain.report.outer.len());
     let maxu = |s: &Solution| s.u.chunks(2).map(|c| c[0].hypot(c[1])).fold(0.0, f64::max);
@@ -351,10 +350,10 @@ fn oscillating_fixed_point_is_detected_and_cured() {
 /// gives `converged = false`, a message saying so, and still the last iterate.
 #[test]
 fn iteration_cap_reports_non_convergence_with_last_iterate() {
-    let s = solve(&problem(&constant_mu(
+    let s = common::solve_text(&constant_mu(
         5.0,
         "acceleration = \"none\"\nmax_iterations = 5\n",
-    )))
+    ))
     .unwrap();
     assert!(!s.report.converged);
     assert!(

@@ -32,6 +32,7 @@ use common::{lame, problem, rel, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::material::StrainEnergy;
 use hemicontact::problem::Problem;
+use hemicontact::solver::SolverSettings;
 use hemicontact::tensor::{Sym, SQRT2};
 
 const YOUNG: f64 = 2000.0;
@@ -187,7 +188,7 @@ value = [{q}, 0.0]
 "#
                 );
             let pr = problem(&text);
-            let solution = hemicontact::solver::solve(&pr).unwrap();
+            let solution = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
             assert!(solution.report.converged, "{}", solution.report.message);
             let (lambda, g) = lame(YOUNG, POISSON, plane_stress);
             let (exx, eyy) = invert_hooke(lambda, g, q, -p);
@@ -230,7 +231,7 @@ value = [0.0, -{delta}]
 "#
             );
         let pr = problem(&text);
-        let solution = hemicontact::solver::solve(&pr).unwrap();
+        let solution = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
         assert!(solution.report.converged, "{}", solution.report.message);
         let (lambda, g) = lame(YOUNG, POISSON, false);
         let eyy = -delta / height;
@@ -290,7 +291,7 @@ value = [0.0, -{p}]
 "#
             );
         let pr = problem(&text);
-        let solution = hemicontact::solver::solve(&pr).unwrap();
+        let solution = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
         assert!(solution.report.converged, "{}", solution.report.message);
         let (lambda, g) = lame(YOUNG, POISSON, false);
         let eyy = -p / (lambda + 2.0 * g);
@@ -313,7 +314,7 @@ value = [0.0, -{p}]
 fn paper_square_satisfies_discrete_virtual_work() {
     let text = hemicontact::scenario::builtin::paper_elastic(8);
     let pr = problem(&text);
-    let solution = hemicontact::solver::solve(&pr).unwrap();
+    let solution = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
     assert!(solution.report.converged, "{}", solution.report.message);
     let mesh = &pr.mesh;
     let mut syy = 0.0;

@@ -27,6 +27,7 @@ use common::{lame, problem};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem};
 use hemicontact::scenario::Scenario;
+use hemicontact::solver::SolverSettings;
 use hemicontact::Error;
 
 const YOUNG: f64 = 1000.0;
@@ -209,7 +210,7 @@ part = "bottom"
     }
     // The solver refuses it too, before any step.
     assert!(matches!(
-        hemicontact::solver::solve(&problem),
+        hemicontact::solver::solve(&problem, &SolverSettings::default()),
         Err(Error::RigidMotion { .. })
     ));
 }
@@ -279,8 +280,8 @@ components = ["x"]
     for linear_solver in ["direct", "iterative"] {
         let text = block(4, &(foundation("") + rollers))
             + &format!("[solver]\nlinear_solver = \"{linear_solver}\"\n");
-        let pr = problem(&text);
-        let sol = hemicontact::solver::solve(&pr).unwrap();
+        let (pr, settings) = common::setup(&text);
+        let sol = hemicontact::solver::solve(&pr, &settings).unwrap();
         assert!(sol.report.converged, "{}", sol.report.message);
         assert_eq!(sol.report.free_rigid_motions, vec!["translation along y"]);
         assert!(sol.report.rigid_shift > 0.0);
@@ -352,8 +353,8 @@ value = [0.0, 0.0, -{P}]
 linear_solver = "{linear_solver}"
 "#
         );
-        let pr = problem(&text);
-        let sol = hemicontact::solver::solve(&pr).unwrap();
+        let (pr, settings) = common::setup(&text);
+        let sol = hemicontact::solver::solve(&pr, &settings).unwrap();
         assert!(sol.report.converged, "{}", sol.report.message);
         assert_eq!(sol.report.free_rigid_motions, vec!["translation along z"]);
         assert!(
@@ -388,7 +389,7 @@ mu = { law = "constant", mu = 0.3 }
     let n = 4;
     let pr = problem(&block(n, &foundation(friction)));
     assert!(pr.dirichlet.is_empty());
-    let sol = hemicontact::solver::solve(&pr).unwrap();
+    let sol = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
     assert!(sol.report.converged, "{}", sol.report.message);
     assert_eq!(sol.report.free_rigid_motions.len(), 3);
     assert!(
@@ -435,7 +436,7 @@ components = ["x"]
 "#;
     let text = block(4, &(foundation("") + rollers)).replace(&format!("-{P}]"), &format!("{P}]"));
     let pr = problem(&text);
-    match hemicontact::solver::solve(&pr) {
+    match hemicontact::solver::solve(&pr, &SolverSettings::default()) {
         Err(e @ Error::ContactLost { .. }) => {
             assert!(e.to_string().contains("translation along y"), "{e}")
         }

@@ -20,8 +20,8 @@
 
 mod common;
 
-use common::{problem, rel};
-use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
+use common::{rel, solve_text};
+use hemicontact::solver::{FrictionState, NormalState, Solution};
 use proptest::prelude::*;
 
 /// The paper's square (4 × 4 m, n × n cells, clamped bottom, traction on top, walls on the
@@ -151,7 +151,7 @@ fn iterations(s: &Solution) -> (usize, usize) {
 }
 
 fn certified(text: &str) -> Solution {
-    let s = solve(&problem(text)).expect("solves");
+    let s = solve_text(text).expect("solves");
     assert!(s.report.converged, "{}", s.report.message);
     s
 }
@@ -296,7 +296,7 @@ fn coarse_friction_regularization_is_refused_not_certified() {
     let fine = certified(&base);
     assert!(fine.report.certificate.n_slip > 0);
     let text = format!("{base}\n[solver.outer]\nfriction_regularization = 1e-3\n");
-    let s = solve(&problem(&text)).unwrap();
+    let s = solve_text(&text).unwrap();
     assert!(!s.report.converged);
     let m = &s.report.message;
     assert!(
@@ -325,6 +325,6 @@ part = "bottom"
 part = "top"
 value = [0.0, -1e300]
 "#;
-    let err = solve(&problem(text)).unwrap_err().to_string();
+    let err = solve_text(text).unwrap_err().to_string();
     assert!(err.contains("displacement scale"), "{err}");
 }

@@ -26,6 +26,7 @@ use hemicontact::material::{
     AugmentedLocking, Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane,
     StrainEnergy,
 };
+use hemicontact::solver::SolverSettings;
 use hemicontact::tensor::Sym;
 
 const YOUNG: f64 = 1000.0;
@@ -73,7 +74,7 @@ fn von_mises_principal(s: [f64; 3]) -> f64 {
 /// Solves the homogeneous state and returns the written cell arrays `stress` and `von_mises`.
 fn written_stress(text: &str) -> (Vec<f64>, Vec<f64>, usize) {
     let p = problem(text);
-    let solution = hemicontact::solver::solve(&p).unwrap();
+    let solution = hemicontact::solver::solve(&p, &SolverSettings::default()).unwrap();
     assert!(solution.report.converged, "{}", solution.report.message);
     let bytes = solution_vtu(&p, &solution).to_bytes();
     (

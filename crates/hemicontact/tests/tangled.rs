@@ -29,6 +29,7 @@ use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectan
 use hemicontact::mesh::gmsh::{parse_msh, read_msh, write_msh, MshEncoding};
 use hemicontact::mesh::Mesh;
 use hemicontact::scenario::Scenario;
+use hemicontact::solver::SolverSettings;
 use hemicontact::Error;
 use std::path::Path;
 
@@ -238,7 +239,7 @@ c_nu = 1.0e4
             .unwrap()
             .into_problem_with_notes()
             .unwrap();
-        solutions.push(hemicontact::solver::solve(&problem).unwrap());
+        solutions.push(hemicontact::solver::solve(&problem, &SolverSettings::default()).unwrap());
         all_notes.push(notes);
     }
     std::fs::remove_dir_all(&dir).unwrap();

@@ -5,6 +5,7 @@
 
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::newton::{minimize, NewtonSettings};
+use hemicontact::solver::SolverSettings;
 use hemicontact::solver::{solve, SolveReport, System};
 
 const E: f64 = 1000.0;
@@ -48,7 +49,7 @@ fn patch_test_3d() {
             }
             u
         };
-        let mut system = System::new(&p).unwrap();
+        let mut system = System::new(&p, &SolverSettings::default()).unwrap();
         let mut u = vec![0.0; 3 * p.mesh.n_nodes()];
         for n in 0..p.mesh.n_nodes() {
             let e = exact(p.mesh.node(n));
@@ -119,7 +120,7 @@ c_nu = {c_nu}
 "#
     );
     let pr = problem(&text);
-    let s = solve(&pr).unwrap();
+    let s = solve(&pr, &SolverSettings::default()).unwrap();
     assert!(s.report.converged, "{}", s.report.message);
     assert!(s.report.certificate.normal_law < 1e-8 && s.report.certificate.equilibrium < 1e-8);
     let (l, mu) = lame();

@@ -4,12 +4,17 @@
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::uniqueness::{check, trace_constant};
+use hemicontact::solver::SolverSettings;
 
 fn problem(text: &str) -> hemicontact::problem::Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
+    setup(text).0
+}
+
+/// The validated problem and `[solver]` settings of a scenario text.
+fn setup(text: &str) -> (hemicontact::problem::Problem, SolverSettings) {
+    let scenario = Scenario::from_str(text, "test").unwrap();
+    let problem = scenario.into_problem().unwrap();
+    (problem, scenario.settings().unwrap())
 }
 
 fn block_with_top_contact(n: usize) -> String {
@@ -42,7 +47,11 @@ mu = {{ law = "constant", mu = 1.0 }}
 fn trace_constant_respects_hand_bound_and_converges() {
     let mut values = Vec::new();
     for n in [4, 8, 16, 32] {
-        let (g, it) = trace_constant(&problem(&block_with_top_contact(n))).unwrap();
+        let (g, it) = trace_constant(
+            &problem(&block_with_top_contact(n)),
+            &SolverSettings::default(),
+        )
+        .unwrap();
         assert!(it < 2000, "power iteration did not converge");
         assert!(
             g * g >= 2.0 - 1e-9,
@@ -63,7 +72,7 @@ fn trace_constant_respects_hand_bound_and_converges() {
 #[test]
 fn condition_uses_the_constants_of_the_laws() {
     let text = builtin::paper(8, 1.0e4).replace("bound = \"coulomb\"", "bound = \"tresca\"");
-    let u = check(&problem(&text)).unwrap();
+    let u = check(&problem(&text), &SolverSettings::default()).unwrap();
     assert!(u.applies);
     let g = 2000.0 / 2.6;
     assert!((u.m_a - 2.0 * g).abs() < 1e-9);
@@ -74,7 +83,7 @@ fn condition_uses_the_constants_of_the_laws() {
     assert!((u.margin - (u.m_a - u.lhs)).abs() < 1e-9);
     // The nonconvex potential (17) adds μ₀ α_j with α_j = (1 − a)/a.
     let text = text.replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
-    let u2 = check(&problem(&text)).unwrap();
+    let u2 = check(&problem(&text), &SolverSettings::default()).unwrap();
     assert!((u2.alpha_j - 1.0).abs() < 1e-12);
     assert!((u2.lhs - (0.4 * 1.0 + 30.0) * gamma * gamma).abs() < 1e-9 * u2.lhs);
 }
@@ -82,7 +91,11 @@ fn condition_uses_the_constants_of_the_laws() {
 /// Coulomb-type bounds are outside the theorem: the check says so and computes nothing.
 #[test]
 fn coulomb_bound_is_reported_as_not_covered() {
-    let u = check(&problem(&builtin::paper(8, 1.0e4))).unwrap();
+    let u = check(
+        &problem(&builtin::paper(8, 1.0e4)),
+        &SolverSettings::default(),
+    )
+    .unwrap();
     assert!(!u.applies && !u.holds);
     assert!(u.note.unwrap().contains("Coulomb"));
     assert!(u.trace_constant.is_none());
@@ -129,9 +142,9 @@ mu = {{ law = "exponential", a = 0.4, b = 0.1, beta = {beta:?} }}
 
 /// The `uniqueness` block of the summary of a solve of `text`, as written to JSON.
 fn summary_uniqueness(text: &str) -> serde_json::Value {
-    let p = problem(text);
-    let solution = hemicontact::solver::solve(&p).unwrap();
-    let summary = hemicontact::io::summary::Summary::new(&p, &solution, None, "test");
+    let (p, settings) = setup(text);
+    let solution = hemicontact::solver::solve(&p, &settings).unwrap();
+    let summary = hemicontact::io::summary::Summary::new(&p, &settings, &solution, None, "test");
     let json = serde_json::to_value(&summary).unwrap();
     json["uniqueness"].clone()
 }

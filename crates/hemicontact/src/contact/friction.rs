@@ -175,6 +175,33 @@ pub enum FrictionPotential {
 }
 
 impl FrictionPotential {
+    /// Checks the potential's parameters.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`]: the nonconvex potential needs `0 < a < 1` and a finite
+    /// positive slip unit, the regularized one a finite `rho > 0` (m).
+    pub fn validate(&self) -> crate::Result<()> {
+        use crate::error::require;
+        match *self {
+            FrictionPotential::Norm => Ok(()),
+            FrictionPotential::Nonconvex { a, unit } => {
+                require(a > 0.0 && a < 1.0, "a", a, "a parameter with 0 < a < 1")?;
+                require(
+                    unit.is_finite() && unit > 0.0,
+                    "unit",
+                    unit,
+                    "a slip unit ℓ > 0 (m)",
+                )
+            }
+            FrictionPotential::Regularized { rho } => require(
+                rho.is_finite() && rho > 0.0,
+                "rho",
+                rho,
+                "a regularization length ρ (m) > 0",
+            ),
+        }
+    }
+
     /// `j(ξ)` as a function of `r = ‖ξ‖` (the exact law, no numerical regularization).
     pub fn value(&self, r: f64) -> f64 {
         match *self {
@@ -287,6 +314,27 @@ pub struct Friction {
 }
 
 impl Friction {
+    /// Checks the coefficient, the potential and the treatment of stick/slip.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the parameter: `mu` as
+    /// [`FrictionCoefficient::validate`], the potential's parameters as
+    /// [`FrictionPotential::validate`], and `exact` only for a potential whose convex part
+    /// is the norm.
+    pub fn validate(&self) -> crate::Result<()> {
+        self.mu
+            .validate()
+            .map_err(|msg| crate::Error::invalid("mu", format!("{:?}", self.mu), msg))?;
+        self.potential.validate()?;
+        crate::error::require(
+            !self.exact || self.potential.is_nonsmooth(),
+            "exact",
+            true,
+            "exact = true only with potential = \"norm\" or \"nonconvex\" (the \
+             regularized law (19) is smooth)",
+        )
+    }
+
     /// The friction bound `F` at slip `r = ‖u_τ‖` and contact pressure `p`.
     #[inline]
     pub fn bound_value(&self, r: f64, pressure: f64) -> f64 {

@@ -27,3 +27,25 @@ pub struct ContactBoundary {
     /// Friction law, or `None` for frictionless contact.
     pub friction: Option<Friction>,
 }
+
+impl ContactBoundary {
+    /// Checks the laws and the gap of the boundary (not its part, which only a
+    /// [`crate::problem::Problem`] can check against its mesh).
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the parameter: `gap` finite and ≥ 0, and the ranges
+    /// of [`NormalLaw::validate`] and [`Friction::validate`] (under `friction.`).
+    pub fn validate(&self) -> crate::Result<()> {
+        crate::error::require(
+            self.gap.is_finite() && self.gap >= 0.0,
+            "gap",
+            self.gap,
+            "a gap g ≥ 0 (m)",
+        )?;
+        self.normal.validate()?;
+        match &self.friction {
+            Some(f) => f.validate().map_err(|e| e.within("friction")),
+            None => Ok(()),
+        }
+    }
+}

@@ -74,3 +74,22 @@ impl NormalLaw {
         }
     }
 }
+
+impl NormalLaw {
+    /// Checks the law's parameters.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] for a compliance stiffness `c_nu` that is not finite and
+    /// positive.
+    pub fn validate(&self) -> crate::Result<()> {
+        match self {
+            NormalLaw::Compliance(c) => crate::error::require(
+                c.c_nu.is_finite() && c.c_nu > 0.0,
+                "c_nu",
+                c.c_nu,
+                "a normal compliance stiffness c_ν (Pa/m) > 0",
+            ),
+            NormalLaw::Signorini => Ok(()),
+        }
+    }
+}

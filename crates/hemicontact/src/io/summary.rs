@@ -79,11 +79,12 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Builds the summary of `solution`. Evaluating the uniqueness condition may cost one
+    /// Builds the summary of `solution` of `problem` solved with `settings`. Evaluating the uniqueness condition may cost one
     /// Cholesky factorization of the ε–ε stiffness and a power iteration (see
     /// [`crate::solver::uniqueness::evaluate`]).
     pub fn new(
         problem: &Problem,
+        settings: &crate::solver::SolverSettings,
         solution: &Solution,
         title: Option<String>,
         scenario: &str,
@@ -134,7 +135,7 @@ impl Summary {
             contact_slip: cert.n_slip,
             locked_cells,
             max_abs_trace_strain,
-            uniqueness: crate::solver::uniqueness::evaluate(problem),
+            uniqueness: crate::solver::uniqueness::evaluate(problem, settings),
             notes: Vec::new(),
             report: solution.report.clone(),
             files: Vec::new(),

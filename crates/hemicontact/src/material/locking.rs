@@ -54,6 +54,23 @@ impl LockingSet {
         }
     }
 
+    /// Checks the set's threshold.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] for a threshold (`theta`, `kappa`, `r`) that is not
+    /// finite and positive.
+    pub fn validate(&self) -> crate::Result<()> {
+        let (field, v, what) = match *self {
+            LockingSet::None => return Ok(()),
+            LockingSet::LimitedCompressibility { theta } => {
+                ("theta", theta, "a volumetric strain threshold θ > 0")
+            }
+            LockingSet::Prager { kappa } => ("kappa", kappa, "a deviatoric threshold κ > 0"),
+            LockingSet::Ball { r } => ("r", r, "a strain radius r > 0"),
+        };
+        crate::error::require(v.is_finite() && v > 0.0, field, v, what)
+    }
+
     /// `Q(ε)`: negative inside B, zero on its boundary, positive outside.
     #[inline]
     pub fn q(&self, eps: &Sym) -> f64 {
@@ -139,6 +156,28 @@ impl LockingPenalty {
         set: LockingSet::None,
         c_kappa: 0.0,
     };
+
+    /// Checks the set and the compliance.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`]: the set as [`LockingSet::validate`], `c_kappa` finite and
+    /// ≥ 0, and 0 without a locking set.
+    pub fn validate(&self) -> crate::Result<()> {
+        self.set.validate()?;
+        let c = self.c_kappa;
+        crate::error::require(
+            c.is_finite() && c >= 0.0,
+            "c_kappa",
+            c,
+            "a compliance C_κ ≥ 0 (Pa)",
+        )?;
+        crate::error::require(
+            c == 0.0 || self.set != LockingSet::None,
+            "c_kappa",
+            c,
+            "only with a locking set",
+        )
+    }
 
     /// Whether the penalty is active (`Q(ε) > 0` and `C_κ > 0`).
     #[inline]

@@ -78,6 +78,67 @@ impl Elasticity {
 }
 
 impl Elasticity {
+    /// Checks the constants in dimension `dim`: finite, a positive shear modulus and
+    /// strong monotonicity (`m_A > 0`); for Hencky's law also `G_∞ ≥ G` finite, `K > 0`,
+    /// and a transition `s₀` that is a positive normal number.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the constant (`lambda`, `mu`, `bulk`, `shear`,
+    /// `shear_inf`, `s0`).
+    pub fn validate(&self, dim: usize) -> crate::Result<()> {
+        use crate::error::require;
+        match *self {
+            Elasticity::Hooke(h) => {
+                require(
+                    h.lambda.is_finite(),
+                    "lambda",
+                    h.lambda,
+                    "a finite Lamé constant λ (Pa)",
+                )?;
+                require(
+                    h.mu.is_finite() && h.mu > 0.0,
+                    "mu",
+                    h.mu,
+                    "a finite positive shear modulus G (Pa)",
+                )?;
+                let m = h.monotonicity(dim);
+                require(
+                    m > 0.0,
+                    "lambda",
+                    format!("{} (with G = {}: m_A = {m:e})", h.lambda, h.mu),
+                    "a strongly monotone law: dλ + 2G > 0",
+                )
+            }
+            Elasticity::Hencky(h) => {
+                let usable = |v: f64| v.is_finite() && v > 0.0;
+                require(
+                    usable(h.shear),
+                    "shear",
+                    h.shear,
+                    "a finite positive shear modulus G (Pa)",
+                )?;
+                require(
+                    usable(h.bulk),
+                    "bulk",
+                    h.bulk,
+                    "a finite positive bulk modulus K (Pa)",
+                )?;
+                require(
+                    h.shear_inf.is_finite() && h.shear_inf >= h.shear,
+                    "shear_inf",
+                    h.shear_inf,
+                    "a finite large-strain shear modulus G_∞ ≥ G (strain stiffening keeps Φ convex)",
+                )?;
+                require(
+                    h.s0.is_normal() && h.s0 > 0.0,
+                    "s0",
+                    h.s0,
+                    "a squared strain s₀ that is a positive normal number",
+                )
+            }
+        }
+    }
+
     /// The same law for the dimensionless strain `ε̂ = ε/e` and energy density `Ŵ = W/(S e²)`
     /// (S the stress scale, Pa): the moduli divided by S; the Hencky transition strain
     /// `s₀` (a squared strain) divided by e².
@@ -142,6 +203,35 @@ pub struct Material {
 }
 
 impl Material {
+    /// Checks the elasticity constants (under `elasticity.`), the nearly-locking penalty
+    /// (under `locking.`) and the ideal-locking set (under `ideal_locking.`), which must
+    /// not both be given.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the parameter.
+    pub fn validate(&self, dim: usize) -> crate::Result<()> {
+        self.elasticity
+            .validate(dim)
+            .map_err(|e| e.within("elasticity"))?;
+        self.locking.validate().map_err(|e| e.within("locking"))?;
+        if let Some(set) = self.ideal_locking {
+            crate::error::require(
+                set != LockingSet::None,
+                "ideal_locking",
+                "none",
+                "a locking set (ideal locking constrains the strain to it)",
+            )?;
+            set.validate().map_err(|e| e.within("ideal_locking"))?;
+            crate::error::require(
+                self.locking.c_kappa == 0.0,
+                "locking.c_kappa",
+                self.locking.c_kappa,
+                "0 with ideal locking (ideal locking has no compliance)",
+            )?;
+        }
+        Ok(())
+    }
+
     /// A material with elasticity `elasticity` and no locking.
     pub fn elastic(elasticity: Elasticity) -> Self {
         Material {

@@ -14,6 +14,7 @@ use crate::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Mat
 use crate::mesh::generate::{self, Rectangle};
 use crate::mesh::Mesh;
 use crate::problem::{Dirichlet, Problem, Traction};
+use crate::solver::SolverSettings;
 use schema::{
     ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, PotentialKind,
     ScenarioFile,
@@ -447,6 +448,11 @@ impl Scenario {
         })
     }
 
+    /// A parameter the file must give; its range is checked by the library's laws.
+    fn required(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
+        v.ok_or_else(|| self.err(field, "missing", &format!("{what} > 0 (required)")))
+    }
+
     fn positive(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
         match v {
             Some(x) if x.is_finite() && x > 0.0 => Ok(x),
@@ -547,17 +553,17 @@ impl Scenario {
         let set = match l.set {
             LockingSetKind::None => LockingSet::None,
             LockingSetKind::LimitedCompressibility => LockingSet::LimitedCompressibility {
-                theta: self.positive(
+                theta: self.required(
                     "locking.theta",
                     l.theta,
                     "a volumetric strain threshold θ",
                 )?,
             },
             LockingSetKind::Prager => LockingSet::Prager {
-                kappa: self.positive("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
+                kappa: self.required("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
             },
             LockingSetKind::Ball => LockingSet::Ball {
-                r: self.positive("locking.radius", l.radius, "a strain radius r")?,
+                r: self.required("locking.radius", l.radius, "a strain radius r")?,
             },
         };
         if l.treatment == LockingTreatment::Exact {
@@ -590,10 +596,7 @@ impl Scenario {
                     "only with a locking set (locking.set)",
                 ))
             }
-            (_, Some(c)) if c.is_finite() && c >= 0.0 => c,
-            (_, Some(c)) => {
-                return Err(self.err("locking.c_kappa", c, "a compliance C_κ ≥ 0 (Pa)"))
-            }
+            (_, Some(c)) => c,
             (_, None) => {
                 return Err(self.err(
                     "locking.c_kappa",
@@ -614,12 +617,9 @@ impl Scenario {
         for (k, c) in self.file.contact.iter().enumerate() {
             let f = |name: &str| format!("contact[{k}].{name}");
             let part = self.part(mesh, &f("part"), &c.part)?;
-            if !(c.gap.is_finite() && c.gap >= 0.0) {
-                return Err(self.err(&f("gap"), c.gap, "a gap g ≥ 0 (m)"));
-            }
             let normal = match c.law {
                 NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
-                    c_nu: self.positive(
+                    c_nu: self.required(
                         &f("c_nu"),
                         c.c_nu,
                         "a normal compliance stiffness c_ν (Pa/m)",
@@ -642,18 +642,12 @@ impl Scenario {
                     let potential = match fs.potential {
                         PotentialKind::Norm => FrictionPotential::Norm,
                         PotentialKind::Nonconvex => {
-                            let a = self.positive(&f("friction.a"), fs.a, "a parameter 0 < a")?;
-                            if a >= 1.0 {
-                                return Err(self.err(
-                                    &f("friction.a"),
-                                    a,
-                                    "a parameter with 0 < a < 1",
-                                ));
-                            }
+                            let a =
+                                self.required(&f("friction.a"), fs.a, "a parameter 0 < a < 1")?;
                             FrictionPotential::Nonconvex { a, unit: 1.0 }
                         }
                         PotentialKind::Regularized => FrictionPotential::Regularized {
-                            rho: self.positive(
+                            rho: self.required(
                                 &f("friction.rho"),
                                 fs.rho,
                                 "a regularization length ρ (m)",
@@ -674,17 +668,6 @@ impl Scenario {
                             "only with potential = \"regularized\"",
                         ));
                     }
-                    fs.mu
-                        .validate()
-                        .map_err(|msg| self.err(&f("friction.mu"), format!("{:?}", fs.mu), &msg))?;
-                    if fs.exact && !potential.is_nonsmooth() {
-                        return Err(self.err(
-                            &f("friction.exact"),
-                            true,
-                            "exact = true only with potential = \"norm\" or \"nonconvex\" \
-                             (the regularized law (19) is smooth)",
-                        ));
-                    }
                     Some(Friction {
                         bound: fs.bound,
                         mu: fs.mu.clone(),
@@ -701,86 +684,6 @@ impl Scenario {
             });
         }
         Ok(out)
-    }
-
-    /// Rejects boundary conditions that contradict each other, naming both entries:
-    ///
-    /// - two `[[dirichlet]]` entries that prescribe the same displacement component with
-    ///   different values at a common node (the same part, or two parts sharing nodes such as
-    ///   a corner): a node has one displacement. Equal values are consistent and accepted.
-    /// - a `[[loads.traction]]` with a non-zero component on a part where a `[[dirichlet]]`
-    ///   entry prescribes that component: the traction would do no work and vanish into the
-    ///   reaction. Tractions on the free components of a roller part are accepted.
-    ///
-    /// (Contact parts are checked in [`Scenario::into_problem_with_notes`]: a contact part
-    /// may be neither a Dirichlet part nor given twice.) Several tractions on one part add
-    /// up and are not a contradiction.
-    fn check_contradictions(
-        &self,
-        mesh: &Mesh,
-        dirichlet: &[Dirichlet],
-        tractions: &[Traction],
-    ) -> Result<()> {
-        let dim = mesh.dim();
-        let axes = ["x", "y", "z"];
-        let names = mesh.part_names();
-        let vector = |v: &[f64; 3]| format!("{:?}", &v[..dim]);
-        let nodes: Vec<Vec<u32>> = dirichlet.iter().map(|d| mesh.part_nodes(d.part)).collect();
-        for (k, b) in dirichlet.iter().enumerate() {
-            for (j, a) in dirichlet[..k].iter().enumerate() {
-                let Some(i) = (0..dim)
-                    .find(|&i| a.components[i] && b.components[i] && a.value[i] != b.value[i])
-                else {
-                    continue;
-                };
-                let Some(&shared) = nodes[k].iter().find(|v| nodes[j].binary_search(v).is_ok())
-                else {
-                    continue;
-                };
-                let at = format!("{:?}", mesh.node(shared as usize));
-                let place = if a.part == b.part {
-                    format!("on the same part `{}`", names[b.part])
-                } else {
-                    format!(
-                        "at the node {at} shared by parts `{}` and `{}`",
-                        names[a.part], names[b.part]
-                    )
-                };
-                return Err(self.err(
-                    &format!("dirichlet[{k}].value"),
-                    format!("{} (part `{}`)", vector(&b.value), names[b.part]),
-                    &format!(
-                        "a value that agrees with dirichlet[{j}].value = {} (part `{}`): both \
-                         prescribe u_{} {place}, as {} and {}; a node has one displacement",
-                        vector(&a.value),
-                        names[a.part],
-                        axes[i],
-                        a.value[i],
-                        b.value[i]
-                    ),
-                ));
-            }
-        }
-        for (k, t) in tractions.iter().enumerate() {
-            for (j, b) in dirichlet.iter().enumerate() {
-                if b.part != t.part {
-                    continue;
-                }
-                if let Some(i) = (0..dim).find(|&i| b.components[i] && t.value[i] != 0.0) {
-                    return Err(self.err(
-                        &format!("loads.traction[{k}].value"),
-                        format!("{} (part `{}`)", vector(&t.value), names[t.part]),
-                        &format!(
-                            "zero in the components that dirichlet[{j}] prescribes on the same \
-                             part: u_{} is prescribed there, so a traction {} in that direction \
-                             would do no work and vanish into the reaction",
-                            axes[i], t.value[i]
-                        ),
-                    ));
-                }
-            }
-        }
-        Ok(())
     }
 
     /// Resolves and validates the scenario into a [`Problem`].
@@ -848,147 +751,76 @@ impl Scenario {
             let value = self.finite(&format!("loads.traction[{k}].value"), &t.value, dim)?;
             tractions.push(Traction { part, value });
         }
-        self.check_contradictions(&mesh, &dirichlet, &tractions)?;
         let body_force = match &self.file.loads.body_force {
             None => [0.0; 3],
             Some(v) => self.finite("loads.body_force", v, dim)?,
         };
-        let solver = self.file.solver.clone();
-        let nw = &solver.newton;
-        if !(nw.residual_tolerance.is_finite()
-            && nw.residual_tolerance > 0.0
-            && nw.residual_tolerance < 1.0)
-        {
-            return Err(self.err(
-                "solver.newton.residual_tolerance",
-                nw.residual_tolerance,
-                "a number in (0, 1)",
-            ));
-        }
-        if !(nw.armijo > 0.0 && nw.armijo < 0.5) {
-            return Err(self.err("solver.newton.armijo", nw.armijo, "a number in (0, 0.5)"));
-        }
-        if !(nw.pcg_tolerance >= 1e-12 && nw.pcg_tolerance < 1.0) {
-            return Err(self.err(
-                "solver.newton.pcg_tolerance",
-                nw.pcg_tolerance,
-                "a number in [1e-12, 1)",
-            ));
-        }
-        if nw.max_iterations == 0 {
-            return Err(self.err("solver.newton.max_iterations", 0, "a positive integer"));
-        }
-        let o = &solver.outer;
-        if !(o.tolerance.is_finite() && o.tolerance > 0.0 && o.tolerance < 1.0) {
-            return Err(self.err("solver.outer.tolerance", o.tolerance, "a number in (0, 1)"));
-        }
-        if o.depth == 0 || o.depth > 50 {
-            return Err(self.err(
-                "solver.outer.depth",
-                o.depth,
-                "an Anderson depth from 1 to 50",
-            ));
-        }
-        if o.max_iterations == 0 {
-            return Err(self.err("solver.outer.max_iterations", 0, "a positive integer"));
-        }
-        if !(o.relaxation > 0.0 && o.relaxation <= 1.0) {
-            return Err(self.err(
-                "solver.outer.relaxation",
-                o.relaxation,
-                "a factor in (0, 1]",
-            ));
-        }
-        if !(o.friction_regularization.is_finite()
-            && o.friction_regularization > 0.0
-            && o.friction_regularization < 1e-2)
-        {
-            return Err(self.err(
-                "solver.outer.friction_regularization",
-                o.friction_regularization,
-                "a number in (0, 0.01)",
-            ));
-        }
-        let tol = solver.certificate_tolerance;
-        if !(tol.is_finite() && (1e-14..1.0).contains(&tol)) {
-            return Err(self.err(
-                "solver.certificate_tolerance",
-                tol,
-                "a relative tolerance in [1e-14, 1)",
-            ));
-        }
-        let cs = &solver.constraints;
-        for (field, v, lo, hi) in [
-            (
-                "solver.constraints.locking_penalty",
-                cs.locking_penalty,
-                1e-3,
-                1e6,
-            ),
-            (
-                "solver.constraints.contact_penalty",
-                cs.contact_penalty,
-                1e-3,
-                1e6,
-            ),
-            (
-                "solver.constraints.initial_penalty",
-                cs.initial_penalty,
-                1e-6,
-                1e6,
-            ),
-        ] {
-            if !(v >= lo && v <= hi) {
-                return Err(self.err(
-                    field,
-                    v,
-                    &format!("a dimensionless penalty factor from {lo:e} to {hi:e}"),
-                ));
-            }
-        }
+        self.settings()?;
         let contact = self.build_contact(&mesh)?;
-        for (k, c) in contact.iter().enumerate() {
-            let name = &mesh.part_names()[c.part];
-            if let Some(j) = dirichlet.iter().position(|d| d.part == c.part) {
-                return Err(self.err(
-                    &format!("contact[{k}].part"),
-                    format!("\"{name}\""),
-                    &format!(
-                        "a part that is not also a Dirichlet part: dirichlet[{j}] prescribes \
-                         part `{name}` (nodes on Γ_D are never contact nodes)"
-                    ),
-                ));
-            }
-            if let Some(j) = contact[..k].iter().position(|o| o.part == c.part) {
-                return Err(self.err(
-                    &format!("contact[{k}].part"),
-                    format!("\"{name}\""),
-                    &format!(
-                        "a part not already given by contact[{j}]: one [[contact]] entry per \
-                         part (two laws on one boundary contradict each other)"
-                    ),
-                ));
-            }
+        let mut builder = Problem::builder(mesh, material)
+            .plane(self.file.material.plane)
+            .body_force(body_force);
+        for d in dirichlet {
+            builder = builder.dirichlet(d);
         }
-        let problem = Problem {
-            mesh,
-            material,
-            plane: self.file.material.plane,
-            dirichlet,
-            tractions,
-            body_force,
-            contact,
-            solver,
-        };
-        // Rigid motions left free are named with this file (the library says `problem`).
-        problem.validate().map_err(|e| match e {
+        for t in tractions {
+            builder = builder.traction(t);
+        }
+        for c in contact {
+            builder = builder.contact(c);
+        }
+        // Rigid motions left free are named with this file (the library says `problem`);
+        // invalid data are named by their field in the file.
+        let problem = builder.build().map_err(|e| match e {
             Error::RigidMotion { motions, .. } => Error::RigidMotion {
                 file: self.source.clone(),
                 motions,
             },
-            e => e,
+            e => e.in_file(&self.source, field_in_file),
         })?;
         notes.extend(problem.notes());
         Ok((problem, notes))
     }
+
+    /// The solver settings of `[solver]`, checked ([`SolverSettings::validate`]).
+    ///
+    /// # Errors
+    /// [`Error::Scenario`] naming the field under `solver.`, its value and what is allowed.
+    pub fn settings(&self) -> Result<SolverSettings> {
+        let settings = self.file.solver.clone();
+        settings
+            .validate()
+            .map_err(|e| e.in_file(&self.source, |f| format!("solver.{f}")))?;
+        Ok(settings)
+    }
+}
+
+/// The field of a scenario file that holds the datum at `field` of a [`Problem`] (see
+/// [`Problem::validate`]): the file groups loads under `loads` and locking under
+/// `[locking]`, and gives the elastic constants as E and ν.
+fn field_in_file(field: &str) -> String {
+    let renamed = [
+        ("tractions[", "loads.traction["),
+        ("body_force", "loads.body_force"),
+        ("plane", "material.plane"),
+        ("material.elasticity.s0", "material.reference_strain"),
+        ("material.elasticity.shear_inf", "material.stiffening"),
+        ("material.elasticity", "material.young"),
+        ("material.locking.r", "locking.radius"),
+        ("material.locking", "locking"),
+        ("material.ideal_locking.r", "locking.radius"),
+        ("material.ideal_locking", "locking"),
+    ];
+    for (from, to) in renamed {
+        if let Some(rest) = field.strip_prefix(from) {
+            // E and ν are not the library's constants: name E for any of them.
+            let rest = if from == "material.elasticity" {
+                ""
+            } else {
+                rest
+            };
+            return format!("{to}{rest}");
+        }
+    }
+    field.to_string()
 }

@@ -88,6 +88,27 @@ impl Default for ConstraintSettings {
 }
 
 impl ConstraintSettings {
+    /// Checks every penalty factor against its range.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the factor: `locking_penalty` and
+    /// `contact_penalty` from 1e-3 to 1e6, `initial_penalty` from 1e-6 to 1e6.
+    pub fn validate(&self) -> crate::Result<()> {
+        for (field, v, lo, hi) in [
+            ("locking_penalty", self.locking_penalty, 1e-3, 1e6),
+            ("contact_penalty", self.contact_penalty, 1e-3, 1e6),
+            ("initial_penalty", self.initial_penalty, 1e-6, 1e6),
+        ] {
+            crate::error::require(
+                v >= lo && v <= hi,
+                field,
+                v,
+                &format!("a dimensionless penalty factor from {lo:e} to {hi:e}"),
+            )?;
+        }
+        Ok(())
+    }
+
     /// The penalty factor of outer iteration `k` for a constraint of full factor `gamma`:
     /// `min(γ, γ₀ 10^k)`.
     pub fn factor(&self, k: usize, gamma: f64) -> f64 {
@@ -125,9 +146,9 @@ fn stiffness_scale(problem: &Problem) -> f64 {
     (h.lambda + 2.0 * h.mu).max(h.mu)
 }
 
-/// Penalty r_T of the ideal-locking set `set` (Pa per unit of Q²).
-pub fn locking_penalty(problem: &Problem, set: &LockingSet) -> f64 {
-    let gamma = problem.solver.constraints.locking_penalty;
+/// Penalty r_T of the ideal-locking set `set` (Pa per unit of Q²) for the penalty factor
+/// `gamma` ([`ConstraintSettings::locking_penalty`]).
+pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
     let s = stiffness_scale(problem);
     match *set {
         LockingSet::Prager { kappa } => gamma * s / (2.0 * kappa * kappa),
@@ -135,9 +156,9 @@ pub fn locking_penalty(problem: &Problem, set: &LockingSet) -> f64 {
     }
 }
 
-/// Penalty r_i (Pa/m) of every contact point of weight `weight[i]`.
-pub fn contact_penalties(problem: &Problem, weight: &[f64]) -> Vec<f64> {
-    let gamma = problem.solver.constraints.contact_penalty;
+/// Penalty r_i (Pa/m) of every contact point of weight `weight[i]` for the penalty factor
+/// `gamma` ([`ConstraintSettings::contact_penalty`]).
+pub fn contact_penalties(problem: &Problem, gamma: f64, weight: &[f64]) -> Vec<f64> {
     let s = stiffness_scale(problem);
     let d = problem.mesh.dim();
     weight
@@ -255,10 +276,9 @@ pub fn zero_multipliers(frozen: &mut Frozen, n_cells: usize, ideal: bool) {
     };
 }
 
-/// The continuation of `problem`: the number of stages before every exact constraint has
-/// its full penalty (0 without exact constraints).
-pub fn stages(problem: &Problem) -> usize {
-    let c = &problem.solver.constraints;
+/// The continuation of `problem` with the penalty settings `c`: the number of stages before
+/// every exact constraint has its full penalty (0 without exact constraints).
+pub fn stages(problem: &Problem, c: &ConstraintSettings) -> usize {
     let locking = problem
         .material
         .ideal_locking

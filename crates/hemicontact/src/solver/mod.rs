@@ -79,6 +79,46 @@ impl Default for SolverSettings {
     }
 }
 
+/// Most threads a setting may ask for: far above any core count this solver runs on, low
+/// enough that the per-thread buffers of a mistyped count cannot exhaust memory.
+pub const MAX_THREADS: usize = 1024;
+
+impl SolverSettings {
+    /// Checks every setting against its range, the nested ones included.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the setting by its path from here (e.g.
+    /// `newton.armijo`): `certificate_tolerance` in [1e-14, 1), thread counts up to
+    /// [`MAX_THREADS`], and the ranges of [`NewtonSettings::validate`],
+    /// [`OuterSettings::validate`] and [`ConstraintSettings::validate`].
+    pub fn validate(&self) -> Result<()> {
+        use crate::error::require;
+        let tol = self.certificate_tolerance;
+        require(
+            tol.is_finite() && (1e-14..1.0).contains(&tol),
+            "certificate_tolerance",
+            tol,
+            "a relative tolerance in [1e-14, 1)",
+        )?;
+        for (field, n) in [
+            ("threads", self.threads),
+            ("factorization_threads", self.factorization_threads),
+        ] {
+            require(
+                n <= MAX_THREADS,
+                field,
+                n,
+                &format!("a thread count from 0 (all cores) to {MAX_THREADS}"),
+            )?;
+        }
+        self.newton.validate().map_err(|e| e.within("newton"))?;
+        self.outer.validate().map_err(|e| e.within("outer"))?;
+        self.constraints
+            .validate()
+            .map_err(|e| e.within("constraints"))
+    }
+}
+
 /// How the Newton systems `H x = b` are solved.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -155,15 +195,16 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
             })
 }
 
-/// Solves the problem from the prescribed displacement (zero elsewhere).
+/// Solves the problem with the given settings, from the prescribed displacement (zero
+/// elsewhere).
 ///
 /// # Errors
-/// Invalid problem data ([`Problem::validate`]), a matrix that is not positive definite
-/// (rigid motions not blocked), a numerical breakdown, or memory exhaustion.
-/// Non-convergence is not an error: see [`SolveReport::converged`].
-pub fn solve(problem: &Problem) -> Result<Solution> {
+/// Invalid settings ([`SolverSettings::validate`]), a matrix that is not positive definite,
+/// a numerical breakdown, or memory exhaustion. Non-convergence is not an error: see
+/// [`SolveReport::converged`].
+pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
     let u0 = problem.prescribed_displacement();
-    solve_from(problem, u0)
+    solve_from(problem, settings, u0)
 }
 
 /// Solves the problem starting from `u` (its prescribed DOFs are overwritten with the
@@ -171,25 +212,27 @@ pub fn solve(problem: &Problem) -> Result<Solution> {
 ///
 /// # Errors
 /// As [`solve`].
-pub fn solve_from(problem: &Problem, u: Vec<f64>) -> Result<Solution> {
+pub fn solve_from(problem: &Problem, settings: &SolverSettings, u: Vec<f64>) -> Result<Solution> {
     let start = Instant::now();
+    settings.validate()?;
     problem.validate()?;
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
-    let solution = match solve_dimensionless(&scaled, u, scales.length / scales.displacement) {
-        Ok(s) => s,
-        // Described again in the user's coordinates.
-        Err(crate::Error::ContactLost { .. }) => {
-            return Err(crate::Error::ContactLost {
-                motions: format!(
-                    "{} (the body moved by more than its size)",
-                    problem.rigid_motions().describe_all().join("; ")
-                ),
-            })
-        }
-        Err(e) => return Err(e),
-    };
+    let solution =
+        match solve_dimensionless(&scaled, settings, u, scales.length / scales.displacement) {
+            Ok(s) => s,
+            // Described again in the user's coordinates.
+            Err(crate::Error::ContactLost { .. }) => {
+                return Err(crate::Error::ContactLost {
+                    motions: format!(
+                        "{} (the body moved by more than its size)",
+                        problem.rigid_motions().describe_all().join("; ")
+                    ),
+                })
+            }
+            Err(e) => return Err(e),
+        };
     let mut solution = scales.dimensional(solution);
     solution.report.free_rigid_motions = problem.rigid_motions().describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
@@ -199,9 +242,14 @@ pub fn solve_from(problem: &Problem, u: Vec<f64>) -> Result<Solution> {
 /// [`solve_from`] for a problem in dimensionless variables ([`scaling`]): every tolerance,
 /// regularization and threshold below is a pure number relative to the problem's scales.
 /// `length_unit` is the length scale in units of the displacement scale.
-fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> Result<Solution> {
+fn solve_dimensionless(
+    problem: &Problem,
+    settings: &SolverSettings,
+    mut u: Vec<f64>,
+    length_unit: f64,
+) -> Result<Solution> {
     let start = Instant::now();
-    let mut system = System::new(problem)?;
+    let mut system = System::new(problem, settings)?;
     system.length_unit = length_unit;
     let prescribed = problem.prescribed_displacement();
     for (k, x) in u.iter_mut().enumerate() {
@@ -210,7 +258,6 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> 
         }
     }
     let mut report = SolveReport::new(&system);
-    let settings = &problem.solver;
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
     let n_points = system.contact.len();
@@ -230,7 +277,8 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> 
         force_scale: f64::NAN,
     };
     report.converged = false;
-    let stages = constraints::stages(problem).max(system::regularization_stages(problem));
+    let stages = constraints::stages(problem, &settings.constraints)
+        .max(system::regularization_stages(problem, settings));
     for k in 0..settings.outer.max_iterations.max(1) {
         system.set_penalty_stage(&settings.constraints, k);
         system.set_regularization_stage(k);

@@ -60,6 +60,42 @@ impl Default for NewtonSettings {
     }
 }
 
+impl NewtonSettings {
+    /// Checks every setting against its range.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
+    /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1).
+    pub fn validate(&self) -> Result<()> {
+        use crate::error::require;
+        let tol = self.residual_tolerance;
+        require(
+            tol.is_finite() && tol > 0.0 && tol < 1.0,
+            "residual_tolerance",
+            tol,
+            "a number in (0, 1)",
+        )?;
+        require(
+            self.armijo > 0.0 && self.armijo < 0.5,
+            "armijo",
+            self.armijo,
+            "a number in (0, 0.5)",
+        )?;
+        require(
+            self.pcg_tolerance >= 1e-12 && self.pcg_tolerance < 1.0,
+            "pcg_tolerance",
+            self.pcg_tolerance,
+            "a number in [1e-12, 1)",
+        )?;
+        require(
+            self.max_iterations > 0,
+            "max_iterations",
+            0,
+            "a positive integer",
+        )
+    }
+}
+
 /// `∇Π·Δ` on the free DOFs, from the gradient of the last evaluation.
 fn directional_derivative(system: &System, delta: &[f64]) -> f64 {
     system

@@ -80,6 +80,55 @@ impl Default for OuterSettings {
     }
 }
 
+/// Largest Anderson depth [`OuterSettings::validate`] accepts: the history is a dense
+/// least-squares problem of this size per outer iteration, and depths beyond a few tens
+/// only add round-off.
+pub const MAX_DEPTH: usize = 50;
+
+impl OuterSettings {
+    /// Checks every setting against its range.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming the setting (`tolerance` in (0, 1), `depth` from 1
+    /// to [`MAX_DEPTH`], `max_iterations` ≥ 1, `relaxation` in (0, 1],
+    /// `friction_regularization` in (0, 0.01)).
+    pub fn validate(&self) -> crate::Result<()> {
+        use crate::error::require;
+        let tol = self.tolerance;
+        require(
+            tol.is_finite() && tol > 0.0 && tol < 1.0,
+            "tolerance",
+            tol,
+            "a number in (0, 1)",
+        )?;
+        require(
+            (1..=MAX_DEPTH).contains(&self.depth),
+            "depth",
+            self.depth,
+            &format!("an Anderson depth from 1 to {MAX_DEPTH}"),
+        )?;
+        require(
+            self.max_iterations > 0,
+            "max_iterations",
+            0,
+            "a positive integer",
+        )?;
+        require(
+            self.relaxation > 0.0 && self.relaxation <= 1.0,
+            "relaxation",
+            self.relaxation,
+            "a factor in (0, 1]",
+        )?;
+        let rho = self.friction_regularization;
+        require(
+            rho.is_finite() && rho > 0.0 && rho < 1e-2,
+            "friction_regularization",
+            rho,
+            "a number in (0, 0.01)",
+        )
+    }
+}
+
 /// Flattens frozen quantities into the fixed-point vector
 /// `z = [F (n), b (2n), λ_contact (n), τ (2n), λ_locking (cells or 0)]`.
 pub fn flatten(f: &Frozen) -> Vec<f64> {

@@ -175,7 +175,6 @@ impl Scales {
                 })
                 .collect(),
             plane: problem.plane,
-            solver: problem.solver.clone(),
         }
     }
 

@@ -103,13 +103,13 @@ pub const REGULARIZATION_STEP: f64 = 0.1;
 /// Number of outer iterations the regularization continuation of `problem` needs to reach
 /// its target: 0 without a contact point whose friction is regularized numerically (the
 /// potentials `norm` and `nonconvex` without `exact`).
-pub fn regularization_stages(problem: &Problem) -> usize {
+pub fn regularization_stages(problem: &Problem, settings: &super::SolverSettings) -> usize {
     let regularized = problem.contact.iter().any(|c| {
         c.friction
             .as_ref()
             .is_some_and(|f| f.potential.is_nonsmooth() && !f.exact)
     });
-    let target = problem.solver.outer.friction_regularization;
+    let target = settings.outer.friction_regularization;
     if !regularized || target >= REGULARIZATION_START {
         return 0;
     }
@@ -134,12 +134,12 @@ pub struct LinearInfo {
 
 impl System {
     /// Builds the DOF map, pattern and contact points, and prepares the linear solver
-    /// chosen by `problem.solver.linear_solver` (see [`super::LinearSolver::resolve`]).
+    /// chosen by `settings.linear_solver` (see [`super::LinearSolver::resolve`]).
     ///
     /// # Errors
     /// [`crate::Error::OutOfMemory`] if the pattern or factor cannot be allocated.
-    pub fn new(problem: &Problem) -> Result<Self> {
-        Self::with_linear_solver(problem, problem.solver.linear_solver)
+    pub fn new(problem: &Problem, settings: &super::SolverSettings) -> Result<Self> {
+        Self::with_linear_solver(problem, settings, settings.linear_solver)
     }
 
     /// As [`System::new`] with the linear solver `kind` instead of the problem's: for the
@@ -148,14 +148,20 @@ impl System {
     ///
     /// # Errors
     /// As [`System::new`].
-    pub fn with_linear_solver(problem: &Problem, kind: super::LinearSolver) -> Result<Self> {
+    pub fn with_linear_solver(
+        problem: &Problem,
+        settings: &super::SolverSettings,
+        kind: super::LinearSolver,
+    ) -> Result<Self> {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
         let contact = problem.contact_nodes();
-        let contact_penalty = super::constraints::contact_penalties(problem, &contact.weight);
+        let gamma = &settings.constraints;
+        let contact_penalty =
+            super::constraints::contact_penalties(problem, gamma.contact_penalty, &contact.weight);
         let locking_penalty = problem.material.ideal_locking.map_or(0.0, |set| {
-            super::constraints::locking_penalty(problem, &set)
+            super::constraints::locking_penalty(problem, gamma.locking_penalty, &set)
         });
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
@@ -169,8 +175,8 @@ impl System {
                     &problem.mesh,
                     dofs.equations(),
                     &pattern,
-                    problem.solver.ordering,
-                    super::parallelism(problem.solver.factorization_threads),
+                    settings.ordering,
+                    super::parallelism(settings.factorization_threads),
                 )?),
                 None,
             ),
@@ -210,8 +216,8 @@ impl System {
             multigrid,
             contact,
             contact_slots,
-            rho_num: problem.solver.outer.friction_regularization,
-            rho_target: problem.solver.outer.friction_regularization,
+            rho_num: settings.outer.friction_regularization,
+            rho_target: settings.outer.friction_regularization,
             full_penalty: (contact_penalty.clone(), locking_penalty),
             contact_penalty,
             locking_penalty,
@@ -226,7 +232,7 @@ impl System {
             refactor_next: false,
             factor_cost,
             pcg_spent: 0.0,
-            workspace: Workspace::new(match problem.solver.threads {
+            workspace: Workspace::new(match settings.threads {
                 0 => rayon::current_num_threads(),
                 t => t,
             }),

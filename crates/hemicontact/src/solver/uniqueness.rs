@@ -64,14 +64,14 @@ pub struct Uniqueness {
 
 /// The discrete trace constant ‖γ‖ of the problem's Γ_C (all contact boundaries) and the
 /// number of power iterations; `0.0` if there is no contact point. Always uses the direct
-/// (Cholesky) linear solver, whatever `problem.solver.linear_solver` says: the power
-/// iteration needs `K_ε⁻¹` to round-off.
+/// (Cholesky) linear solver, whatever `settings.linear_solver` says: the power iteration
+/// needs `K_ε⁻¹` to round-off (the ordering and thread settings are used).
 ///
 /// # Errors
 /// As [`System::new`] and the factorization of `K_ε`.
-pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
+pub fn trace_constant(problem: &Problem, settings: &super::SolverSettings) -> Result<(f64, usize)> {
     // The power iteration needs K_ε⁻¹ to round-off: always the direct solver.
-    let mut system = System::with_linear_solver(problem, super::LinearSolver::Direct)?;
+    let mut system = System::with_linear_solver(problem, settings, super::LinearSolver::Direct)?;
     if system.contact.is_empty() {
         return Ok((0.0, 0));
     }
@@ -136,14 +136,14 @@ pub fn trace_constant(problem: &Problem) -> Result<(f64, usize)> {
 ///
 /// # Errors
 /// As [`trace_constant`].
-pub fn check(problem: &Problem) -> Result<Uniqueness> {
+pub fn check(problem: &Problem, settings: &super::SolverSettings) -> Result<Uniqueness> {
     let mut u = constants(problem);
     if !u.applies {
         return Ok(u);
     }
     u.lhs = 0.0;
     if u.factor > 0.0 {
-        let (g, iterations) = trace_constant(problem)?;
+        let (g, iterations) = trace_constant(problem, settings)?;
         u.trace_constant = Some(g);
         u.iterations = iterations;
         u.lhs = u.factor * g * g;
@@ -217,7 +217,7 @@ fn constants(problem: &Problem) -> Uniqueness {
 ///
 /// Exact constraints (Signorini, ideal locking, exact stick/slip) are within the theorem,
 /// which is stated for the constraint set `{v_ν ≤ g, ε(v) ∈ B}`.
-pub fn evaluate(problem: &Problem) -> Uniqueness {
+pub fn evaluate(problem: &Problem, settings: &super::SolverSettings) -> Uniqueness {
     let not_evaluated = |note: String| Uniqueness {
         applies: false,
         note: Some(note),
@@ -233,8 +233,7 @@ pub fn evaluate(problem: &Problem) -> Uniqueness {
     if !u.applies {
         return u;
     }
-    let iterative = problem
-        .solver
+    let iterative = settings
         .linear_solver
         .resolve(problem.mesh.dim(), problem.dof_map().n_free())
         == super::LinearSolver::Iterative;
@@ -245,7 +244,7 @@ pub fn evaluate(problem: &Problem) -> Uniqueness {
                 .to_string(),
         );
     }
-    match check(problem) {
+    match check(problem, settings) {
         Ok(u) => u,
         Err(e) => not_evaluated(format!(
             "not evaluated: the trace constant ‖γ‖ could not be computed ({e})"

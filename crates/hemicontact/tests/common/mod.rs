@@ -7,7 +7,7 @@
 
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
-use hemicontact::solver::{newton, SolveReport, System};
+use hemicontact::solver::{newton, SolveReport, SolverSettings, System};
 
 /// A small deterministic generator (SplitMix64), so failures are reproducible without a
 /// dependency.
@@ -59,6 +59,21 @@ pub fn problem(text: &str) -> Problem {
     scenario.into_problem().expect("scenario is valid")
 }
 
+/// Parses a scenario text into its validated problem and its `[solver]` settings.
+#[track_caller]
+pub fn setup(text: &str) -> (Problem, SolverSettings) {
+    let scenario = Scenario::from_str(text, "<test>").expect("scenario parses");
+    let problem = scenario.into_problem().expect("scenario is valid");
+    (problem, scenario.settings().expect("settings are valid"))
+}
+
+/// Solves a scenario text with its own `[solver]` settings.
+#[track_caller]
+pub fn solve_text(text: &str) -> hemicontact::Result<hemicontact::solver::Solution> {
+    let (problem, settings) = setup(text);
+    hemicontact::solver::solve(&problem, &settings)
+}
+
 /// Relative distance `|a − b| / max(|b|, floor)`.
 pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
     (a - b).abs() / b.abs().max(floor)
@@ -82,7 +97,8 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
         problem.contact.is_empty(),
         "helper is for problems without contact"
     );
-    let mut system = System::new(problem).expect("system");
+    let solver = SolverSettings::default();
+    let mut system = System::new(problem, &solver).expect("system");
     let mut u = vec![0.0; d * mesh.n_nodes()];
     for n in 0..mesh.n_nodes() {
         let v = field(mesh.node(n));
@@ -95,7 +111,7 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
     }
     let frozen = system.initial_frozen(problem, &u);
     let mut report = SolveReport::new(&system);
-    let settings = &problem.solver.newton;
+    let settings = &solver.newton;
     let outcome = newton::minimize(
         &mut system,
         problem,
