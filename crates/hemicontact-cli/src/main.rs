@@ -23,7 +23,8 @@ macro_rules! say {
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use hemicontact::io::result_set::ResultSet;
-use hemicontact::io::summary::{write_results, Summary};
+use hemicontact::io::results::write_results;
+use hemicontact::io::summary::Summary;
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};

@@ -2,6 +2,7 @@
 //! progress bar (drawn only on a terminal) and their outputs.
 
 use anyhow::Result;
+use hemicontact::io::study_table;
 use hemicontact::io::summary::SUMMARY_FILE;
 use hemicontact::plot::convergence;
 use hemicontact::scenario::Scenario;
@@ -48,12 +49,12 @@ pub fn run(
     }
     bar.finish_and_clear();
     let total = started.elapsed().as_secs_f64();
-    let table = study::markdown(&studies);
+    let table = study_table::markdown(&studies);
     let figure = convergence::figure(&studies, title);
     let (svg, png) = (figure.to_svg(), figure.to_png()?);
     crate::with_output(|set| {
         set.write("table.md", table.as_bytes())?;
-        set.write("table.csv", study::csv(&studies).as_bytes())?;
+        set.write("table.csv", study_table::csv(&studies).as_bytes())?;
         set.write("convergence.svg", svg.as_bytes())?;
         set.write("convergence.png", &png)?;
         let mut files = set.files_in("");

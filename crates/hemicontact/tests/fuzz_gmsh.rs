@@ -35,8 +35,9 @@
 //! fix).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
-use hemicontact::mesh::gmsh::{parse_msh, write_msh, GmshMesh, MshEncoding};
+use hemicontact::mesh::gmsh::{parse_msh, GmshMesh};
 use hemicontact::mesh::Mesh;
 use hemicontact::Error;
 use proptest::collection::vec;

@@ -30,8 +30,9 @@
 //!   sharing nodes with Dirichlet parts; `scenarios/half-disc.toml` solves.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
-use hemicontact::mesh::gmsh::{parse_msh, read_msh, write_msh, GmshMesh, MshEncoding, UNTAGGED};
+use hemicontact::mesh::gmsh::{parse_msh, read_msh, GmshMesh, UNTAGGED};
 use hemicontact::mesh::Mesh;
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::SolverSettings;

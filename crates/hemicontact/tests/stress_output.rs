@@ -21,7 +21,7 @@
 mod common;
 
 use common::{lame, problem};
-use hemicontact::io::summary::solution_vtu;
+use hemicontact::io::vtu::solution_vtu;
 use hemicontact::material::{
     AugmentedLocking, Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane,
     StrainEnergy,

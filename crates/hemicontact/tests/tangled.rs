@@ -25,8 +25,9 @@
 //!   far from the origin (coordinates 10⁶ times the cell size) are accepted.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
-use hemicontact::mesh::gmsh::{parse_msh, read_msh, write_msh, MshEncoding};
+use hemicontact::mesh::gmsh::{parse_msh, read_msh};
 use hemicontact::mesh::Mesh;
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::SolverSettings;

@@ -2,10 +2,15 @@
 //! 64-bit block headers), readable by ParaView, VTK and meshio.
 //!
 //! Point coordinates are written with 3 components (z = 0 in 2D); vectors with 3 components;
-//! symmetric tensors as 9-component full matrices (row-major).
+//! symmetric tensors as 9-component full matrices (row-major). [`solution_vtu`] fills one
+//! with the fields of a solution (`solution.vtu`).
 
+use crate::assembly::BulkAssembler;
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::problem::Problem;
+use crate::solver::Solution;
+use crate::tensor::von_mises;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -196,4 +201,104 @@ pub fn pad_vector(dim: usize, v: &[f64]) -> Vec<f64> {
         out[3 * k..3 * k + dim].copy_from_slice(&v[dim * k..dim * k + dim]);
     }
     out
+}
+
+/// The `.vtu` content of a solution: displacement, reactions and contact data at points;
+/// strain, stress, von Mises stress, tr ε and locking activity per cell.
+///
+/// `stress` is the full 3×3 tensor ([`crate::material::Material::stress_3x3`]): in 2D plane
+/// strain with `σ_zz = ∂W/∂ε_zz` (Hooke: `λ tr ε`) plus the zz part of the locking stress,
+/// in plane stress with `σ_zz = 0`; `von_mises` is `√(3/2 s:s)` of its 3D deviator s
+/// ([`crate::tensor::von_mises`]). `strain` is the strain of the model: in 2D its
+/// out-of-plane components are written as 0 (exact in plane strain; in plane stress the
+/// thickness strain ε_zz is not computed).
+///
+/// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
+/// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
+/// 1 stick, 2 slip), `contact_pressure`, `slip`,
+/// `interface_force` (the force of the foundation on the node, N), and the contact
+/// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
+/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is several
+/// contact points (on two contact boundaries, or at a corner of one), the last point's
+/// values are shown and the forces are summed.
+/// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
+/// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
+/// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
+/// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
+pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
+    let mesh = &problem.mesh;
+    let d = mesh.dim();
+    let bulk = BulkAssembler::new(mesh, &problem.material);
+    let strains = bulk.cell_strains(&solution.u);
+    let n_cells = strains.len();
+    let mut eps9 = Vec::with_capacity(9 * n_cells);
+    let mut sig9 = Vec::with_capacity(9 * n_cells);
+    let mut vm = Vec::with_capacity(n_cells);
+    let mut tr = Vec::with_capacity(n_cells);
+    let mut active = Vec::with_capacity(n_cells);
+    let mut q = Vec::with_capacity(n_cells);
+    let mut multiplier = Vec::with_capacity(n_cells);
+    let locking = &problem.material.locking;
+    let ideal = problem.material.ideal_locking;
+    let set = ideal.unwrap_or(locking.set);
+    for (c, e) in strains.iter().enumerate() {
+        let (act, lambda) = match ideal {
+            Some(_) => {
+                let l = solution.locking_multiplier.get(c).copied().unwrap_or(0.0);
+                (l > 0.0, l)
+            }
+            None => (
+                locking.is_active(e),
+                locking.c_kappa * locking.set.q(e).max(0.0),
+            ),
+        };
+        let ideal_multiplier = if ideal.is_some() { lambda } else { 0.0 };
+        let s = problem
+            .material
+            .stress_3x3(e, problem.plane, ideal_multiplier);
+        eps9.extend(e.to_matrix().iter().flatten());
+        sig9.extend(s.iter().flatten());
+        vm.push(von_mises(&s));
+        tr.push(e.trace());
+        active.push(i32::from(act));
+        multiplier.push(if lambda.is_finite() { lambda } else { 0.0 });
+        let qv = set.q(e);
+        q.push(if qv.is_finite() { qv } else { 0.0 });
+    }
+    let n = mesh.n_nodes();
+    let mut normal_state = vec![-1i32; n];
+    let mut friction_state = vec![-1i32; n];
+    let mut pressure = vec![0.0; n];
+    let mut slip = vec![0.0; n];
+    let mut force = vec![0.0; 3 * n];
+    let mut traction = vec![0.0; 3 * n];
+    for c in &solution.contact {
+        let v = c.node as usize;
+        normal_state[v] = c.normal_state.code();
+        friction_state[v] = c.friction_state.code();
+        pressure[v] = c.pressure;
+        slip[v] = c.slip;
+        for k in 0..3 {
+            force[3 * v + k] += c.force[k];
+            traction[3 * v + k] = c.friction_traction[k];
+        }
+    }
+    let mut w = VtuWriter::new(mesh);
+    w.point_f64("displacement", 3, pad_vector(d, &solution.u))
+        .point_f64("reaction", 3, pad_vector(d, &solution.reactions))
+        .point_i32("contact_state", normal_state)
+        .point_i32("friction_state", friction_state)
+        .point_f64("contact_pressure", 1, pressure.clone())
+        .point_f64("contact_multiplier", 1, pressure)
+        .point_f64("friction_traction", 3, traction)
+        .point_f64("slip", 1, slip)
+        .point_f64("interface_force", 3, force)
+        .cell_f64("strain", 9, eps9)
+        .cell_f64("stress", 9, sig9)
+        .cell_f64("von_mises", 1, vm)
+        .cell_f64("trace_strain", 1, tr)
+        .cell_i32("locking_active", active)
+        .cell_f64("locking_q", 1, q)
+        .cell_f64("locking_multiplier", 1, multiplier);
+    w
 }

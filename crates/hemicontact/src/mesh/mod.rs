@@ -46,11 +46,13 @@
 //! a region of the order of the round-off of the whole domain's measure. (Folds with cells
 //! of both orientations, the usual tangle, are refused before, as inverted cells.)
 
+pub(crate) mod facets;
 pub mod generate;
 pub mod gmsh;
 
 use crate::error::{Error, Result};
 use crate::fem::simplex;
+use facets::{boundary_facets, cell_facets, sorted_key};
 
 /// A validated simplicial mesh; see the module documentation for the array layout.
 #[derive(Clone, Debug)]
@@ -216,13 +218,7 @@ impl Mesh {
         for c in 0..self.n_cells() {
             let x = self.cell_coords(c);
             let m = simplex::signed_measure(self.dim, &x);
-            let mut h: f64 = 0.0;
-            for a in 0..=self.dim {
-                for b in 0..a {
-                    let e: f64 = (0..self.dim).map(|i| (x[a][i] - x[b][i]).powi(2)).sum();
-                    h = h.max(e.sqrt());
-                }
-            }
+            let h = diameter(self.dim, &x[..=self.dim]);
             if !m.is_finite() || !h.is_finite() {
                 return Err(Error::Mesh(format!(
                     "{} (vertices {:?}) has a non-finite measure: coordinates too large",
@@ -333,13 +329,7 @@ impl Mesh {
     /// cells.
     fn folded_facets(&self) -> Vec<(usize, usize)> {
         let d = self.dim;
-        let mut all: Vec<([u32; 3], u32)> = Vec::with_capacity(self.n_cells() * (d + 1));
-        for c in 0..self.n_cells() {
-            for skip in 0..=d {
-                all.push((facet_key(self.cell(c), skip), c as u32));
-            }
-        }
-        all.sort_unstable();
+        let all = cell_facets(d, &self.cells);
         // The side of the facet `key` (vertices in sorted order) that vertex `v` is on: the
         // sign of the simplex (facet, v).
         let side = |key: &[u32; 3], v: u32| -> bool {
@@ -371,35 +361,13 @@ impl Mesh {
     /// tagged facets. Returns the owning cell of each tagged facet.
     fn match_boundary_facets(&self) -> Result<Vec<u32>> {
         let d = self.dim;
-        // Sort-based facet matching: (sorted vertices, cell) for every facet of every cell.
-        let mut all: Vec<([u32; 3], u32)> = Vec::with_capacity(self.n_cells() * (d + 1));
-        for c in 0..self.n_cells() {
-            let cell = self.cell(c);
-            for skip in 0..=d {
-                all.push((facet_key(cell, skip), c as u32));
-            }
-        }
-        all.sort_unstable();
-        let mut boundary: Vec<([u32; 3], u32)> = Vec::new();
-        let mut i = 0;
-        while i < all.len() {
-            let mut j = i + 1;
-            while j < all.len() && all[j].0 == all[i].0 {
-                j += 1;
-            }
-            match j - i {
-                1 => boundary.push(all[i]),
-                2 => {}
-                k => {
-                    return Err(Error::Mesh(format!(
-                        "facet {:?} is shared by {k} cells (non-manifold mesh)",
-                        &all[i].0[..d]
-                    )))
-                }
-            }
-            i = j;
-        }
-        drop(all);
+        let boundary = boundary_facets(d, &self.cells).map_err(|shared| {
+            Error::Mesh(format!(
+                "facet {:?} is shared by {} cells (non-manifold mesh)",
+                &shared.facet[..d],
+                shared.cells
+            ))
+        })?;
         let mut facet_cell = vec![u32::MAX; self.n_facets()];
         let mut tagged: Vec<([u32; 3], usize)> = (0..self.n_facets())
             .map(|f| (sorted_key(self.facet(f)), f))
@@ -458,12 +426,6 @@ impl Mesh {
     #[inline]
     pub fn n_facets(&self) -> usize {
         self.facet_part.len()
-    }
-
-    /// Number of vertices per cell, d + 1.
-    #[inline]
-    pub fn nodes_per_cell(&self) -> usize {
-        self.dim + 1
     }
 
     /// Coordinates of node `n` (length d).
@@ -643,7 +605,7 @@ impl Mesh {
 }
 
 /// Largest distance between two of the points `x` (the first d coordinates).
-fn diameter(d: usize, x: &[[f64; 3]]) -> f64 {
+pub(crate) fn diameter(d: usize, x: &[[f64; 3]]) -> f64 {
     let mut h: f64 = 0.0;
     for a in 0..x.len() {
         for b in 0..a {
@@ -652,24 +614,4 @@ fn diameter(d: usize, x: &[[f64; 3]]) -> f64 {
         }
     }
     h.sqrt()
-}
-
-fn sorted_key(v: &[u32]) -> [u32; 3] {
-    let mut k = [u32::MAX; 3];
-    k[..v.len()].copy_from_slice(v);
-    k[..v.len()].sort_unstable();
-    k
-}
-
-fn facet_key(cell: &[u32], skip: usize) -> [u32; 3] {
-    let mut k = [u32::MAX; 3];
-    let mut j = 0;
-    for (a, &v) in cell.iter().enumerate() {
-        if a != skip {
-            k[j] = v;
-            j += 1;
-        }
-    }
-    k[..j].sort_unstable();
-    k
 }

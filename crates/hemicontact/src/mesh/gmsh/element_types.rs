@@ -3,6 +3,15 @@
 //! node count of every type to step over elements it does not use, and the name for error
 //! messages.
 
+/// Gmsh element type of a 2-node line (the boundary facet of a triangle mesh).
+pub(crate) const LINE: i32 = 1;
+/// Gmsh element type of a 3-node triangle (a cell in 2D, a boundary facet in 3D).
+pub(crate) const TRIANGLE: i32 = 2;
+/// Gmsh element type of a 4-node tetrahedron (a cell in 3D).
+pub(crate) const TETRAHEDRON: i32 = 4;
+/// Gmsh element type of a 1-node point (geometry points; ignored by the reader).
+pub(crate) const POINT: i32 = 15;
+
 /// `(type number, dimension, nodes per element, name)`; a node count of 0 marks types with
 /// a variable number of nodes (polygons, polyhedra, Xfem elements).
 const TYPES: &[(i32, u8, u16, &str)] = &[
@@ -126,7 +135,7 @@ const TYPES: &[(i32, u8, u16, &str)] = &[
 ];
 
 /// Dimension, nodes per element and name of Gmsh element type `t`, if Gmsh defines it.
-pub(super) fn element_type(t: i32) -> Option<(u8, usize, &'static str)> {
+pub(crate) fn element_type(t: i32) -> Option<(u8, usize, &'static str)> {
     TYPES
         .binary_search_by_key(&t, |e| e.0)
         .ok()

@@ -1,0 +1,47 @@
+//! The contact table of a solution (`contact.csv`): one row per contact point.
+
+use crate::problem::Problem;
+use crate::solver::Solution;
+
+/// The contact-node table: one row per contact point, comma-separated, with a header.
+///
+/// Columns: node, boundary (part name), x, y, z, weight, u_nu, gap, u_tau_1, u_tau_2, slip,
+/// pressure, bound, force_normal, force_tangential_1, force_tangential_2, normal_state
+/// (separated/contact), friction_state (none/stick/slip), normal_residual,
+/// friction_residual.
+pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
+    let mesh = &problem.mesh;
+    let mut out = String::from(
+        "node,boundary,x,y,z,weight,u_nu,gap,u_tau_1,u_tau_2,slip,pressure,bound,\
+         force_normal,force_tangential_1,force_tangential_2,normal_state,friction_state,normal_residual,friction_residual\n",
+    );
+    for c in &solution.contact {
+        let x = mesh.node(c.node as usize);
+        let xyz: Vec<f64> = (0..3).map(|i| x.get(i).copied().unwrap_or(0.0)).collect();
+        let part = &mesh.part_names()[problem.contact[c.boundary].part];
+        out.push_str(&format!(
+            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{:e}\n",
+            c.node,
+            part,
+            xyz[0],
+            xyz[1],
+            xyz[2],
+            c.weight,
+            c.u_nu,
+            c.gap,
+            c.u_tau[0],
+            c.u_tau[1],
+            c.slip,
+            c.pressure,
+            c.bound,
+            c.force_normal,
+            c.force_tangential[0],
+            c.force_tangential[1],
+            c.normal_state.name(),
+            c.friction_state.name(),
+            c.normal_residual,
+            c.friction_residual
+        ));
+    }
+    out
+}

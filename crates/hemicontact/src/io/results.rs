@@ -1,0 +1,64 @@
+//! The result files of one solution, written into a folder of a [`ResultSet`]:
+//! `solution.vtu` ([`super::vtu::solution_vtu`]), `contact.csv` ([`super::csv::contact_csv`]),
+//! extra files, and last `summary.json` ([`super::summary::Summary`]) listing them all.
+
+use super::csv::contact_csv;
+use super::result_set::ResultSet;
+use super::summary::{Summary, SUMMARY_FILE};
+use super::vtu::solution_vtu;
+use crate::error::Result;
+use crate::problem::Problem;
+use crate::solver::Solution;
+use std::path::PathBuf;
+
+/// Writes the result files of a solution into the sub-folder `folder` of the result set
+/// `set` (`""`: its root): `solution.vtu` (if `vtu`), `contact.csv` (if the problem has
+/// contact), the `extra` files (name within the folder, content), and last, if `summary` is
+/// given, `summary.json`, whose `files` lists every file of the folder, itself included.
+/// Returns the final paths written.
+///
+/// # Errors
+/// [`crate::Error::Io`] if a file cannot be written.
+pub fn write_results(
+    set: &mut ResultSet,
+    folder: &str,
+    problem: &Problem,
+    solution: &Solution,
+    summary: Option<&Summary>,
+    vtu: bool,
+    extra: &[(&str, Vec<u8>)],
+) -> Result<Vec<PathBuf>> {
+    let name = |file: &str| {
+        if folder.is_empty() {
+            file.to_string()
+        } else {
+            format!("{}/{file}", folder.trim_end_matches('/'))
+        }
+    };
+    let mut written = Vec::new();
+    if vtu {
+        written.push(set.write(
+            &name("solution.vtu"),
+            &solution_vtu(problem, solution).to_bytes(),
+        )?);
+    }
+    if !problem.contact.is_empty() {
+        written.push(set.write(
+            &name("contact.csv"),
+            contact_csv(problem, solution).as_bytes(),
+        )?);
+    }
+    for (file, bytes) in extra {
+        written.push(set.write(&name(file), bytes)?);
+    }
+    if let Some(summary) = summary {
+        let mut summary = summary.clone();
+        summary.files = set.files_in(folder);
+        summary.files.push(SUMMARY_FILE.to_string());
+        summary.files.dedup();
+        let text = serde_json::to_string_pretty(&summary)
+            .map_err(|e| crate::Error::Breakdown(format!("summary serialization: {e}")))?;
+        written.push(set.write(&name(SUMMARY_FILE), text.as_bytes())?);
+    }
+    Ok(written)
+}

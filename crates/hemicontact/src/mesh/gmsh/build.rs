@@ -1,0 +1,299 @@
+//! From the [`Sections`] of a file to a [`GmshMesh`]: the dimension, the cells
+//! ([`super::cells`]), the boundary parts ([`super::parts`]), the nodes used by the cells
+//! (renumbered in file order, duplicates refused), the cell regions, and last the validated
+//! [`Mesh`]. Each step adds the facts worth telling the user to the notes.
+
+use super::cells::read_cells;
+use super::parts::boundary_parts;
+use super::sections::{Block, Nodes, Sections};
+use super::GmshMesh;
+use crate::error::{Error, FileLocation, Result};
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+/// What the steps of building need of the file besides its elements: its name (for error
+/// messages), its physical groups and their names, and its nodes.
+pub(super) struct Source<'a> {
+    /// The file, as named in error messages.
+    pub(super) file: &'a str,
+    /// `(dimension, tag)` → name of a physical group.
+    pub(super) names: &'a HashMap<(i32, i32), String>,
+    /// `(dimension, entity tag)` → physical tags; `None` without `$Entities`.
+    pub(super) entities: Option<&'a HashMap<(i32, i32), Vec<i32>>>,
+    /// The nodes of the file.
+    pub(super) nodes: &'a Nodes,
+}
+
+impl<'a> Source<'a> {
+    /// An error at `at` in the file.
+    pub(super) fn err(&self, at: FileLocation, message: String) -> Error {
+        Error::MeshFile {
+            file: self.file.to_string(),
+            location: at,
+            message,
+        }
+    }
+
+    /// An error about the file as a whole.
+    pub(super) fn whole(&self, message: String) -> Error {
+        self.err(FileLocation::Whole, message)
+    }
+
+    /// The physical groups of the entity of dimension `dim` of block `b` (none without
+    /// `$Entities`).
+    pub(super) fn physical(&self, dim: usize, b: &Block) -> Result<&'a [i32]> {
+        match self.entities {
+            None => Ok(&[]),
+            Some(map) => map
+                .get(&(dim as i32, b.entity))
+                .map(Vec::as_slice)
+                .ok_or_else(|| {
+                    self.err(
+                        b.at,
+                        format!(
+                            "the element block belongs to entity {} of dimension {dim}, which \
+                             `$Entities` does not define",
+                            b.entity
+                        ),
+                    )
+                }),
+        }
+    }
+
+    /// The name of physical group `tag` of dimension `dim`: its `$PhysicalNames` name, or
+    /// its tag if it has none (or a blank one).
+    pub(super) fn group_name(&self, dim: usize, tag: i32) -> String {
+        self.names
+            .get(&(dim as i32, tag))
+            .filter(|n| !n.trim().is_empty())
+            .cloned()
+            .unwrap_or_else(|| tag.to_string())
+    }
+
+    /// The Gmsh tags of the nodes `v` (indices into the file's nodes).
+    pub(super) fn tags_of(&self, v: &[u32]) -> Vec<u64> {
+        v.iter().map(|&i| self.nodes.tags[i as usize]).collect()
+    }
+}
+
+/// Interns physical-group names: index of each distinct name, with the smallest physical
+/// tag carrying it (parts and regions are ordered by it).
+#[derive(Default)]
+pub(super) struct Names {
+    /// The distinct names, in the order first met.
+    pub(super) names: Vec<String>,
+    /// Smallest physical tag carrying each name.
+    min_tag: Vec<i64>,
+    /// Index of each name in `names`.
+    index: HashMap<String, u32>,
+}
+
+impl Names {
+    /// The index of `name`, carried by physical tag `tag`.
+    pub(super) fn get(&mut self, name: String, tag: i64) -> u32 {
+        if let Some(&i) = self.index.get(&name) {
+            let m = &mut self.min_tag[i as usize];
+            *m = (*m).min(tag);
+            return i;
+        }
+        let i = self.names.len() as u32;
+        self.index.insert(name.clone(), i);
+        self.names.push(name);
+        self.min_tag.push(tag);
+        i
+    }
+
+    /// The order of the names by smallest tag: `rank[i]` is the position of name `i`.
+    pub(super) fn ranks(&self) -> (Vec<String>, Vec<usize>) {
+        let mut order: Vec<usize> = (0..self.names.len()).collect();
+        order.sort_by_key(|&i| (self.min_tag[i], i));
+        let mut rank = vec![0; order.len()];
+        for (r, &i) in order.iter().enumerate() {
+            rank[i] = r;
+        }
+        (order.iter().map(|&i| self.names[i].clone()).collect(), rank)
+    }
+}
+
+/// Builds the mesh of the file `file` from its sections; see the module documentation of
+/// [`crate::mesh::gmsh`] for how.
+pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
+    let Sections {
+        names,
+        entities,
+        nodes,
+        blocks,
+        skipped,
+        ..
+    } = s;
+    let Some(nodes) = nodes else {
+        return Err(Error::MeshFile {
+            file: file.to_string(),
+            location: FileLocation::Whole,
+            message: "missing `$Nodes` section".into(),
+        });
+    };
+    let src = Source {
+        file,
+        names: &names,
+        entities: entities.as_ref(),
+        nodes: &nodes,
+    };
+    let mut notes = Vec::new();
+
+    // Dimension: the highest dimension of a non-empty element block (points excluded).
+    let d = blocks
+        .iter()
+        .filter(|b| !b.tags.is_empty())
+        .map(|b| b.dim)
+        .chain(skipped.iter().map(|k| k.dim))
+        .max()
+        .unwrap_or(0) as usize;
+    if d < 2 {
+        return Err(src.whole(
+            "the file has no triangles or tetrahedra: nothing to compute on. When physical groups \
+             are defined, Gmsh saves only their elements: add a physical surface (2D) or volume \
+             (3D) holding the domain, or set Mesh.SaveAll = 1"
+                .into(),
+        ));
+    }
+    if let Some(k) = skipped.iter().find(|k| k.dim as usize + 1 >= d) {
+        let (cells, facets) = if d == 2 {
+            ("triangles (type 2)", "lines (type 1)")
+        } else {
+            ("tetrahedra (type 4)", "triangles (type 2)")
+        };
+        return Err(src.err(
+            k.at,
+            format!(
+                "element type {} ({}) in entity {} of dimension {}: only P1 simplices are \
+                 supported ({cells} as cells, {facets} as boundary facets); re-mesh with \
+                 Mesh.ElementOrder = 1 and Mesh.RecombineAll = 0",
+                k.etype, k.name, k.entity, k.dim
+            ),
+        ));
+    }
+    if entities.is_none() {
+        notes.push(
+            "the file has no `$Entities` section: physical groups are unknown, every boundary \
+             facet is in the part `untagged`"
+                .into(),
+        );
+    }
+
+    let cells = read_cells(&src, d, &blocks, &mut notes)?;
+    let parts = boundary_parts(&src, d, &cells.cells, &blocks, &mut notes)?;
+    let (coords, node_tags, new_index) = used_nodes(&src, d, &cells.cells)?;
+    let dropped = nodes.tags.len() - node_tags.len();
+    if dropped > 0 {
+        notes.push(format!("{dropped} nodes not used by any cell were dropped"));
+    }
+    let renumber = |v: &u32| new_index[*v as usize];
+    let cell_nodes: Vec<u32> = cells.cells.iter().map(renumber).collect();
+    let facets: Vec<u32> = parts.facets.iter().map(renumber).collect();
+
+    // Regions.
+    let (region_names, region_rank) = cells.regions.ranks();
+    if region_names.len() > u16::MAX as usize {
+        return Err(src.whole(format!(
+            "{} cell regions: more than the {} supported",
+            region_names.len(),
+            u16::MAX
+        )));
+    }
+    let cell_region = cells
+        .region_of
+        .iter()
+        .map(|&r| region_rank[r as usize] as u16)
+        .collect();
+    if region_names.len() > 1 {
+        notes.push(format!(
+            "{} cell regions ({}): one material applies to all of them",
+            region_names.len(),
+            region_names
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    if cells.multi_region > 0 {
+        notes.push(format!(
+            "{} cells are in several physical groups of dimension {d}; their region is the \
+             first one",
+            cells.multi_region
+        ));
+    }
+
+    let element_tags = cells.element_tags;
+    let element = |c: usize| format!("element {}", element_tags[c]);
+    let mesh = Mesh::try_new_named(
+        d,
+        coords,
+        cell_nodes,
+        facets,
+        parts.facet_part,
+        parts.part_names,
+        &element,
+    )
+    .map_err(|e| match e {
+        Error::Mesh(m) => src.whole(format!("invalid mesh: {m}")),
+        other => other,
+    })?;
+    Ok(GmshMesh {
+        mesh,
+        node_tags,
+        element_tags,
+        cell_region,
+        region_names,
+        notes,
+    })
+}
+
+/// The nodes used by the cells `cells` (indices into the file's nodes), in file order: their
+/// coordinates (d each), their tags, and the new index of each node of the file (`u32::MAX`
+/// for those dropped).
+///
+/// # Errors
+/// Two used nodes at the same point: an unmerged geometry (the mesh would have a crack
+/// there, its two faces becoming boundary facets).
+fn used_nodes(src: &Source, d: usize, cells: &[u32]) -> Result<(Vec<f64>, Vec<u64>, Vec<u32>)> {
+    let nodes = src.nodes;
+    let mut new_index = vec![u32::MAX; nodes.tags.len()];
+    for &v in cells {
+        new_index[v as usize] = 0;
+    }
+    let mut coords = Vec::new();
+    let mut node_tags = Vec::new();
+    let mut next = 0u32;
+    for (i, slot) in new_index.iter_mut().enumerate() {
+        if *slot == 0 {
+            *slot = next;
+            next += 1;
+            coords.extend_from_slice(&nodes.coords[i][..d]);
+            node_tags.push(nodes.tags[i]);
+        }
+    }
+    let n_used = node_tags.len();
+    let mut order: Vec<u32> = (0..n_used as u32).collect();
+    let key = |i: u32| &coords[i as usize * d..(i as usize + 1) * d];
+    order.sort_unstable_by(|&a, &b| {
+        key(a)
+            .iter()
+            .zip(key(b))
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    if let Some(w) = order.windows(2).find(|w| key(w[0]) == key(w[1])) {
+        return Err(src.whole(format!(
+            "nodes {} and {} are at the same point {:?} (duplicate nodes: the geometry is not \
+             merged, which would cut the body; merge duplicates in Gmsh, e.g. with \
+             Geometry.Tolerance / `Coherence;`)",
+            node_tags[w[0] as usize],
+            node_tags[w[1] as usize],
+            key(w[0])
+        )));
+    }
+    Ok((coords, node_tags, new_index))
+}
