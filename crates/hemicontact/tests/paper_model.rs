@@ -12,7 +12,7 @@ mod common;
 
 use hemicontact::problem::Problem;
 use hemicontact::scenario::builtin;
-use hemicontact::solver::{solve, FrictionState, NormalState, Solution, SolverSettings};
+use hemicontact::solver::{solve, FrictionState, Mixing, NormalState, Solution, SolverSettings};
 
 fn assert_certified(s: &Solution) {
     common::assert_certified(s, 1e-8);
@@ -336,7 +336,7 @@ fn oscillating_fixed_point_is_detected_and_cured() {
             .report
             .outer
             .iter()
-            .any(|o| o.mixing.contains("oscillation")),
+            .any(|o| matches!(o.mixing, Mixing::Oscillation { .. })),
         "oscillation should be detected"
     );
     let anderson = common::solve_text(&constant_mu(2.0, "")).unwrap();

@@ -9,6 +9,7 @@
 
 pub mod certificate;
 pub mod constraints;
+pub mod mixing;
 pub mod newton;
 pub mod outer;
 pub mod report;
@@ -18,15 +19,15 @@ pub mod uniqueness;
 
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
 pub use constraints::{ConstraintSettings, KktCertificate};
+pub use mixing::Mixing;
 pub use newton::NewtonSettings;
-pub use outer::{Acceleration, OuterSettings};
+pub use outer::{needs_outer_loop, Acceleration, OuterSettings, StopReason};
 pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
 pub use system::System;
 
 use crate::assembly::contact::Frozen;
 use crate::error::Result;
 use crate::linalg::Ordering;
-use crate::norms::energy_norm;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -179,22 +180,6 @@ pub struct Solution {
     pub report: SolveReport,
 }
 
-/// Whether the outer loop is needed: some friction law has a slip-dependent coefficient, a
-/// Coulomb-type bound, or a nonconvex potential, or there are exact constraints (whose
-/// multipliers are iterated). Otherwise one convex problem is the whole problem.
-pub fn needs_outer_loop(problem: &Problem) -> bool {
-    constraints::has_exact_constraints(problem)
-        || problem
-            .contact
-            .iter()
-            .filter_map(|c| c.friction.as_ref())
-            .any(|f| {
-                f.bound == crate::contact::FrictionBound::Coulomb
-                    || f.mu.lipschitz() > 0.0
-                    || f.potential.alpha_j() > 0.0
-            })
-}
-
 /// Solves the problem with the given settings, from the prescribed displacement (zero
 /// elsewhere).
 ///
@@ -258,136 +243,13 @@ fn solve_dimensionless(
         }
     }
     let mut report = SolveReport::new(&system);
-    let dim = problem.mesh.dim();
-    let hooke = problem.material.elasticity.small_strain_hooke(dim);
-    let n_points = system.contact.len();
-    let n_locking = problem.mesh.n_cells() * usize::from(problem.material.ideal_locking.is_some());
-    let outer_loop = needs_outer_loop(problem);
-    let final_tol = settings.newton.residual_tolerance;
-    let mut frozen = system.initial_frozen(problem, &u);
-    let mut z = outer::flatten(&frozen);
-    let mut mixer = outer::Mixer::new(&settings.outer);
-    let mut u_prev = u.clone();
-    let mut change = f64::INFINITY;
-    let mut last = newton::NewtonOutcome {
-        converged: false,
-        steps: 0,
-        residual: f64::NAN,
-        energy: f64::NAN,
-        force_scale: f64::NAN,
-    };
-    report.converged = false;
-    let stages = constraints::stages(problem, &settings.constraints)
-        .max(system::regularization_stages(problem, settings));
-    for k in 0..settings.outer.max_iterations.max(1) {
-        system.set_penalty_stage(&settings.constraints, k);
-        system.set_regularization_stage(k);
-        let tol = if !outer_loop || !settings.outer.inexact {
-            final_tol
-        } else {
-            (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
-        };
-        let steps_before = report.newton.len();
-        last = match newton::minimize(
-            &mut system,
-            problem,
-            &mut u,
-            &frozen,
-            &settings.newton,
-            tol,
-            k,
-            &mut report,
-        ) {
-            Ok(outcome) => outcome,
-            // The load pulls a body off the contact carrying its free rigid motions: no
-            // solution to report.
-            Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
-            // Before any step succeeded there is no iterate worth keeping: the problem
-            // itself is at fault (e.g. rigid motions not blocked).
-            Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
-            // Later, a breakdown keeps the last good iterate (Newton only updates `u`
-            // after an accepted step), reported as not converged with where it happened.
-            Err(e) => {
-                report.message = format!(
-                    "not converged: numerical breakdown in outer iteration {k}, Newton step {}: {e}",
-                    report.newton.len() - steps_before + 1
-                );
-                break;
-            }
-        };
-        let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
-        let norm_u = energy_norm(&problem.mesh, &hooke, &u);
-        change = if k == 0 {
-            f64::INFINITY
-        } else {
-            energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
-        };
-        u_prev.copy_from_slice(&u);
-        let next = system.freeze(problem, &u, &frozen);
-        let g = outer::flatten(&next);
-        let fp_rel = residual(problem, &system, &frozen, &next, &u);
-        let mut step = report::OuterStep {
-            change,
-            fixed_point_residual: fp_rel,
-            newton_steps: last.steps,
-            newton_tolerance: tol,
-            newton_converged: last.converged,
-            mixing: String::new(),
-        };
-        if !last.converged && tol == final_tol {
-            step.mixing = "stop: Newton did not converge".into();
-            report.outer.push(step);
-            report.message = format!(
-                "Newton did not converge in outer iteration {k}: residual {:e} > tolerance {:e}",
-                last.residual, report.residual_tolerance
-            );
-            break;
-        }
-        let at_final = tol == final_tol && last.converged;
-        let tol_outer = settings.outer.tolerance;
-        if at_final && k >= stages && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer))
-        {
-            report.outer.push(step);
-            report.converged = true;
-            report.message = format!(
-                "converged: {} outer iterations, {} Newton steps{}",
-                report.outer.len(),
-                report.newton.len(),
-                if report.round_off_floor > 0.0 {
-                    format!(
-                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
-                        report.round_off_floor
-                    )
-                } else {
-                    String::new()
-                }
-            );
-            break;
-        }
-        if outer_loop && k + 1 < stages {
-            // Continuation (penalties, friction regularization): the map changes with each
-            // stage, so no mixing yet.
-            step.mixing = format!("continuation: stage {} of {stages} next", k + 1);
-            z = g;
-            frozen = next;
-        } else if outer_loop {
-            let (mixed, note) = mixer.next(&z, &g);
-            step.mixing = note;
-            z = mixed;
-            frozen = outer::unflatten(&z, n_points, n_locking);
-        }
-        report.outer.push(step);
-    }
-    if !report.converged && report.message == "not started" {
-        report.message = format!(
-            "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
-            report.outer.len(),
-            change,
-            report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
-            settings.outer.tolerance,
-            if mixer.oscillations > 0 { "; oscillation was detected" } else { "" }
-        );
-    }
+    let outcome = outer::run(problem, settings, &mut system, &mut u, &mut report)?;
+    report.converged = outcome.stop == outer::StopReason::Converged;
+    report.message = outcome
+        .stop
+        .message(&report, &settings.outer, outcome.oscillations);
+    report.stop = outcome.stop;
+    let (frozen, last) = (outcome.frozen, outcome.last);
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, false);
     let reactions = system.reactions();
@@ -456,56 +318,6 @@ fn solve_dimensionless(
         frozen,
         report,
     })
-}
-
-/// The relative fixed-point residual of the outer loop between the frozen quantities `z`
-/// of the last convex problem and their image `g = G(z)` at its solution `u`: the larger of
-///
-/// - `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the friction data of the convexification, and
-/// - the multiplier changes divided by their penalty — `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i`
-///   relative to `max|u|`, `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). This is the
-///   standard primal stopping test of the augmented Lagrangian method: for an active
-///   constraint `Δλ/r` *is* the constraint violation, for a sticking point `Δτ/r` the slip.
-///   (Measured in force units instead, the multiplier change has a floor of r times the
-///   Newton tolerance, far above the tolerance for the large penalties used.)
-fn residual(problem: &Problem, system: &System, z: &Frozen, g: &Frozen, u: &[f64]) -> f64 {
-    let n = z.bound.len();
-    let (mut diff, mut norm) = (0.0, 0.0);
-    for i in 0..n {
-        diff += (g.bound[i] - z.bound[i]).powi(2);
-        norm += g.bound[i].powi(2);
-        for a in 0..2 {
-            diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
-            norm += g.linear[i][a].powi(2);
-        }
-    }
-    let mut fp = if diff == 0.0 {
-        0.0
-    } else {
-        (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
-    };
-    let d = problem.mesh.dim();
-    let u_scale = u
-        .chunks(d)
-        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    for i in 0..n {
-        let r = system.contact_penalty[i] * u_scale;
-        let dt = ((g.traction[i][0] - z.traction[i][0]).powi(2)
-            + (g.traction[i][1] - z.traction[i][1]).powi(2))
-        .sqrt();
-        fp = fp
-            .max((g.pressure[i] - z.pressure[i]).abs() / r)
-            .max(dt / r);
-    }
-    if let Some(set) = &problem.material.ideal_locking {
-        let r = system.locking_penalty * constraints::q_scale(set);
-        for (a, b) in g.locking.iter().zip(&z.locking) {
-            fp = fp.max((a - b).abs() / r);
-        }
-    }
-    fp
 }
 
 /// Builds the faer parallelism for `threads` (0: all available cores).

@@ -1,32 +1,39 @@
-//! The convexification outer loop and its acceleration.
+//! The convexification outer loop: its settings, its body, its stopping test and the
+//! reasons it stops.
 //!
 //! Outer iteration k freezes, at every contact point, the friction bound `F_i^k` (which
 //! depends on the slip through μ, and for Coulomb-type bounds on the pressure) and the
-//! linear term `b_i^k = F_i^k ∇h(u_τ,i^k)` of the difference-of-convex split, then minimizes
-//! the convex energy `E_k` by Newton's method. This is a fixed-point iteration `z ↦ G(z)`
-//! on the vector z of frozen quantities (`G(z)` = the quantities evaluated at the
-//! minimizer of `E_z`). It converges only linearly, and for large friction coefficients
-//! the plain iteration can fall into a two-state oscillation; therefore:
+//! linear term `b_i^k = F_i^k ∇h(u_τ,i^k)` of the difference-of-convex split, and the
+//! multipliers of the exact constraints, then minimizes the convex energy `E_k` by Newton's
+//! method ([`super::newton`]). This is a fixed-point iteration `z ↦ G(z)` on the vector z of
+//! frozen quantities (`G(z)` = the quantities evaluated at the minimizer of `E_z`). It
+//! converges only linearly, and for large friction coefficients the plain iteration can
+//! fall into a two-state oscillation; the next z is therefore mixed from the last ones
+//! ([`super::mixing`]: Anderson acceleration, or relaxation with oscillation detection).
 //!
-//! - **Anderson acceleration** (default, depth 5) mixes the last iterates to cancel the
-//!   dominant error modes. It is safeguarded: when the fixed-point residual `‖G(z) − z‖`
-//!   grows, the history is dropped and a damped step `z + ω (G(z) − z)` with `ω = ½` is
-//!   taken instead. Bounds are projected to `F ≥ 0`, which keeps every `E_k` convex.
-//! - With `acceleration = "none"`, oscillation or stagnation is *detected* (the residual
-//!   fails to drop by 5 % over two iterations, three times in a row) and cured by halving
-//!   the relaxation factor ω (down to 1/8); the report records it.
+//! - **Continuation.** Penalties of exact constraints and the friction regularization
+//!   start soft and reach their values over the first outer iterations (stages); no mixing
+//!   before the last stage, since the map changes with each.
 //! - **Inexact inner solves**: early convex problems need not be solved to full accuracy.
 //!   The Newton tolerance of iteration k is `clamp(10⁻² δ_{k−1}, tol_N, 10⁻³)` with
 //!   `δ_{k−1}` the last relative change; convergence is only declared after a solve at the
 //!   final Newton tolerance `tol_N`.
 //!
-//! The loop stops when the relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E` falls below
-//! `tolerance` (default 1e-10) *and* so does the relative fixed-point residual
-//! `‖G(z) − z‖ / ‖G(z)‖` (a mixed iterate can stall — `u` stops changing while the frozen
-//! quantities are still inconsistent with it — so the change of u alone is not a proof of
-//! convergence); otherwise it reports non-convergence after `max_iterations`.
+//! The loop stops ([`StopReason`]) when the relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E`
+//! falls below `tolerance` (default 1e-10) *and* so does the relative fixed-point residual
+//! ([`fixed_point_residual`]; a mixed iterate can stall — `u` stops changing while the
+//! frozen quantities are still inconsistent with it — so the change of u alone is not a
+//! proof of convergence), after every continuation stage; or when a convex solve at the
+//! final tolerance fails, a numerical breakdown occurs, or `max_iterations` is reached.
 
+use super::mixing::{flatten, unflatten, Mixer, Mixing};
+use super::newton::{self, NewtonOutcome};
+use super::report::{OuterStep, SolveReport};
+use super::{constraints, system, SolverSettings, System};
 use crate::assembly::contact::Frozen;
+use crate::error::Result;
+use crate::norms::energy_norm;
+use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 
 /// Acceleration of the outer fixed-point iteration; see the module documentation.
@@ -129,239 +136,302 @@ impl OuterSettings {
     }
 }
 
-/// Flattens frozen quantities into the fixed-point vector
-/// `z = [F (n), b (2n), λ_contact (n), τ (2n), λ_locking (cells or 0)]`.
-pub fn flatten(f: &Frozen) -> Vec<f64> {
-    let n = f.bound.len();
-    let mut z = Vec::with_capacity(6 * n + f.locking.len());
-    z.extend_from_slice(&f.bound);
-    for b in &f.linear {
-        z.extend_from_slice(b);
-    }
-    z.extend_from_slice(&f.pressure);
-    for t in &f.traction {
-        z.extend_from_slice(t);
-    }
-    z.extend_from_slice(&f.locking);
-    z
+/// Why the outer loop stopped.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "reason", rename_all = "kebab-case")]
+pub enum StopReason {
+    /// The stopping test held after a convex solve at the final Newton tolerance.
+    Converged,
+    /// The convex solve of outer iteration `outer`, at the final Newton tolerance, did not
+    /// reach it.
+    NewtonNotConverged {
+        /// The outer iteration.
+        outer: usize,
+        /// The Newton residual reached (N, in the solver's units).
+        residual: f64,
+        /// The residual tolerance (N, in the solver's units).
+        tolerance: f64,
+    },
+    /// A numerical breakdown in a Newton step after some step succeeded; the last good
+    /// iterate is kept.
+    Breakdown {
+        /// The outer iteration.
+        outer: usize,
+        /// The Newton step of that iteration (1-based).
+        step: usize,
+        /// The error.
+        error: String,
+    },
+    /// `max_iterations` outer iterations without meeting the stopping test.
+    IterationCap,
 }
 
-/// Inverse of [`flatten`] for `n` contact points and `n_cells` locking multipliers,
-/// projecting bounds and multipliers onto their admissible sets (`F ≥ 0`, `λ ≥ 0`): a mixed
-/// iterate then still defines convex subproblems.
-pub fn unflatten(z: &[f64], n: usize, n_cells: usize) -> Frozen {
-    let bound = z[..n].iter().map(|&x| x.max(0.0)).collect();
-    let linear = (0..n).map(|i| [z[n + 2 * i], z[n + 2 * i + 1]]).collect();
-    let pressure = z[3 * n..4 * n].iter().map(|&x| x.max(0.0)).collect();
-    let traction = (0..n)
-        .map(|i| [z[4 * n + 2 * i], z[4 * n + 2 * i + 1]])
-        .collect();
-    let locking = z[6 * n..6 * n + n_cells]
-        .iter()
-        .map(|&x| x.max(0.0))
-        .collect();
-    Frozen {
-        bound,
-        linear,
-        pressure,
-        traction,
-        locking,
-    }
-}
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
-
-/// The fixed-point mixer: produces the next frozen vector from the current one and its
-/// image; see the module documentation.
+/// What the outer loop leaves for the certificate and the solution.
 #[derive(Clone, Debug)]
-pub struct Mixer {
-    acceleration: Acceleration,
-    depth: usize,
-    /// Current relaxation factor ω.
-    pub omega: f64,
-    f_hist: Vec<Vec<f64>>,
-    g_hist: Vec<Vec<f64>>,
-    residuals: Vec<f64>,
-    stalls: usize,
-    /// Number of times oscillation or stagnation was detected.
+pub struct OuterOutcome {
+    /// Why it stopped.
+    pub stop: StopReason,
+    /// The frozen quantities of the last convex problem solved.
+    pub frozen: Frozen,
+    /// The outcome of the last convex solve.
+    pub last: NewtonOutcome,
+    /// Number of oscillation detections of the mixer.
     pub oscillations: usize,
-    /// Number of Anderson restarts (residual increase).
-    pub restarts: usize,
 }
 
-impl Mixer {
-    /// A mixer for the given settings.
-    pub fn new(s: &OuterSettings) -> Self {
-        Mixer {
-            acceleration: s.acceleration,
-            depth: s.depth.max(1),
-            omega: s.relaxation.clamp(1e-3, 1.0),
-            f_hist: Vec::new(),
-            g_hist: Vec::new(),
-            residuals: Vec::new(),
-            stalls: 0,
-            oscillations: 0,
-            restarts: 0,
-        }
-    }
-
-    /// Next iterate from `z` and `g = G(z)`; returns it with a short description of the
-    /// step taken.
-    pub fn next(&mut self, z: &[f64], g: &[f64]) -> (Vec<f64>, String) {
-        let f: Vec<f64> = g.iter().zip(z).map(|(a, b)| a - b).collect();
-        let res = norm(&f);
-        let prev = self.residuals.last().copied();
-        self.residuals.push(res);
-        match self.acceleration {
-            Acceleration::None => {
-                let k = self.residuals.len();
-                if k >= 3 && res > 0.95 * self.residuals[k - 3] {
-                    self.stalls += 1;
-                } else {
-                    self.stalls = 0;
-                }
-                let mut note = format!("fixed point ω = {}", self.omega);
-                if self.stalls >= 3 && self.omega > 0.125 {
-                    self.omega *= 0.5;
-                    self.stalls = 0;
-                    self.oscillations += 1;
-                    note = format!(
-                        "oscillation/stagnation detected: relaxation ω = {}",
-                        self.omega
-                    );
-                }
-                let next = z.iter().zip(&f).map(|(a, b)| a + self.omega * b).collect();
-                (next, note)
-            }
-            Acceleration::Anderson => {
-                if prev.is_some_and(|p| res >= p) {
-                    // Safeguard: the residual did not decrease.
-                    return self.restart(z, &f, g, "residual did not decrease");
-                }
-                self.f_hist.push(f.clone());
-                self.g_hist.push(g.to_vec());
-                if self.f_hist.len() > self.depth + 1 {
-                    self.f_hist.remove(0);
-                    self.g_hist.remove(0);
-                }
-                let m = self.f_hist.len() - 1;
-                if m == 0 {
-                    return (g.to_vec(), "fixed point".into());
-                }
-                // Differences ΔF_j = f_{j+1} − f_j, ΔG_j = g_{j+1} − g_j.
-                let df: Vec<Vec<f64>> = (0..m)
-                    .map(|j| {
-                        self.f_hist[j + 1]
-                            .iter()
-                            .zip(&self.f_hist[j])
-                            .map(|(a, b)| a - b)
-                            .collect()
-                    })
-                    .collect();
-                let mut a = vec![vec![0.0; m]; m];
-                let mut rhs = vec![0.0; m];
-                for i in 0..m {
-                    for j in 0..m {
-                        a[i][j] = df[i].iter().zip(&df[j]).map(|(x, y)| x * y).sum();
-                    }
-                    rhs[i] = df[i].iter().zip(&f).map(|(x, y)| x * y).sum();
-                }
-                let trace: f64 = (0..m).map(|i| a[i][i]).sum();
-                for (i, row) in a.iter_mut().enumerate() {
-                    row[i] += 1e-12 * trace + f64::MIN_POSITIVE;
-                }
-                let Some(gamma) = solve_dense(a, rhs) else {
-                    return (g.to_vec(), "fixed point (singular Anderson system)".into());
-                };
-                let mut next = g.to_vec();
-                for (j, gj) in gamma.iter().enumerate() {
-                    for (k, x) in next.iter_mut().enumerate() {
-                        *x -= gj * (self.g_hist[j + 1][k] - self.g_hist[j][k]);
-                    }
-                }
-                // Stagnation: the mixed iterate does not move although the residual is not
-                // small. Restart from a damped step.
-                let moved = norm(&next.iter().zip(z).map(|(a, b)| a - b).collect::<Vec<_>>());
-                if moved < 1e-3 * res {
-                    return self.restart(z, &f, g, "Anderson stagnated");
-                }
-                (next, format!("Anderson, depth {m}"))
-            }
-        }
-    }
+/// Whether the outer loop is needed: some friction law has a slip-dependent coefficient, a
+/// Coulomb-type bound, or a nonconvex potential, or there are exact constraints (whose
+/// multipliers are iterated). Otherwise one convex problem is the whole problem.
+pub fn needs_outer_loop(problem: &Problem) -> bool {
+    constraints::has_exact_constraints(problem)
+        || problem
+            .contact
+            .iter()
+            .filter_map(|c| c.friction.as_ref())
+            .any(|f| {
+                f.bound == crate::contact::FrictionBound::Coulomb
+                    || f.mu.lipschitz() > 0.0
+                    || f.potential.alpha_j() > 0.0
+            })
 }
 
-impl Mixer {
-    /// Drops the Anderson history (keeping the current point) and takes the damped step
-    /// `z + ½ (G(z) − z)`.
-    fn restart(&mut self, z: &[f64], f: &[f64], g: &[f64], why: &str) -> (Vec<f64>, String) {
-        self.restarts += 1;
-        self.f_hist.clear();
-        self.g_hist.clear();
-        self.f_hist.push(f.to_vec());
-        self.g_hist.push(g.to_vec());
-        let next = z.iter().zip(f).map(|(a, b)| a + 0.5 * b).collect();
-        (
-            next,
-            format!("{why}: Anderson restart, damped step ω = 0.5"),
-        )
-    }
-}
-
-/// Solves the small dense SPD-ish system `a x = b` by Gaussian elimination with partial
-/// pivoting; `None` if singular.
-fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
-    let n = b.len();
-    for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs()))?;
-        if a[p][k].abs() == 0.0 || !a[p][k].is_finite() {
-            return None;
-        }
-        a.swap(k, p);
-        b.swap(k, p);
-        for i in k + 1..n {
-            let l = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= l * a[k][j];
-            }
-            b[i] -= l * b[k];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for k in (0..n).rev() {
-        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
-        x[k] = (b[k] - s) / a[k][k];
-    }
-    Some(x)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Anderson acceleration solves a linear contraction (fixed point of `x ↦ Mx + c`)
-    /// far faster than the plain iteration.
-    #[test]
-    fn anderson_accelerates_a_linear_contraction() {
-        let m = [[0.9, 0.05], [-0.05, -0.85]];
-        let c = [1.0, 2.0];
-        let g = |z: &[f64]| {
-            vec![
-                m[0][0] * z[0] + m[0][1] * z[1] + c[0],
-                m[1][0] * z[0] + m[1][1] * z[1] + c[1],
-            ]
+/// Runs the outer loop on `system` from `u` (whose prescribed DOFs hold the Dirichlet
+/// values): each iteration sets the continuation stage, minimizes the convex energy of the
+/// frozen quantities by Newton, measures the change of u and the fixed-point residual,
+/// applies the stopping test, and mixes the next frozen quantities. On return `u` is the
+/// last iterate and `report` holds every Newton and outer step.
+///
+/// # Errors
+/// A Newton error before any step succeeded (the problem itself is at fault, e.g. rigid
+/// motions not blocked), and [`crate::Error::ContactLost`] at any time; later breakdowns
+/// stop the loop with [`StopReason::Breakdown`] instead.
+pub fn run(
+    problem: &Problem,
+    settings: &SolverSettings,
+    system: &mut System,
+    u: &mut Vec<f64>,
+    report: &mut SolveReport,
+) -> Result<OuterOutcome> {
+    let dim = problem.mesh.dim();
+    let hooke = problem.material.elasticity.small_strain_hooke(dim);
+    let n_points = system.contact.len();
+    let n_locking = problem.mesh.n_cells() * usize::from(problem.material.ideal_locking.is_some());
+    let outer_loop = needs_outer_loop(problem);
+    let final_tol = settings.newton.residual_tolerance;
+    let mut frozen = system.initial_frozen(problem, u);
+    let mut z = flatten(&frozen);
+    let mut mixer = Mixer::new(&settings.outer);
+    let mut u_prev = u.clone();
+    let mut change = f64::INFINITY;
+    let mut last = NewtonOutcome {
+        converged: false,
+        steps: 0,
+        residual: f64::NAN,
+        energy: f64::NAN,
+        force_scale: f64::NAN,
+    };
+    let mut stop = StopReason::IterationCap;
+    let stages = constraints::stages(problem, &settings.constraints)
+        .max(system::regularization_stages(problem, settings));
+    for k in 0..settings.outer.max_iterations.max(1) {
+        system.set_penalty_stage(&settings.constraints, k);
+        system.set_regularization_stage(k);
+        let tol = if !outer_loop || !settings.outer.inexact {
+            final_tol
+        } else {
+            (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
         };
-        let s = OuterSettings::default();
-        let mut mixer = Mixer::new(&s);
-        let mut z = vec![0.0, 0.0];
-        let mut iters = 0;
-        while norm(&g(&z).iter().zip(&z).map(|(a, b)| a - b).collect::<Vec<_>>()) > 1e-12 {
-            let gz = g(&z);
-            z = mixer.next(&z, &gz).0;
-            iters += 1;
-            assert!(iters < 20, "Anderson did not converge");
+        // The tolerance never falls below the final one: at it, this solve can conclude.
+        let final_solve = tol <= final_tol;
+        let steps_before = report.newton.len();
+        last = match newton::minimize(
+            system,
+            problem,
+            u,
+            &frozen,
+            &settings.newton,
+            tol,
+            k,
+            report,
+        ) {
+            Ok(outcome) => outcome,
+            // The load pulls a body off the contact carrying its free rigid motions: no
+            // solution to report.
+            Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
+            // Before any step succeeded there is no iterate worth keeping: the problem
+            // itself is at fault (e.g. rigid motions not blocked).
+            Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
+            // Later, a breakdown keeps the last good iterate (Newton only updates `u`
+            // after an accepted step), reported as not converged with where it happened.
+            Err(e) => {
+                stop = StopReason::Breakdown {
+                    outer: k,
+                    step: report.newton.len() - steps_before + 1,
+                    error: e.to_string(),
+                };
+                break;
+            }
+        };
+        let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
+        let norm_u = energy_norm(&problem.mesh, &hooke, u);
+        change = if k == 0 {
+            f64::INFINITY
+        } else {
+            energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
+        };
+        u_prev.copy_from_slice(u);
+        let next = system.freeze(problem, u, &frozen);
+        let g = flatten(&next);
+        let fp_rel = fixed_point_residual(problem, system, &frozen, &next, u);
+        let mut step = OuterStep {
+            change,
+            fixed_point_residual: fp_rel,
+            newton_steps: last.steps,
+            newton_tolerance: tol,
+            newton_converged: last.converged,
+            mixing: Mixing::None,
+        };
+        if !last.converged && final_solve {
+            step.mixing = Mixing::NewtonFailed;
+            report.outer.push(step);
+            stop = StopReason::NewtonNotConverged {
+                outer: k,
+                residual: last.residual,
+                tolerance: report.residual_tolerance,
+            };
+            break;
+        }
+        let tol_outer = settings.outer.tolerance;
+        if final_solve
+            && last.converged
+            && k >= stages
+            && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer))
+        {
+            report.outer.push(step);
+            stop = StopReason::Converged;
+            break;
+        }
+        if outer_loop && k + 1 < stages {
+            // Continuation (penalties, friction regularization): the map changes with each
+            // stage, so no mixing yet.
+            step.mixing = Mixing::Continuation {
+                next: k + 1,
+                stages,
+            };
+            z = g;
+            frozen = next;
+        } else if outer_loop {
+            let (mixed, how) = mixer.next(&z, &g);
+            step.mixing = how;
+            z = mixed;
+            frozen = unflatten(&z, n_points, n_locking);
+        }
+        report.outer.push(step);
+    }
+    Ok(OuterOutcome {
+        stop,
+        frozen,
+        last,
+        oscillations: mixer.oscillations,
+    })
+}
+
+/// The relative fixed-point residual of the outer loop between the frozen quantities `z`
+/// of the last convex problem and their image `g = G(z)` at its solution `u`: the larger of
+///
+/// - `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the friction data of the convexification, and
+/// - the multiplier changes divided by their penalty — `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i`
+///   relative to `max|u|`, `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). This is the
+///   standard primal stopping test of the augmented Lagrangian method: for an active
+///   constraint `Δλ/r` *is* the constraint violation, for a sticking point `Δτ/r` the slip.
+///   (Measured in force units instead, the multiplier change has a floor of r times the
+///   Newton tolerance, far above the tolerance for the large penalties used.)
+pub fn fixed_point_residual(
+    problem: &Problem,
+    system: &System,
+    z: &Frozen,
+    g: &Frozen,
+    u: &[f64],
+) -> f64 {
+    let n = z.bound.len();
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for i in 0..n {
+        diff += (g.bound[i] - z.bound[i]).powi(2);
+        norm += g.bound[i].powi(2);
+        for a in 0..2 {
+            diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
+            norm += g.linear[i][a].powi(2);
+        }
+    }
+    let mut fp = if diff == 0.0 {
+        0.0
+    } else {
+        (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
+    };
+    let d = problem.mesh.dim();
+    let u_scale = u
+        .chunks(d)
+        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    for i in 0..n {
+        let r = system.contact_penalty[i] * u_scale;
+        let dt = ((g.traction[i][0] - z.traction[i][0]).powi(2)
+            + (g.traction[i][1] - z.traction[i][1]).powi(2))
+        .sqrt();
+        fp = fp
+            .max((g.pressure[i] - z.pressure[i]).abs() / r)
+            .max(dt / r);
+    }
+    if let Some(set) = &problem.material.ideal_locking {
+        let r = system.locking_penalty * constraints::q_scale(set);
+        for (a, b) in g.locking.iter().zip(&z.locking) {
+            fp = fp.max((a - b).abs() / r);
+        }
+    }
+    fp
+}
+
+impl StopReason {
+    /// The stop in words, for the report, given the report of the loop and its settings.
+    pub fn message(
+        &self,
+        report: &SolveReport,
+        settings: &OuterSettings,
+        oscillations: usize,
+    ) -> String {
+        match self {
+            StopReason::Converged => format!(
+                "converged: {} outer iterations, {} Newton steps{}",
+                report.outer.len(),
+                report.newton.len(),
+                if report.round_off_floor > 0.0 {
+                    format!(
+                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
+                        report.round_off_floor
+                    )
+                } else {
+                    String::new()
+                }
+            ),
+            StopReason::NewtonNotConverged {
+                outer,
+                residual,
+                tolerance,
+            } => format!(
+                "Newton did not converge in outer iteration {outer}: residual {residual:e} > tolerance {tolerance:e}"
+            ),
+            StopReason::Breakdown { outer, step, error } => format!(
+                "not converged: numerical breakdown in outer iteration {outer}, Newton step {step}: {error}"
+            ),
+            StopReason::IterationCap => format!(
+                "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
+                report.outer.len(),
+                report.outer.last().map_or(f64::NAN, |o| o.change),
+                report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
+                settings.tolerance,
+                if oscillations > 0 { "; oscillation was detected" } else { "" }
+            ),
         }
     }
 }

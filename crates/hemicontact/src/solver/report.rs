@@ -57,7 +57,7 @@ pub struct OuterStep {
     /// Whether the convex solve met its tolerance.
     pub newton_converged: bool,
     /// How the next frozen quantities were formed.
-    pub mixing: String,
+    pub mixing: super::Mixing,
 }
 
 /// The report of a solve.
@@ -67,6 +67,10 @@ pub struct SolveReport {
     pub converged: bool,
     /// Why the solve stopped, in words.
     pub message: String,
+    /// Why the outer loop stopped ([`super::StopReason`]); a converged loop whose
+    /// certificate fails is reported with `converged = false` and the failing law in
+    /// `message`.
+    pub stop: super::StopReason,
     /// Number of DOFs (d · nodes).
     pub n_dofs: usize,
     /// Number of free DOFs (equations).
@@ -116,6 +120,7 @@ impl SolveReport {
         SolveReport {
             converged: false,
             message: "not started".into(),
+            stop: super::StopReason::IterationCap,
             n_dofs: system.dofs.n_dofs(),
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
