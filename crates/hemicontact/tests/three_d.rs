@@ -4,9 +4,10 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::Scenario;
-use hemicontact::solver::newton::{minimize, NewtonSettings};
+use hemicontact::solver::convex::minimize;
+use hemicontact::solver::newton::{NewtonRecord, NewtonSettings};
 use hemicontact::solver::SolverSettings;
-use hemicontact::solver::{solve, SolveReport, System};
+use hemicontact::solver::{solve, System};
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
@@ -59,17 +60,15 @@ fn patch_test_3d() {
                 }
             }
         }
-        let mut report = SolveReport::new(&system);
         let frozen = system.initial_frozen(&p, &u);
         let out = minimize(
             &mut system,
             &p,
-            &mut u,
             &frozen,
             &NewtonSettings::default(),
             1e-12,
-            0,
-            &mut report,
+            &mut u,
+            &mut NewtonRecord::default(),
         )
         .unwrap();
         assert!(out.converged);

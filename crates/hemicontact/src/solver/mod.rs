@@ -9,6 +9,8 @@
 
 pub mod certificate;
 pub mod constraints;
+pub mod convex;
+pub mod line_search;
 pub mod mixing;
 pub mod newton;
 pub mod outer;

@@ -1,22 +1,18 @@
-//! Globalized Newton method for the minimization of a convex total energy.
+//! Globalized Newton method for the minimization of a convex energy `Π(x)` of the free
+//! unknowns x, generic over the energy ([`ConvexEnergy`]).
 //!
-//! Each step assembles gradient and Hessian, solves for the Newton direction Δ (see
-//! [`System::linear_solve`]: the last factorization is reused when the Hessian is unchanged,
-//! used as a PCG preconditioner when it changed a little, and refactorized otherwise), and
-//! takes the full step if it satisfies the Armijo condition `Π(u + tΔ) ≤ Π(u) + c t ∇Π·Δ`,
-//! else a step found by a bracketing secant search on the directional derivative that
-//! satisfies the Armijo and the weak Wolfe curvature conditions.
-//! It stops when the residual (gradient on the free DOFs) is below `residual_tolerance`
-//! times the force scale `max(‖f_ext‖, ‖∇W‖, f_D)` (‖∇W‖: internal forces over all DOFs,
-//! reactions included; f_D the force unit of the prescribed displacements, see
-//! [`System::force_floor`]), so the criterion is dimensionless and meaningful for
-//! load-driven and displacement-driven problems alike, including stress-free ones.
+//! Each step evaluates gradient and Hessian, solves for the Newton direction Δ (the
+//! energy's linear solver: for the convex problems of the outer loop, see
+//! [`super::convex`]), and takes a step along it found by the line search
+//! ([`super::line_search`]: the full step if it satisfies the Armijo condition, else a
+//! bracketing secant search).
+//! It stops when the residual ‖∇Π(x)‖ is below `residual_tolerance` times the energy's
+//! force scale ([`ConvexEnergy::force_scale`]), so the criterion is dimensionless.
 
-use super::report::{NewtonStep, SolveReport};
-use super::System;
-use crate::assembly::contact::Frozen;
+use super::line_search::LineSearch;
+use super::report::{NewtonStep, Timings};
+use super::system::LinearInfo;
 use crate::error::{Error, Result};
-use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -96,16 +92,35 @@ impl NewtonSettings {
     }
 }
 
-/// `∇Π·Δ` on the free DOFs, from the gradient of the last evaluation.
-fn directional_derivative(system: &System, delta: &[f64]) -> f64 {
-    system
-        .dofs
-        .equations()
-        .iter()
-        .zip(&system.grad)
-        .filter(|(&eq, _)| eq != crate::fem::dofs::FIXED)
-        .map(|(&eq, g)| g * delta[eq as usize])
-        .sum()
+/// A convex energy `Π(x)` of n free unknowns, with what Newton's method needs of it.
+pub trait ConvexEnergy {
+    /// Number of free unknowns n.
+    fn dimension(&self) -> usize;
+    /// Evaluates `Π(x)` (J), keeping the gradient for [`ConvexEnergy::gradient`] and, with
+    /// `hessian`, the (generalized) Hessian for [`ConvexEnergy::newton_direction`].
+    fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64;
+    /// `∇Π` at the last evaluation (N), length n.
+    fn gradient(&self) -> &[f64];
+    /// The force scale (N) that makes the residual dimensionless, at the last evaluation.
+    fn force_scale(&self) -> f64;
+    /// Solves `H Δ = rhs` with the Hessian of the last evaluation with one, to the relative
+    /// residual `eta` where the solve is iterative; timings go to `timings`.
+    ///
+    /// # Errors
+    /// A Hessian that cannot be factorized, or an iterative solve that fails.
+    fn newton_direction(
+        &mut self,
+        rhs: &[f64],
+        delta: &mut [f64],
+        eta: f64,
+        timings: &mut Timings,
+    ) -> Result<LinearInfo>;
+    /// Called with every accepted iterate; an error stops the minimization (e.g. a body
+    /// running away along a rigid motion).
+    ///
+    /// # Errors
+    /// Whatever the energy refuses at `x`.
+    fn accept(&mut self, x: &[f64]) -> Result<()>;
 }
 
 /// How far above the tolerance a stagnating residual may be taken as the round-off floor.
@@ -126,70 +141,75 @@ pub struct NewtonOutcome {
     pub residual: f64,
     /// Energy at the final iterate (J).
     pub energy: f64,
-    /// Force scale of the residual criterion, `max(‖f_ext‖, ‖∇W‖)` (N).
+    /// Force scale of the residual criterion (N).
     pub force_scale: f64,
 }
 
-/// Minimizes the convexified energy of `problem` for the frozen quantities `frozen`,
-/// starting from `u` (which must hold the prescribed Dirichlet values), to the relative
-/// residual tolerance `tolerance`. On return `u` is the last iterate; the steps are appended
-/// to `report.newton` (tagged with `outer`), and timings accumulated.
+/// What a Newton solve records as it goes, for the caller's report: its steps, its
+/// timings, the last residual and tolerance, and the round-off floor if it stopped at one.
+#[derive(Clone, Debug, Default)]
+pub struct NewtonRecord {
+    /// Outer iteration the steps are tagged with.
+    pub outer: usize,
+    /// Steps taken before this solve (in earlier outer iterations), for messages that
+    /// count steps over the whole run.
+    pub first_step: usize,
+    /// The steps taken.
+    pub steps: Vec<NewtonStep>,
+    /// Time per phase (assembly, factorization, solve, line search).
+    pub timings: Timings,
+    /// Residual norm at the last evaluation (N).
+    pub residual: f64,
+    /// Residual tolerance applied at the last evaluation (N).
+    pub residual_tolerance: f64,
+    /// Relative residual at which the solve stopped at the round-off floor above the
+    /// tolerance (0: it did not).
+    pub round_off_floor: f64,
+}
+
+/// Minimizes `energy` from `x` to the relative residual tolerance `tolerance`; on return
+/// `x` is the last iterate. Steps and timings go to `record`.
 ///
 /// # Errors
-/// [`Error::NotPositiveDefinite`] if a Hessian cannot be factorized, [`Error::Breakdown`] if
-/// the energy or residual is not finite, [`Error::ContactLost`] if a body whose free rigid
-/// motions only contact carries leaves its contact.
-#[allow(clippy::too_many_arguments)]
-pub fn minimize(
-    system: &mut System,
-    problem: &Problem,
-    u: &mut [f64],
-    frozen: &Frozen,
+/// [`Error::Breakdown`] if the energy or residual is not finite, and the errors of
+/// [`ConvexEnergy::newton_direction`] and [`ConvexEnergy::accept`].
+pub fn minimize<E: ConvexEnergy + ?Sized>(
+    energy: &mut E,
+    x: &mut [f64],
     settings: &NewtonSettings,
     tolerance: f64,
-    outer: usize,
-    report: &mut SolveReport,
+    record: &mut NewtonRecord,
 ) -> Result<NewtonOutcome> {
-    let n = system.dofs.n_free();
-    let mut r = vec![0.0; n];
+    let n = energy.dimension();
     let mut delta = vec![0.0; n];
     let mut r_neg = vec![0.0; n];
-    let mut trial = u.to_vec();
-    let f_scale = norm(&system.f_ext);
+    let mut trial = x.to_vec();
+    let line_search = LineSearch {
+        armijo: settings.armijo,
+        max_trials: settings.max_backtracks,
+    };
     let mut steps = 0;
     let mut prev_res = f64::INFINITY;
     let mut last_full = false;
-    // Energy of an evaluation at `u` left by the line search, if any, and whether it
+    // Energy of an evaluation at `x` left by the line search, if any, and whether it
     // included the Hessian.
     let mut evaluated: Option<(f64, bool)> = None;
     loop {
         let t = Instant::now();
-        let (energy, with_hessian) = match evaluated.take() {
+        let (value, with_hessian) = match evaluated.take() {
             Some(e) => e,
-            None => (system.evaluate(problem, u, frozen, true), true),
+            None => (energy.evaluate(x, true), true),
         };
-        report.timings.assembly += t.elapsed().as_secs_f64();
-        system.reduce(&system.grad, &mut r);
-        let res = norm(&r);
-        // Internal forces over all DOFs: gradient + f_ext.
-        let internal = system
-            .grad_bulk
-            .iter()
-            .zip(&system.f_ext)
-            .map(|(g, f)| (g + f).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        let force_scale = f_scale
-            .max(internal)
-            .max(system.force_floor)
-            .max(f64::MIN_POSITIVE);
+        record.timings.assembly += t.elapsed().as_secs_f64();
+        let res = norm(energy.gradient());
+        let force_scale = energy.force_scale();
         let tol = tolerance * force_scale;
-        report.residual = res;
-        report.residual_tolerance = tol;
-        if !energy.is_finite() || !res.is_finite() {
+        record.residual = res;
+        record.residual_tolerance = tol;
+        if !value.is_finite() || !res.is_finite() {
             return Err(Error::Breakdown(format!(
-                "energy {energy:e} / residual {res:e} at Newton step {}",
-                report.newton.len()
+                "energy {value:e} / residual {res:e} at Newton step {}",
+                record.first_step + record.steps.len()
             )));
         }
         // The round-off floor: with stiff penalties (exact constraints on fine meshes) the
@@ -204,155 +224,69 @@ pub fn minimize(
             && res > 0.5 * prev_res;
         if res <= tol || floor || steps == settings.max_iterations {
             if floor && res > tol {
-                report.round_off_floor = report.round_off_floor.max(res / force_scale);
+                record.round_off_floor = record.round_off_floor.max(res / force_scale);
             }
             return Ok(NewtonOutcome {
                 converged: res <= tol || floor,
                 steps,
                 residual: res,
-                energy,
+                energy: value,
                 force_scale,
             });
         }
         prev_res = res;
         if !with_hessian {
             // The line search evaluated this point without the Hessian (it expected the
-            // step to converge): assemble it now.
+            // step to converge): evaluate it now.
             let t = Instant::now();
-            system.evaluate(problem, u, frozen, true);
-            report.timings.assembly += t.elapsed().as_secs_f64();
+            energy.evaluate(x, true);
+            record.timings.assembly += t.elapsed().as_secs_f64();
         }
-        for (d, ri) in r_neg.iter_mut().zip(&r) {
+        for (d, ri) in r_neg.iter_mut().zip(energy.gradient()) {
             *d = -ri;
         }
         // Forcing term: accurate enough to reach the tolerance in one step if the problem
         // were quadratic, never looser than `pcg_tolerance`.
         let eta = (0.1 * tol / res).clamp(1e-12, settings.pcg_tolerance);
-        let linear = system.linear_solve(&r_neg, &mut delta, eta, settings, &mut report.timings)?;
-        let slope: f64 = r.iter().zip(&delta).map(|(a, b)| a * b).sum();
+        let linear = energy.newton_direction(&r_neg, &mut delta, eta, &mut record.timings)?;
+        let slope: f64 = energy
+            .gradient()
+            .iter()
+            .zip(&delta)
+            .map(|(a, b)| a * b)
+            .sum();
         let t = Instant::now();
-        // Line search on φ(t) = Π(u + tΔ), convex and piecewise smooth: the full step with
-        // the Hessian (so the next Newton step can reuse the evaluation), else a bracketing
-        // secant search (safeguarded by bisection) on φ'(t) — exact for the piecewise quadratic energies here
-        // once the kinks on the line are passed — for a step with sufficient decrease
-        // (Armijo) that is no longer steeply descending (weak Wolfe curvature condition
-        // φ'(t) ≥ 0.9 φ'(0)). Halving would stop at the first power of two below the kink
-        // where a stiff penalty or contact term switches on, one Newton step per halving.
-        let negligible = -slope <= 1e-14 * energy.abs();
-        let mut step = 1.0;
-        let mut accepted = false;
-        let (mut a, mut da) = (0.0, slope);
-        let (mut b, mut db) = (1.0, f64::NAN);
-        let mut side = 0i8;
-        let mut best: Option<f64> = None;
-        for iter in 0..=settings.max_backtracks {
-            for (dof, &eq) in system.dofs.equations().iter().enumerate() {
-                if eq != crate::fem::dofs::FIXED {
-                    trial[dof] = u[dof] + step * delta[eq as usize];
-                }
-            }
-            let full = iter == 0;
-            // The full step is evaluated with the Hessian, for the next Newton step — unless
-            // the factorization was reused unchanged (the active sets are settled, so the
-            // full step of the piecewise quadratic energy most likely converges and the
-            // Hessian would be wasted).
-            let hessian = full && (linear.refactorized || linear.pcg_iterations > 0);
-            let e_trial = system.evaluate(problem, &trial, frozen, hessian);
-            let armijo = e_trial <= energy + settings.armijo * step * slope;
-            // Below round-off of the energy, the Armijo test is meaningless: accept.
-            if full && (armijo || negligible) {
-                accepted = true;
-                evaluated = Some((e_trial, hessian));
-                break;
-            }
-            let d = directional_derivative(system, &delta);
-            // Near the solution the energy change drowns in the round-off of the energy (a
-            // sum over all cells with cancellation): then the directional derivative decides
-            // — the step is accepted if it at least halves |φ'|.
-            let noise = (e_trial - energy).abs() <= 1e-12 * energy.abs();
-            if noise && d.abs() <= 0.5 * slope.abs() {
-                accepted = true;
-                if full {
-                    evaluated = Some((e_trial, hessian));
-                }
-                break;
-            }
-            if !e_trial.is_finite() || !d.is_finite() {
-                // Outside the domain of finite energy: shrink blindly.
-                b = step;
-                db = f64::NAN;
-                step = a + 0.5 * (b - a);
-                continue;
-            }
-            if armijo && (d >= 0.9 * slope || negligible) {
-                accepted = true;
-                break;
-            }
-            if armijo {
-                best = Some(best.map_or(step, |s: f64| s.max(step)));
-            }
-            // Update the bracket [a, b] of the zero of φ' (φ'(a) < 0). When the same end
-            // moves twice in a row, the secant is stuck against a steep kink (a stiff penalty
-            // switching on): bisect, so the bracket at least halves every other trial.
-            let repeated = (d < 0.0 && side == -1) || (d >= 0.0 && side == 1);
-            if d < 0.0 {
-                a = step;
-                da = d;
-                side = -1;
-            } else {
-                b = step;
-                db = d;
-                side = 1;
-            }
-            step = if repeated {
-                side = 0;
-                a + 0.5 * (b - a)
-            } else if db.is_finite() && db > da {
-                let t = a - da * (b - a) / (db - da);
-                t.clamp(a + 1e-3 * (b - a), b - 1e-3 * (b - a))
-            } else {
-                a + 0.5 * (b - a)
-            };
-            if b - a <= 1e-12 {
-                break;
-            }
-        }
-        if !accepted {
-            if let Some(s) = best {
-                // The longest step with sufficient decrease found.
-                step = s;
-                accepted = true;
-            }
-        }
-        report.timings.line_search += t.elapsed().as_secs_f64();
+        // The full step is evaluated with the Hessian, for the next Newton step — unless
+        // the factorization was reused unchanged (the active sets are settled, so the full
+        // step of the piecewise quadratic energy most likely converges and the Hessian
+        // would be wasted).
+        let hessian_at_full = linear.refactorized || linear.pcg_iterations > 0;
+        let found =
+            line_search.search(energy, x, &delta, &mut trial, value, slope, hessian_at_full);
+        record.timings.line_search += t.elapsed().as_secs_f64();
+        evaluated = found.evaluated;
         steps += 1;
-        last_full = accepted && step == 1.0;
-        report.newton.push(NewtonStep {
-            outer,
+        last_full = found.step == Some(1.0);
+        record.steps.push(NewtonStep {
+            outer: record.outer,
             residual: res,
-            energy,
-            step_length: if accepted { step } else { 0.0 },
+            energy: value,
+            step_length: found.step.unwrap_or(0.0),
             refactorized: linear.refactorized,
             pcg_iterations: linear.pcg_iterations,
         });
-        if !accepted {
+        let Some(step) = found.step else {
             return Ok(NewtonOutcome {
                 converged: false,
                 steps,
                 residual: res,
-                energy,
+                energy: value,
                 force_scale,
             });
+        };
+        for (xi, di) in x.iter_mut().zip(&delta) {
+            *xi += step * di;
         }
-        for (dof, &eq) in system.dofs.equations().iter().enumerate() {
-            if eq != crate::fem::dofs::FIXED {
-                u[dof] += step * delta[eq as usize];
-            }
-        }
-        // A body whose free rigid motions only contact carries, pulled off that contact,
-        // moves without bound: stop with `Error::ContactLost`.
-        if system.rigid_shift > 0.0 {
-            system.rigid.check_runaway(u, system.length_unit)?;
-        }
+        energy.accept(x)?;
     }
 }

@@ -26,8 +26,9 @@
 //! proof of convergence), after every continuation stage; or when a convex solve at the
 //! final tolerance fails, a numerical breakdown occurs, or `max_iterations` is reached.
 
+use super::convex;
 use super::mixing::{flatten, unflatten, Mixer, Mixing};
-use super::newton::{self, NewtonOutcome};
+use super::newton::{NewtonOutcome, NewtonRecord};
 use super::report::{OuterStep, SolveReport};
 use super::{constraints, system, SolverSettings, System};
 use crate::assembly::contact::Frozen;
@@ -209,7 +210,7 @@ pub fn run(
     problem: &Problem,
     settings: &SolverSettings,
     system: &mut System,
-    u: &mut Vec<f64>,
+    u: &mut [f64],
     report: &mut SolveReport,
 ) -> Result<OuterOutcome> {
     let dim = problem.mesh.dim();
@@ -221,7 +222,7 @@ pub fn run(
     let mut frozen = system.initial_frozen(problem, u);
     let mut z = flatten(&frozen);
     let mut mixer = Mixer::new(&settings.outer);
-    let mut u_prev = u.clone();
+    let mut u_prev = u.to_vec();
     let mut change = f64::INFINITY;
     let mut last = NewtonOutcome {
         converged: false,
@@ -244,16 +245,22 @@ pub fn run(
         // The tolerance never falls below the final one: at it, this solve can conclude.
         let final_solve = tol <= final_tol;
         let steps_before = report.newton.len();
-        last = match newton::minimize(
+        let mut record = NewtonRecord {
+            outer: k,
+            first_step: steps_before,
+            ..NewtonRecord::default()
+        };
+        let result = convex::minimize(
             system,
             problem,
-            u,
             &frozen,
             &settings.newton,
             tol,
-            k,
-            report,
-        ) {
+            u,
+            &mut record,
+        );
+        report.add_newton(record);
+        last = match result {
             Ok(outcome) => outcome,
             // The load pulls a body off the contact carrying its free rigid motions: no
             // solution to report.

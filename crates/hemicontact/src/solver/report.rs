@@ -115,6 +115,21 @@ pub struct SolveReport {
 }
 
 impl SolveReport {
+    /// Files the record of a Newton solve: its steps, timings, last residual and
+    /// tolerance, and round-off floor.
+    pub fn add_newton(&mut self, record: super::newton::NewtonRecord) {
+        self.newton.extend(record.steps);
+        let (t, r) = (&mut self.timings, &record.timings);
+        t.assembly += r.assembly;
+        t.factorization += r.factorization;
+        t.solve += r.solve;
+        t.n_factorizations += r.n_factorizations;
+        t.line_search += r.line_search;
+        self.residual = record.residual;
+        self.residual_tolerance = record.residual_tolerance;
+        self.round_off_floor = self.round_off_floor.max(record.round_off_floor);
+    }
+
     /// An empty report for `system`, with its sizes and set-up timings filled in.
     pub fn new(system: &System) -> Self {
         SolveReport {

@@ -7,7 +7,8 @@
 
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
-use hemicontact::solver::{newton, SolveReport, SolverSettings, System};
+use hemicontact::solver::newton::NewtonRecord;
+use hemicontact::solver::{convex, SolverSettings, System};
 
 /// A small deterministic generator (SplitMix64), so failures are reproducible without a
 /// dependency.
@@ -84,7 +85,7 @@ pub fn rel(a: f64, b: f64, floor: f64) -> f64 {
 /// from zero, so the solver has to do the work. Returns the displacement (DOF order) and
 /// the number of Newton steps taken, asserting convergence.
 ///
-/// This drives the solver's lower-level API (`System`, `newton::minimize`) directly: a
+/// This drives the solver's lower-level API (`System`, `convex::minimize`) directly: a
 /// problem without contact is a single convex minimization.
 #[track_caller]
 pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
@@ -110,17 +111,15 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
         }
     }
     let frozen = system.initial_frozen(problem, &u);
-    let mut report = SolveReport::new(&system);
     let settings = &solver.newton;
-    let outcome = newton::minimize(
+    let outcome = convex::minimize(
         &mut system,
         problem,
-        &mut u,
         &frozen,
         settings,
         settings.residual_tolerance,
-        0,
-        &mut report,
+        &mut u,
+        &mut NewtonRecord::default(),
     )
     .expect("Newton runs");
     assert!(

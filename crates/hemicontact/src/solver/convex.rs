@@ -1,0 +1,149 @@
+//! The convex problem of one outer iteration as a [`ConvexEnergy`] of the free DOFs: the
+//! convexified energy `E_k` of [`System::evaluate`] for fixed frozen quantities, with the
+//! system's linear solver for the Newton directions and the runaway check of free rigid
+//! motions ([`crate::fem::rigid`]) on every accepted iterate.
+
+use super::newton::{ConvexEnergy, NewtonSettings};
+use super::report::Timings;
+use super::system::LinearInfo;
+use super::System;
+use crate::assembly::contact::Frozen;
+use crate::error::Result;
+use crate::fem::dofs::FIXED;
+use crate::problem::Problem;
+
+/// `E_k` on the free DOFs of `system`; see the module documentation.
+pub struct ConvexProblem<'a> {
+    system: &'a mut System,
+    problem: &'a Problem,
+    frozen: &'a Frozen,
+    settings: &'a NewtonSettings,
+    /// The displacement at every DOF (prescribed values in place) of the last evaluation.
+    u: Vec<f64>,
+    /// `∇E_k` on the free DOFs at the last evaluation.
+    gradient: Vec<f64>,
+    /// `‖f_ext‖` (N).
+    external: f64,
+}
+
+impl<'a> ConvexProblem<'a> {
+    /// The convex problem of `problem` on `system` for the frozen quantities `frozen`;
+    /// `u` gives the prescribed values (its free values are replaced by each evaluation).
+    pub fn new(
+        system: &'a mut System,
+        problem: &'a Problem,
+        frozen: &'a Frozen,
+        settings: &'a NewtonSettings,
+        u: &[f64],
+    ) -> Self {
+        let external = system.f_ext.iter().map(|v| v * v).sum::<f64>().sqrt();
+        ConvexProblem {
+            gradient: vec![0.0; system.dofs.n_free()],
+            system,
+            problem,
+            frozen,
+            settings,
+            u: u.to_vec(),
+            external,
+        }
+    }
+
+    /// Writes the free values `x` into the displacement `u` (DOF order).
+    fn expand(&mut self, x: &[f64]) {
+        for (dof, &eq) in self.system.dofs.equations().iter().enumerate() {
+            if eq != FIXED {
+                self.u[dof] = x[eq as usize];
+            }
+        }
+    }
+}
+
+impl ConvexEnergy for ConvexProblem<'_> {
+    fn dimension(&self) -> usize {
+        self.gradient.len()
+    }
+
+    fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64 {
+        self.expand(x);
+        let e = self
+            .system
+            .evaluate(self.problem, &self.u, self.frozen, hessian);
+        self.system.reduce(&self.system.grad, &mut self.gradient);
+        e
+    }
+
+    fn gradient(&self) -> &[f64] {
+        &self.gradient
+    }
+
+    /// `max(‖f_ext‖, ‖∇W‖, f_D)`: ‖∇W‖ the internal forces over all DOFs, reactions
+    /// included, and f_D the force unit of the prescribed displacements
+    /// ([`System::force_floor`]), so the criterion is meaningful for load-driven and
+    /// displacement-driven problems alike, including stress-free ones.
+    fn force_scale(&self) -> f64 {
+        let internal = self
+            .system
+            .grad_bulk
+            .iter()
+            .zip(&self.system.f_ext)
+            .map(|(g, f)| (g + f).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        self.external
+            .max(internal)
+            .max(self.system.force_floor)
+            .max(f64::MIN_POSITIVE)
+    }
+
+    fn newton_direction(
+        &mut self,
+        rhs: &[f64],
+        delta: &mut [f64],
+        eta: f64,
+        timings: &mut Timings,
+    ) -> Result<LinearInfo> {
+        self.system
+            .linear_solve(rhs, delta, eta, self.settings, timings)
+    }
+
+    /// A body whose free rigid motions only contact carries, pulled off that contact,
+    /// moves without bound: [`crate::Error::ContactLost`].
+    fn accept(&mut self, x: &[f64]) -> Result<()> {
+        if self.system.rigid_shift > 0.0 {
+            self.expand(x);
+            self.system
+                .rigid
+                .check_runaway(&self.u, self.system.length_unit)?;
+        }
+        Ok(())
+    }
+}
+
+/// Minimizes the convex problem of `problem` on `system` for `frozen` from `u` (holding
+/// the prescribed values) by [`super::newton::minimize`]; on return `u` is the last
+/// iterate. Steps and timings go to `record`.
+///
+/// # Errors
+/// As [`super::newton::minimize`].
+pub fn minimize(
+    system: &mut System,
+    problem: &Problem,
+    frozen: &Frozen,
+    settings: &NewtonSettings,
+    tolerance: f64,
+    u: &mut [f64],
+    record: &mut super::newton::NewtonRecord,
+) -> Result<super::newton::NewtonOutcome> {
+    let mut x = vec![0.0; system.dofs.n_free()];
+    system.reduce(u, &mut x);
+    let result = {
+        let mut energy = ConvexProblem::new(system, problem, frozen, settings, u);
+        super::newton::minimize(&mut energy, &mut x, settings, tolerance, record)
+    };
+    for (dof, &eq) in system.dofs.equations().iter().enumerate() {
+        if eq != FIXED {
+            u[dof] = x[eq as usize];
+        }
+    }
+    result
+}
