@@ -31,8 +31,10 @@
 //!
 //! **Use.** [`Multigrid::new`] builds the grids and prolongations once per mesh and DOF
 //! map; [`Multigrid::update`] refills the operators from new Hessian values on the same
-//! [`SystemPattern`]; [`Multigrid::solve`] runs preconditioned conjugate gradients.
+//! [`SystemPattern`]; [`Multigrid::solve`] runs preconditioned conjugate gradients ([`super::pcg`]).
 
+pub use super::pcg::PcgOutcome;
+use super::pcg::{pcg, Pcg, PcgOperator, PcgWork, Start, Stop};
 use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::fem::dofs::FIXED;
@@ -474,17 +476,6 @@ impl Level {
     }
 }
 
-/// Result of [`Multigrid::solve`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PcgOutcome {
-    /// Iterations done.
-    pub iterations: usize,
-    /// Final relative residual `‖b − A x‖ / ‖b‖` (recursively updated).
-    pub relative_residual: f64,
-    /// Whether the tolerance was reached.
-    pub converged: bool,
-}
-
 /// The multigrid hierarchy of a mesh and DOF map; see the module documentation.
 pub struct Multigrid {
     /// Levels, finest first; the last one is solved directly.
@@ -494,8 +485,8 @@ pub struct Multigrid {
     fine_slots: Vec<u32>,
     /// Dense Cholesky factor of the coarsest operator.
     coarse: Option<faer::linalg::solvers::Llt<f64>>,
-    /// PCG work vectors (r, z, p, Ap).
-    work: [Vec<f64>; 4],
+    /// PCG work vectors.
+    work: PcgWork,
 }
 
 impl std::fmt::Debug for Multigrid {
@@ -616,7 +607,7 @@ impl Multigrid {
             levels,
             fine_slots,
             coarse: None,
-            work: [vec![0.0; n0], vec![0.0; n0], vec![0.0; n0], vec![0.0; n0]],
+            work: PcgWork::new(n0),
         }
     }
 
@@ -700,8 +691,9 @@ impl Multigrid {
         z.copy_from_slice(&self.levels[0].x);
     }
 
-    /// Preconditioned conjugate gradients on the fine operator with the V-cycle, from
-    /// `x = 0`, to the relative residual `tol` within `max_iter` iterations.
+    /// Preconditioned conjugate gradients ([`super::pcg`]) on the fine operator with the
+    /// V-cycle, from `x = 0`, to the relative residual `tol` (tested as `‖r‖/‖b‖ ≤ tol`)
+    /// within `max_iter` iterations.
     ///
     /// # Errors
     /// [`Error::Breakdown`] if a curvature `pᵀAp` is not positive or not finite.
@@ -712,57 +704,31 @@ impl Multigrid {
         tol: f64,
         max_iter: usize,
     ) -> Result<PcgOutcome> {
-        let n = b.len();
         let mut work = std::mem::take(&mut self.work);
-        let [r, z, p, ap] = &mut work;
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        x.fill(0.0);
-        let b_norm = dot(b, b).sqrt();
-        let mut outcome = PcgOutcome {
-            iterations: 0,
-            relative_residual: 0.0,
-            converged: true,
+        let params = Pcg {
+            tol,
+            max_iter,
+            start: Start::Zero,
+            stop: Stop::Relative,
         };
-        if b_norm == 0.0 {
-            self.work = work;
-            return Ok(outcome);
-        }
-        r.copy_from_slice(b);
-        self.apply(r, z);
-        p.copy_from_slice(z);
-        let mut rz = dot(r, z);
-        outcome.converged = false;
-        outcome.relative_residual = 1.0;
-        for k in 1..=max_iter {
-            self.levels[0].a.matvec(p, ap);
-            let pap = dot(p, ap);
-            if !(pap > 0.0 && pap.is_finite()) {
-                self.work = work;
-                return Err(Error::Breakdown(format!(
-                    "multigrid-preconditioned CG: curvature pᵀAp = {pap:e} in iteration {k}"
-                )));
-            }
-            let alpha = rz / pap;
-            for i in 0..n {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * ap[i];
-            }
-            outcome.iterations = k;
-            outcome.relative_residual = dot(r, r).sqrt() / b_norm;
-            if outcome.relative_residual <= tol {
-                outcome.converged = true;
-                break;
-            }
-            self.apply(r, z);
-            let rz_next = dot(r, z);
-            let beta = rz_next / rz;
-            rz = rz_next;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
-            }
-        }
+        let outcome = pcg(self, b, x, &mut work, &params);
         self.work = work;
+        if let Some((k, pap)) = outcome.breakdown {
+            return Err(Error::Breakdown(format!(
+                "multigrid-preconditioned CG: curvature pᵀAp = {pap:e} in iteration {k}"
+            )));
+        }
         Ok(outcome)
+    }
+}
+
+/// The fine operator preconditioned by one V-cycle.
+impl PcgOperator for Multigrid {
+    fn matvec(&mut self, x: &[f64], y: &mut [f64]) {
+        self.levels[0].a.matvec(x, y);
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        Multigrid::apply(self, r, z);
     }
 }
 
