@@ -7,6 +7,7 @@
 
 pub mod choice;
 pub mod cholesky;
+pub mod csr;
 pub mod direct;
 pub mod iterative;
 pub mod multigrid;

@@ -1010,9 +1010,10 @@ impl Scenario {
             value,
             &format!(
                 "a mesh whose solve fits in memory: this one needs about {} (estimate) with \
-                 the {kind:?} linear solver, {} are available; use --ignore-memory-limit to try \
+                 linear_solver = \"{}\", {} are available; use --ignore-memory-limit to try \
                  anyway",
                 crate::resources::gib(need),
+                format!("{kind:?}").to_lowercase(),
                 crate::resources::gib(limit)
             ),
         ))
