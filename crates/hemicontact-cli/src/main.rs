@@ -323,10 +323,9 @@ fn check(file: &Path) -> Result<()> {
     for motion in problem.rigid_motions().describe_all() {
         say!("free rigid motion carried by contact: {motion}");
     }
-    let iterative = settings
-        .linear_solver
-        .resolve(problem.mesh.dim(), problem.dof_map().n_free())
-        == hemicontact::solver::LinearSolver::Iterative;
+    let iterative =
+        hemicontact::solver::system::resolved_linear_solver(&problem, settings.linear_solver)
+            == hemicontact::solver::LinearSolver::Iterative;
     if !problem.contact.is_empty() && iterative {
         say!(
             "uniqueness (Theorem 4): not checked — the discrete trace constant needs a Cholesky \

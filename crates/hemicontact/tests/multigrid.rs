@@ -203,11 +203,15 @@ fn linear_solver_setting() {
     let (p, settings) = setup(&text);
     assert_eq!(settings.linear_solver, LinearSolver::Iterative);
     let system = System::new(&p, &settings).unwrap();
-    assert!(system.cholesky.is_none() && system.multigrid.is_some());
+    let solver = &system.linear_solver;
+    assert_eq!(solver.kind(), LinearSolver::Iterative);
+    assert!(solver.nnz_factor() == 0 && !solver.level_sizes().is_empty());
     let (p, settings) = setup(&box_problem_text(2));
     assert_eq!(settings.linear_solver, LinearSolver::Auto);
     let system = System::new(&p, &settings).unwrap();
-    assert!(system.cholesky.is_some() && system.multigrid.is_none());
+    let solver = &system.linear_solver;
+    assert_eq!(solver.kind(), LinearSolver::Direct);
+    assert!(solver.nnz_factor() > 0 && solver.level_sizes().is_empty());
     let big = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
     assert_eq!(LinearSolver::Auto.resolve(3, big), LinearSolver::Iterative);
     assert_eq!(LinearSolver::Auto.resolve(3, big - 1), LinearSolver::Direct);

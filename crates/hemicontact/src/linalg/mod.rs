@@ -1,11 +1,24 @@
-//! Sparse linear algebra: fill-reducing orderings and the Cholesky factorization with the
-//! symbolic analysis done once per pattern and numeric refactorization per solve, and a
-//! geometric multigrid preconditioner for conjugate gradients (large 3D systems).
+//! Sparse linear algebra of the Newton systems: one linear-solver abstraction
+//! ([`SpdSolver`], chosen and prepared by the setting [`LinearSolver`]) with a direct
+//! implementation (sparse Cholesky with fill-reducing orderings, symbolic analysis once
+//! per pattern, numeric refactorization when the matrix changed) and an iterative one
+//! (conjugate gradients preconditioned by geometric multigrid, for large 3D systems), both
+//! built on one preconditioned conjugate-gradient routine ([`pcg`]).
 
+pub mod choice;
 pub mod cholesky;
+pub mod csr;
+pub mod direct;
+pub mod iterative;
 pub mod multigrid;
 pub mod ordering;
+pub mod pcg;
+pub mod solver;
 
+pub use choice::{LinearSolver, PrepareOptions};
 pub use cholesky::Cholesky;
+pub use direct::DirectSolver;
+pub use iterative::{MultigridCg, ITERATIVE_MAX_ITERATIONS};
 pub use multigrid::Multigrid;
 pub use ordering::Ordering;
+pub use solver::{SolveRequest, SolveStats, SpdSolver};

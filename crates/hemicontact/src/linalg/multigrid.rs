@@ -31,14 +31,17 @@
 //!
 //! **Use.** [`Multigrid::new`] builds the grids and prolongations once per mesh and DOF
 //! map; [`Multigrid::update`] refills the operators from new Hessian values on the same
-//! [`SystemPattern`]; [`Multigrid::solve`] runs preconditioned conjugate gradients.
+//! [`SystemPattern`]; [`Multigrid::solve`] runs preconditioned conjugate gradients ([`super::pcg`]).
 
+use super::csr::multiply;
+pub use super::csr::Csr;
+pub use super::pcg::PcgOutcome;
+use super::pcg::{pcg, Pcg, PcgOperator, PcgWork, Start, Stop};
 use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::fem::dofs::FIXED;
 use crate::mesh::Mesh;
 use faer::linalg::solvers::Solve;
-use rayon::prelude::*;
 
 /// Largest number of equations of the coarsest level, which is solved by dense Cholesky.
 pub const COARSE_MAX: usize = 1500;
@@ -51,157 +54,6 @@ pub const SMOOTHING_RANGE: f64 = 15.0;
 pub const POWER_ITERATIONS: usize = 12;
 /// Safety factor on the estimated largest eigenvalue (power iteration underestimates it).
 const EIGENVALUE_SAFETY: f64 = 1.1;
-/// Rows per parallel task of a sparse matrix–vector product.
-const ROWS_PER_TASK: usize = 4096;
-
-/// A sparse matrix in compressed sparse row form (all entries, both triangles for the
-/// symmetric operators).
-#[derive(Clone, Debug, Default)]
-pub struct Csr {
-    n_cols: usize,
-    ptr: Vec<usize>,
-    col: Vec<u32>,
-    val: Vec<f64>,
-}
-
-impl Csr {
-    /// Number of rows.
-    pub fn n_rows(&self) -> usize {
-        self.ptr.len().saturating_sub(1)
-    }
-
-    /// Number of columns.
-    pub fn n_cols(&self) -> usize {
-        self.n_cols
-    }
-
-    /// Number of stored entries.
-    pub fn nnz(&self) -> usize {
-        self.col.len()
-    }
-
-    /// Entries `(column, value)` of row `i`.
-    pub fn row(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
-        let r = self.ptr[i]..self.ptr[i + 1];
-        self.col[r.clone()]
-            .iter()
-            .zip(&self.val[r])
-            .map(|(&c, &v)| (c as usize, v))
-    }
-
-    /// `y = A x` (rows in parallel).
-    ///
-    /// # Panics
-    /// If the lengths do not match.
-    #[track_caller]
-    pub fn matvec(&self, x: &[f64], y: &mut [f64]) {
-        assert!(x.len() == self.n_cols && y.len() == self.n_rows());
-        y.par_iter_mut()
-            .with_min_len(ROWS_PER_TASK)
-            .enumerate()
-            .for_each(|(i, yi)| {
-                let mut acc = 0.0;
-                for k in self.ptr[i]..self.ptr[i + 1] {
-                    acc += self.val[k] * x[self.col[k] as usize];
-                }
-                *yi = acc;
-            });
-    }
-
-    /// The transpose.
-    fn transpose(&self) -> Csr {
-        let mut count = vec![0usize; self.n_cols + 1];
-        for &c in &self.col {
-            count[c as usize + 1] += 1;
-        }
-        for j in 0..self.n_cols {
-            count[j + 1] += count[j];
-        }
-        let ptr = count.clone();
-        let mut next = count;
-        let mut col = vec![0u32; self.nnz()];
-        let mut val = vec![0.0; self.nnz()];
-        for i in 0..self.n_rows() {
-            for k in self.ptr[i]..self.ptr[i + 1] {
-                let j = self.col[k] as usize;
-                col[next[j]] = i as u32;
-                val[next[j]] = self.val[k];
-                next[j] += 1;
-            }
-        }
-        Csr {
-            n_cols: self.n_rows(),
-            ptr,
-            col,
-            val,
-        }
-    }
-
-    /// The diagonal entries (0 where none is stored).
-    fn diagonal(&self, out: &mut [f64]) {
-        for (i, d) in out.iter_mut().enumerate() {
-            *d = self.row(i).filter(|&(j, _)| j == i).map(|(_, v)| v).sum();
-        }
-    }
-}
-
-/// Sparse product `A B` by rows (Gustavson), blocks of rows in parallel. Every row is
-/// computed by one task in a fixed order, so the result does not depend on the scheduling.
-fn multiply(a: &Csr, b: &Csr) -> Csr {
-    let n = a.n_rows();
-    let blocks: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..n.div_ceil(ROWS_PER_TASK))
-        .into_par_iter()
-        .map(|k| multiply_rows(a, b, k * ROWS_PER_TASK..((k + 1) * ROWS_PER_TASK).min(n)))
-        .collect();
-    let nnz = blocks.iter().map(|blk| blk.1.len()).sum();
-    let mut ptr = Vec::with_capacity(n + 1);
-    ptr.push(0);
-    let mut col = Vec::with_capacity(nnz);
-    let mut val = Vec::with_capacity(nnz);
-    for (lengths, c, v) in blocks {
-        for len in lengths {
-            ptr.push(ptr[ptr.len() - 1] + len);
-        }
-        col.extend_from_slice(&c);
-        val.extend_from_slice(&v);
-    }
-    Csr {
-        n_cols: b.n_cols,
-        ptr,
-        col,
-        val,
-    }
-}
-
-/// Rows `rows` of `A B`: their lengths, columns (sorted per row) and values.
-fn multiply_rows(
-    a: &Csr,
-    b: &Csr,
-    rows: std::ops::Range<usize>,
-) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
-    let mut acc = vec![0.0; b.n_cols];
-    let mut mark = vec![usize::MAX; b.n_cols];
-    let mut lengths = Vec::with_capacity(rows.len());
-    let mut col = Vec::new();
-    let mut val = Vec::new();
-    for i in rows {
-        let start = col.len();
-        for (k, av) in a.row(i) {
-            for (j, bv) in b.row(k) {
-                if mark[j] != i {
-                    mark[j] = i;
-                    acc[j] = 0.0;
-                    col.push(j as u32);
-                }
-                acc[j] += av * bv;
-            }
-        }
-        col[start..].sort_unstable();
-        val.extend(col[start..].iter().map(|&j| acc[j as usize]));
-        lengths.push(col.len() - start);
-    }
-    (lengths, col, val)
-}
 
 /// A regular grid of Q1 nodes: `m[a]` intervals of width `h[a]` from `lo[a]` along each of
 /// the first `dim` axes. Node `(i, j, k)` has index `i + (m₀+1)(j + (m₁+1) k)`.
@@ -474,17 +326,6 @@ impl Level {
     }
 }
 
-/// Result of [`Multigrid::solve`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PcgOutcome {
-    /// Iterations done.
-    pub iterations: usize,
-    /// Final relative residual `‖b − A x‖ / ‖b‖` (recursively updated).
-    pub relative_residual: f64,
-    /// Whether the tolerance was reached.
-    pub converged: bool,
-}
-
 /// The multigrid hierarchy of a mesh and DOF map; see the module documentation.
 pub struct Multigrid {
     /// Levels, finest first; the last one is solved directly.
@@ -494,8 +335,8 @@ pub struct Multigrid {
     fine_slots: Vec<u32>,
     /// Dense Cholesky factor of the coarsest operator.
     coarse: Option<faer::linalg::solvers::Llt<f64>>,
-    /// PCG work vectors (r, z, p, Ap).
-    work: [Vec<f64>; 4],
+    /// PCG work vectors.
+    work: PcgWork,
 }
 
 impl std::fmt::Debug for Multigrid {
@@ -616,7 +457,7 @@ impl Multigrid {
             levels,
             fine_slots,
             coarse: None,
-            work: [vec![0.0; n0], vec![0.0; n0], vec![0.0; n0], vec![0.0; n0]],
+            work: PcgWork::new(n0),
         }
     }
 
@@ -700,8 +541,9 @@ impl Multigrid {
         z.copy_from_slice(&self.levels[0].x);
     }
 
-    /// Preconditioned conjugate gradients on the fine operator with the V-cycle, from
-    /// `x = 0`, to the relative residual `tol` within `max_iter` iterations.
+    /// Preconditioned conjugate gradients ([`super::pcg`]) on the fine operator with the
+    /// V-cycle, from `x = 0`, to the relative residual `tol` (tested as `‖r‖/‖b‖ ≤ tol`)
+    /// within `max_iter` iterations.
     ///
     /// # Errors
     /// [`Error::Breakdown`] if a curvature `pᵀAp` is not positive or not finite.
@@ -712,57 +554,31 @@ impl Multigrid {
         tol: f64,
         max_iter: usize,
     ) -> Result<PcgOutcome> {
-        let n = b.len();
         let mut work = std::mem::take(&mut self.work);
-        let [r, z, p, ap] = &mut work;
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        x.fill(0.0);
-        let b_norm = dot(b, b).sqrt();
-        let mut outcome = PcgOutcome {
-            iterations: 0,
-            relative_residual: 0.0,
-            converged: true,
+        let params = Pcg {
+            tol,
+            max_iter,
+            start: Start::Zero,
+            stop: Stop::Relative,
         };
-        if b_norm == 0.0 {
-            self.work = work;
-            return Ok(outcome);
-        }
-        r.copy_from_slice(b);
-        self.apply(r, z);
-        p.copy_from_slice(z);
-        let mut rz = dot(r, z);
-        outcome.converged = false;
-        outcome.relative_residual = 1.0;
-        for k in 1..=max_iter {
-            self.levels[0].a.matvec(p, ap);
-            let pap = dot(p, ap);
-            if !(pap > 0.0 && pap.is_finite()) {
-                self.work = work;
-                return Err(Error::Breakdown(format!(
-                    "multigrid-preconditioned CG: curvature pᵀAp = {pap:e} in iteration {k}"
-                )));
-            }
-            let alpha = rz / pap;
-            for i in 0..n {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * ap[i];
-            }
-            outcome.iterations = k;
-            outcome.relative_residual = dot(r, r).sqrt() / b_norm;
-            if outcome.relative_residual <= tol {
-                outcome.converged = true;
-                break;
-            }
-            self.apply(r, z);
-            let rz_next = dot(r, z);
-            let beta = rz_next / rz;
-            rz = rz_next;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
-            }
-        }
+        let outcome = pcg(self, b, x, &mut work, &params);
         self.work = work;
+        if let Some((k, pap)) = outcome.breakdown {
+            return Err(Error::Breakdown(format!(
+                "multigrid-preconditioned CG: curvature pᵀAp = {pap:e} in iteration {k}"
+            )));
+        }
         Ok(outcome)
+    }
+}
+
+/// The fine operator preconditioned by one V-cycle.
+impl PcgOperator for Multigrid {
+    fn matvec(&mut self, x: &[f64], y: &mut [f64]) {
+        self.levels[0].a.matvec(x, y);
+    }
+    fn precondition(&mut self, r: &[f64], z: &mut [f64]) {
+        Multigrid::apply(self, r, z);
     }
 }
 

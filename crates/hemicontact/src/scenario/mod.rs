@@ -295,24 +295,14 @@ impl Scenario {
         };
         let mesh = read.mesh;
         if let Some(limit) = self.memory_limit {
-            let iterative = self
-                .file
-                .solver
-                .linear_solver
-                .resolve(mesh.dim(), mesh.dim() * mesh.n_nodes())
-                == crate::solver::LinearSolver::Iterative;
-            let need = if iterative {
-                crate::resources::estimate_tetrahedra_iterative(
-                    mesh.n_nodes() as f64,
-                    mesh.n_cells() as f64,
-                )
-            } else {
-                crate::resources::estimate_mesh(
-                    mesh.dim(),
-                    mesh.n_nodes() as u64,
-                    mesh.n_cells() as u64,
-                )
-            };
+            // The free equations are known only with the boundary conditions: a lower bound
+            // here, the estimate itself in `check_solve_memory`.
+            let need = self.file.solver.linear_solver.memory_lower_bound(
+                mesh.dim(),
+                mesh.dim() * mesh.n_nodes(),
+                mesh.n_nodes() as u64,
+                mesh.n_cells() as u64,
+            );
             if need > limit {
                 return Err(too_large(
                     need,
@@ -378,23 +368,19 @@ impl Scenario {
                 "an even number with pattern = \"symmetric\" (mirror symmetry about the centre plane)",
             ));
         }
-        let need = if dim == 2 {
-            crate::resources::estimate_rectangle(counts[0], counts[1])
-        } else {
-            let equations = 3 * (counts[0] + 1) * (counts[1] + 1) * (counts[2] + 1);
-            match self
-                .file
-                .solver
-                .linear_solver
-                .resolve(3, equations as usize)
-            {
-                crate::solver::LinearSolver::Iterative => {
-                    crate::resources::estimate_box_iterative(counts[0], counts[1], counts[2])
-                }
-                _ => crate::resources::estimate_box(counts[0], counts[1], counts[2]),
-            }
-        };
         if let Some(limit) = self.memory_limit {
+            // The free equations are known only with the boundary conditions: a lower bound
+            // here, before anything is allocated, the estimate itself in
+            // `check_solve_memory`.
+            let nodes: u64 = counts.iter().map(|&c| c + 1).product();
+            let cells: u64 = counts.iter().product::<u64>() * if dim == 2 { 2 } else { 6 };
+            let max_free = (dim as u64).saturating_mul(nodes);
+            let need = self.file.solver.linear_solver.memory_lower_bound(
+                dim,
+                usize::try_from(max_free).unwrap_or(usize::MAX),
+                nodes,
+                cells,
+            );
             if need > limit {
                 return Err(self.err(
                     "mesh.n",
@@ -778,6 +764,7 @@ impl Scenario {
             },
             e => e.in_file(&self.source, field_in_file),
         })?;
+        self.check_solve_memory(&problem)?;
         notes.extend(problem.notes());
         Ok((problem, notes))
     }
@@ -792,6 +779,46 @@ impl Scenario {
             .validate()
             .map_err(|e| e.in_file(&self.source, |f| format!("solver.{f}")))?;
         Ok(settings)
+    }
+
+    /// Checks the estimated memory of a solve of `problem` against
+    /// [`Scenario::memory_limit`], for the linear solver the solve will use
+    /// ([`crate::solver::system::resolved_linear_solver`]).
+    fn check_solve_memory(&self, problem: &Problem) -> Result<()> {
+        let Some(limit) = self.memory_limit else {
+            return Ok(());
+        };
+        let mesh = &problem.mesh;
+        let kind =
+            crate::solver::system::resolved_linear_solver(problem, self.file.solver.linear_solver);
+        let need = kind.memory_estimate(
+            mesh.dim(),
+            problem.dof_map().n_free(),
+            mesh.n_nodes() as u64,
+            mesh.n_cells() as u64,
+        );
+        if need <= limit {
+            return Ok(());
+        }
+        let (field, value) = match &self.file.mesh.n {
+            Some(n) if self.file.mesh.kind != MeshKind::Gmsh => ("mesh.n", format!("{n:?}")),
+            _ => (
+                "mesh.file",
+                format!("{} nodes, {} cells", mesh.n_nodes(), mesh.n_cells()),
+            ),
+        };
+        Err(self.err(
+            field,
+            value,
+            &format!(
+                "a mesh whose solve fits in memory: this one needs about {} (estimate) with \
+                 linear_solver = \"{}\", {} are available; use --ignore-memory-limit to try \
+                 anyway",
+                crate::resources::gib(need),
+                format!("{kind:?}").to_lowercase(),
+                crate::resources::gib(limit)
+            ),
+        ))
     }
 }
 

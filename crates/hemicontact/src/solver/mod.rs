@@ -19,6 +19,7 @@ pub mod scaling;
 pub mod system;
 pub mod uniqueness;
 
+pub use crate::linalg::LinearSolver;
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
 pub use constraints::{ConstraintSettings, KktCertificate};
 pub use mixing::Mixing;
@@ -119,46 +120,6 @@ impl SolverSettings {
         self.constraints
             .validate()
             .map_err(|e| e.within("constraints"))
-    }
-}
-
-/// How the Newton systems `H x = b` are solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LinearSolver {
-    /// Sparse Cholesky factorization, reused and used as a PCG preconditioner while the
-    /// Hessian changes little (see [`System::linear_solve`]).
-    Direct,
-    /// Conjugate gradients preconditioned by geometric multigrid
-    /// ([`crate::linalg::multigrid`]) to the Newton forcing term; no factorization of the
-    /// fine system is ever formed, so memory stays proportional to the matrix.
-    Iterative,
-    /// Direct in 2D and in 3D below [`LinearSolver::AUTO_ITERATIVE_EQUATIONS`] equations,
-    /// iterative above.
-    #[default]
-    Auto,
-}
-
-impl LinearSolver {
-    /// Number of equations from which `auto` chooses the iterative solver in 3D. Measured
-    /// on `scenarios/paper3d.toml` (README section "3D at scale", end-to-end solves on the
-    /// 2-core target, direct / iterative): 14 739 equations 0.99 s / 0.66 s, 46 875
-    /// equations 8.2 s / 2.3 s, 104 544 equations 45 s / 5.3 s. Below 30 000 the gain is
-    /// small and the direct solver is kept for its robustness (exact-constraint penalties
-    /// make the Hessian ill-conditioned, which costs PCG iterations but not a
-    /// factorization).
-    pub const AUTO_ITERATIVE_EQUATIONS: usize = 30_000;
-
-    /// The solver used for a system of dimension `dim` with `n_equations` equations:
-    /// [`LinearSolver::Direct`] or [`LinearSolver::Iterative`].
-    pub fn resolve(self, dim: usize, n_equations: usize) -> LinearSolver {
-        match self {
-            LinearSolver::Auto if dim == 3 && n_equations >= Self::AUTO_ITERATIVE_EQUATIONS => {
-                LinearSolver::Iterative
-            }
-            LinearSolver::Auto => LinearSolver::Direct,
-            other => other,
-        }
     }
 }
 

@@ -139,11 +139,8 @@ impl SolveReport {
             n_dofs: system.dofs.n_dofs(),
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
-            nnz_factor: system.cholesky.as_ref().map_or(0, |c| c.nnz_factor()),
-            multigrid_levels: system
-                .multigrid
-                .as_ref()
-                .map_or_else(Vec::new, |m| m.level_sizes()),
+            nnz_factor: system.linear_solver.nnz_factor(),
+            multigrid_levels: system.linear_solver.level_sizes(),
             outer: Vec::new(),
             newton: Vec::new(),
             n_contact_points: system.contact.len(),

@@ -1,5 +1,5 @@
-//! The discrete system, prepared once per problem: DOF map, sparsity pattern, symbolic
-//! factorization, contact points, external forces, and the work arrays of the Newton
+//! The discrete system, prepared once per problem: DOF map, sparsity pattern, linear
+//! solver (see [`crate::linalg`]), contact points, external forces, and the work arrays of the Newton
 //! iteration. [`System::evaluate`] computes the convexified energy `E_k` with its
 //! gradient and generalized Hessian for given frozen contact quantities.
 
@@ -10,7 +10,7 @@ use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
-use crate::linalg::{Cholesky, Multigrid};
+use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -21,11 +21,9 @@ pub struct System {
     pub dofs: DofMap,
     /// Upper-triangular pattern of the reduced system.
     pub pattern: SystemPattern,
-    /// Cholesky factorization (symbolic analysis done); `None` with the iterative linear
-    /// solver, which never factorizes the fine system.
-    pub cholesky: Option<Cholesky>,
-    /// Multigrid hierarchy of the iterative linear solver; `None` with the direct one.
-    pub multigrid: Option<Multigrid>,
+    /// The linear solver of the Newton systems, prepared on `pattern` (direct: symbolic
+    /// analysis done; iterative: multigrid grids built).
+    pub linear_solver: Box<dyn SpdSolver>,
     /// Contact points.
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
@@ -62,18 +60,6 @@ pub struct System {
     pub hess: Vec<f64>,
     /// Seconds spent on (pattern, symbolic analysis or multigrid grids and prolongations).
     pub setup_time: (f64, f64),
-    /// Hessian values of the current factorization or multigrid operators (empty: none
-    /// yet).
-    factored: Vec<f64>,
-    /// PCG work vectors (r, z, p, Ap).
-    work: [Vec<f64>; 4],
-    /// Refactorize at the next linear solve (the factorization went stale).
-    refactor_next: bool,
-    /// Cost of a numeric factorization in units of one triangular solve (see
-    /// [`System::linear_solve`]).
-    factor_cost: f64,
-    /// PCG work beyond plain solves since the last factorization, in solve units.
-    pcg_spent: f64,
     /// Parallel assembly buffers.
     workspace: Workspace,
     /// Rigid motions left free by the Dirichlet conditions (carried by contact, else
@@ -88,6 +74,12 @@ pub struct System {
     /// metres, `L/U` when it is solved in the dimensionless variables of
     /// [`super::scaling`] (set by the solver).
     pub length_unit: f64,
+}
+
+/// The linear solver that `kind` resolves to for `problem` ([`super::LinearSolver::resolve`]
+/// with the number of free equations): the one [`System::with_linear_solver`] prepares.
+pub fn resolved_linear_solver(problem: &Problem, kind: super::LinearSolver) -> super::LinearSolver {
+    kind.resolve(problem.mesh.dim(), problem.dof_map().n_free())
 }
 
 /// Friction regularization (relative to the displacement scale) at which the continuation
@@ -116,12 +108,7 @@ pub fn regularization_stages(problem: &Problem, settings: &super::SolverSettings
     ((REGULARIZATION_START / target).ln() / REGULARIZATION_STEP.recip().ln()).ceil() as usize
 }
 
-/// Cost of one PCG iteration (a triangular solve and a sparse product) in solve units.
-const PCG_ITERATION_COST: f64 = 1.1;
-
-/// Iteration cap of multigrid-preconditioned CG (iterative linear solver). Measured counts
-/// are far below (tens at most); reaching the cap means the preconditioner failed.
-pub const ITERATIVE_MAX_ITERATIONS: usize = 500;
+pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
 
 /// How a Newton system was solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -134,7 +121,7 @@ pub struct LinearInfo {
 
 impl System {
     /// Builds the DOF map, pattern and contact points, and prepares the linear solver
-    /// chosen by `settings.linear_solver` (see [`super::LinearSolver::resolve`]).
+    /// chosen by `settings.linear_solver` (see [`super::LinearSolver::prepare`]).
     ///
     /// # Errors
     /// [`crate::Error::OutOfMemory`] if the pattern or factor cannot be allocated.
@@ -165,31 +152,12 @@ impl System {
         });
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
-        let (cholesky, multigrid) = match kind.resolve(problem.mesh.dim(), pattern.n()) {
-            super::LinearSolver::Iterative => (
-                None,
-                Some(Multigrid::new(&problem.mesh, dofs.equations(), &pattern)),
-            ),
-            _ => (
-                Some(Cholesky::analyze(
-                    &problem.mesh,
-                    dofs.equations(),
-                    &pattern,
-                    settings.ordering,
-                    super::parallelism(settings.factorization_threads),
-                )?),
-                None,
-            ),
+        let options = PrepareOptions {
+            ordering: settings.ordering,
+            par: super::parallelism(settings.factorization_threads),
         };
+        let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();
-        // A solve streams the factor twice (2 nnz(L) multiply-adds); a factorization costs
-        // Σ_j c_j² ≈ nnz(L) · (average column count). Measured on the paper square the
-        // ratio is about nnz(L)/(12 n): 6 at n = 128 (30 ms vs 5 ms), 9 at n = 512 (1.1 s vs
-        // 0.12 s). A count-based model, not a timer, keeps the solver's decisions — and so
-        // its results — deterministic.
-        let factor_cost = cholesky.as_ref().map_or(1.0, |c| {
-            (c.nnz_factor() as f64 / (12.0 * pattern.n().max(1) as f64)).max(1.0)
-        });
         let f_ext = problem.external_forces();
         let force_floor = {
             let d = problem.mesh.dim();
@@ -212,8 +180,7 @@ impl System {
         Ok(System {
             dofs,
             pattern,
-            cholesky,
-            multigrid,
+            linear_solver,
             contact,
             contact_slots,
             rho_num: settings.outer.friction_regularization,
@@ -227,11 +194,6 @@ impl System {
             grad_bulk: vec![0.0; n],
             hess,
             setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
-            factored: Vec::new(),
-            work: Default::default(),
-            refactor_next: false,
-            factor_cost,
-            pcg_spent: 0.0,
             workspace: Workspace::new(match settings.threads {
                 0 => rayon::current_num_threads(),
                 t => t,
@@ -382,27 +344,15 @@ impl System {
         e_bulk + e_contact - work
     }
 
-    /// Solves `H x = b` for the current Hessian `self.hess`, to the relative residual `eta`
-    /// where an iterative solve is used (the forcing term of the inexact Newton method).
-    ///
-    /// - If the Hessian equals the factorized one (to 1e-12 relative: it is piecewise
-    ///   constant in the active sets, and the friction curvature of slipping nodes is
-    ///   negligible), the factorization is reused: one triangular solve.
-    /// - Else, if a factorization exists, preconditioned conjugate gradients with it as
-    ///   preconditioner, up to `settings.pcg_iterations` iterations to the relative
-    ///   residual `settings.pcg_tolerance`.
-    /// - Otherwise (or if PCG does not get there) the Hessian is refactorized.
-    ///
-    /// With the iterative linear solver ([`System::multigrid`]) instead: the multigrid
-    /// operators are rebuilt from `self.hess` when it changed (same 1e-12 test; the time
-    /// goes to `timings.factorization` and counts as a factorization in
-    /// `timings.n_factorizations` and `refactorized`), then multigrid-preconditioned CG
-    /// solves to the relative residual `eta` within [`ITERATIVE_MAX_ITERATIONS`].
+    /// Solves `H x = b` for the current Hessian `self.hess` with [`System::linear_solver`],
+    /// to the relative residual `eta` where the solve is iterative (the forcing term of the
+    /// inexact Newton method), reusing a factorization for at most
+    /// `settings.pcg_iterations` PCG iterations (see [`crate::linalg::direct`]). The
+    /// solver's times go to `timings` (rebuilding the factorization or the multigrid
+    /// operators counts as a factorization).
     ///
     /// # Errors
-    /// As [`Cholesky::factorize`]; with the iterative solver, [`crate::Error::Breakdown`]
-    /// if CG does not reach `eta` within [`ITERATIVE_MAX_ITERATIONS`] iterations or breaks
-    /// down, and the errors of [`Multigrid::update`].
+    /// Those of [`SpdSolver::solve`].
     pub fn linear_solve(
         &mut self,
         b: &[f64],
@@ -411,179 +361,20 @@ impl System {
         settings: &super::NewtonSettings,
         timings: &mut super::Timings,
     ) -> Result<LinearInfo> {
-        if self.multigrid.is_some() {
-            return self.iterative_solve(b, x, eta, timings);
-        }
-        let t = Instant::now();
-        let mut info = LinearInfo {
-            refactorized: false,
-            pcg_iterations: 0,
+        let request = SolveRequest {
+            eta,
+            reuse_iterations: settings.pcg_iterations,
         };
-        if self.cholesky.is_none() {
-            return Err(crate::Error::Breakdown(
-                "no linear solver prepared for the system".into(),
-            ));
-        }
-        if !self.factored.is_empty() && !self.refactor_next {
-            let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let (mut change, mut changed) = (0.0f64, 0usize);
-            for (a, c) in self.hess.iter().zip(&self.factored) {
-                let d = (a - c).abs();
-                change = change.max(d);
-                changed += usize::from(d > 1e-12 * scale);
-            }
-            if change <= 1e-12 * scale {
-                x.copy_from_slice(b);
-                if let Some(cholesky) = self.cholesky.as_mut() {
-                    cholesky.solve_in_place(x);
-                }
-                timings.solve += t.elapsed().as_secs_f64();
-                return Ok(info);
-            }
-            // Each changed cell or contact node alters at most ld(ld+1)/2 entries and adds
-            // about one PCG iteration; try PCG only when the estimated rank is small.
-            let ld = self.pattern.local_dofs();
-            let rank_estimate = changed / (ld * (ld + 1) / 2);
-            // PCG pays while its iterations (one solve and one product each) cost less than
-            // a factorization: cap them by the measured cost ratio.
-            let affordable = (0.7 * self.factor_cost / PCG_ITERATION_COST) as usize;
-            let max_iter = settings.pcg_iterations.min(affordable);
-            if max_iter > 0 && rank_estimate < max_iter {
-                let outcome = self.pcg(b, x, max_iter, eta);
-                // Ski rental: pay PCG iterations ("rent") until their accumulated cost beyond
-                // one plain solve reaches the cost of a factorization ("buy"), then
-                // refactorize at the next step. This costs at most twice the optimum in
-                // hindsight, whatever the sequence of Hessians. Costs are counted, not timed.
-                let iterations = outcome.unwrap_or(max_iter) + 1;
-                self.pcg_spent += iterations as f64 * PCG_ITERATION_COST - 1.0;
-                if let Some(k) = outcome {
-                    info.pcg_iterations = k;
-                    self.refactor_next = self.pcg_spent >= self.factor_cost;
-                    timings.solve += t.elapsed().as_secs_f64();
-                    return Ok(info);
-                }
-            }
-        }
-        timings.solve += t.elapsed().as_secs_f64();
-        let t = Instant::now();
-        self.factored.clear();
-        self.refactor_next = false;
-        self.pcg_spent = 0.0;
-        let Some(cholesky) = self.cholesky.as_mut() else {
-            return Err(crate::Error::Breakdown(
-                "no linear solver prepared for the system".into(),
-            ));
-        };
-        cholesky.factorize(&self.pattern, &self.hess)?;
-        self.factored.extend_from_slice(&self.hess);
-        timings.factorization += t.elapsed().as_secs_f64();
-        timings.n_factorizations += 1;
-        let t = Instant::now();
-        x.copy_from_slice(b);
-        cholesky.solve_in_place(x);
-        timings.solve += t.elapsed().as_secs_f64();
-        info.refactorized = true;
-        Ok(info)
-    }
-
-    /// Preconditioned conjugate gradients on `self.hess` with the current factorization as
-    /// preconditioner, from x = P⁻¹b. Returns the iteration count if the relative residual
-    /// reached `tol` within `max_iter` iterations.
-    fn pcg(&mut self, b: &[f64], x: &mut [f64], max_iter: usize, tol: f64) -> Option<usize> {
-        let n = b.len();
-        let [r, z, p, ap] = &mut self.work;
-        let cholesky = self.cholesky.as_mut()?;
-        for v in [&mut *r, &mut *z, &mut *p, &mut *ap] {
-            v.resize(n, 0.0);
-        }
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-        let b_norm = dot(b, b).sqrt();
-        if b_norm == 0.0 {
-            x.fill(0.0);
-            return Some(0);
-        }
-        x.copy_from_slice(b);
-        cholesky.solve_in_place(x);
-        self.pattern.sym_matvec(&self.hess, x, ap);
-        for i in 0..n {
-            r[i] = b[i] - ap[i];
-        }
-        z.copy_from_slice(r);
-        cholesky.solve_in_place(z);
-        p.copy_from_slice(z);
-        let mut rz = dot(r, z);
-        for k in 1..=max_iter {
-            self.pattern.sym_matvec(&self.hess, p, ap);
-            let pap = dot(p, ap);
-            if pap.is_nan() || pap <= 0.0 {
-                return None;
-            }
-            let alpha = rz / pap;
-            for i in 0..n {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * ap[i];
-            }
-            if dot(r, r).sqrt() <= tol * b_norm {
-                return Some(k);
-            }
-            z.copy_from_slice(r);
-            cholesky.solve_in_place(z);
-            let rz_new = dot(r, z);
-            let beta = rz_new / rz;
-            rz = rz_new;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
-            }
-        }
-        None
-    }
-
-    /// The iterative branch of [`System::linear_solve`]: multigrid-preconditioned CG, with
-    /// the multigrid operators rebuilt when the Hessian changed.
-    fn iterative_solve(
-        &mut self,
-        b: &[f64],
-        x: &mut [f64],
-        eta: f64,
-        timings: &mut super::Timings,
-    ) -> Result<LinearInfo> {
-        let Some(mg) = self.multigrid.as_mut() else {
-            return Err(crate::Error::Breakdown(
-                "no multigrid hierarchy prepared for the system".into(),
-            ));
-        };
-        let mut info = LinearInfo {
-            refactorized: false,
-            pcg_iterations: 0,
-        };
-        let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let unchanged = !self.factored.is_empty()
-            && self
-                .hess
-                .iter()
-                .zip(&self.factored)
-                .all(|(a, c)| (a - c).abs() <= 1e-12 * scale);
-        if !unchanged {
-            let t = Instant::now();
-            self.factored.clear();
-            mg.update(&self.hess)?;
-            self.factored.extend_from_slice(&self.hess);
-            timings.factorization += t.elapsed().as_secs_f64();
-            timings.n_factorizations += 1;
-            info.refactorized = true;
-        }
-        let t = Instant::now();
-        let outcome = mg.solve(b, x, eta, ITERATIVE_MAX_ITERATIONS)?;
-        timings.solve += t.elapsed().as_secs_f64();
-        if !outcome.converged {
-            return Err(crate::Error::Breakdown(format!(
-                "multigrid-preconditioned CG did not reach the relative residual {eta:e} in \
-                 {} iterations (reached {:e}); try [solver] linear_solver = \"direct\"",
-                outcome.iterations, outcome.relative_residual
-            )));
-        }
-        info.pcg_iterations = outcome.iterations;
-        Ok(info)
+        let stats = self
+            .linear_solver
+            .solve(&self.pattern, &self.hess, b, x, &request)?;
+        timings.factorization += stats.factorization_time;
+        timings.n_factorizations += usize::from(stats.refactorized);
+        timings.solve += stats.solve_time;
+        Ok(LinearInfo {
+            refactorized: stats.refactorized,
+            pcg_iterations: stats.iterations,
+        })
     }
 
     /// Gradient restricted to the free DOFs (equation order) into `r`.

@@ -85,7 +85,7 @@ pub fn trace_constant(problem: &Problem, settings: &super::SolverSettings) -> Re
     let mut grad = vec![0.0; u.len()];
     let mut k = vec![0.0; system.pattern.nnz()];
     bulk.assemble(&u, &mut grad, Want::Hessian, &system.pattern, Some(&mut k));
-    let Some(cholesky) = system.cholesky.as_mut() else {
+    let Some(cholesky) = system.linear_solver.cholesky_mut() else {
         return Err(crate::Error::Breakdown("no Cholesky factorization".into()));
     };
     cholesky.factorize(&system.pattern, &k)?;
@@ -233,9 +233,7 @@ pub fn evaluate(problem: &Problem, settings: &super::SolverSettings) -> Uniquene
     if !u.applies {
         return u;
     }
-    let iterative = settings
-        .linear_solver
-        .resolve(problem.mesh.dim(), problem.dof_map().n_free())
+    let iterative = super::system::resolved_linear_solver(problem, settings.linear_solver)
         == super::LinearSolver::Iterative;
     if iterative && u.factor > 0.0 {
         return not_evaluated(
