@@ -9,12 +9,9 @@ use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::System;
 
-fn problem(text: &str) -> Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
-}
+mod common;
+
+use common::problem;
 
 /// A box `(0,2)×(0,1)×(0,1)` with `n` cells per unit length, clamped at the bottom.
 fn box_problem(n: usize) -> Problem {

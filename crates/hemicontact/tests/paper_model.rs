@@ -10,16 +10,11 @@
 
 mod common;
 
-use hemicontact::problem::Problem;
-use hemicontact::scenario::{builtin, Scenario};
-use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
+use common::problem;
 
-fn problem(text: &str) -> Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
-}
+use hemicontact::problem::Problem;
+use hemicontact::scenario::builtin;
+use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
 
 fn assert_certified(s: &Solution) {
     common::assert_certified(s, 1e-8);
@@ -28,9 +23,9 @@ fn assert_certified(s: &Solution) {
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
 
+/// Plane-strain Lamé constants `(λ, G)` of `E`, `ν`.
 fn lame() -> (f64, f64) {
-    let g = E / (2.0 * (1.0 + NU));
-    (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), g)
+    common::lame(E, NU, false)
 }
 
 /// A unit block on rollers (left: x fixed, bottom: y fixed), pressed by `p` on top, expands

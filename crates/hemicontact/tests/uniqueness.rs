@@ -2,15 +2,12 @@
 //! a hand bound and under mesh refinement, and the condition's bookkeeping.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::scenario::{builtin, Scenario};
+use hemicontact::scenario::builtin;
 use hemicontact::solver::uniqueness::{check, trace_constant};
 
-fn problem(text: &str) -> hemicontact::problem::Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
-}
+mod common;
+
+use common::problem;
 
 fn block_with_top_contact(n: usize) -> String {
     format!(
