@@ -135,3 +135,18 @@ pub fn random_strain(rng: &mut Rng, dim: usize, scale: f64) -> Sym {
     }
     e
 }
+
+/// A fresh empty folder `hemicontact-<prefix>-<process id>-<nanoseconds>` under the system
+/// temporary folder.
+pub fn fresh_dir(prefix: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "hemicontact-{prefix}-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
