@@ -13,7 +13,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// Runs the benchmark for each mesh size in `sizes`, repeating numeric phases `repeat` times.
-pub fn run(sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
+pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
     let repeat = repeat.max(1);
     println!(
         "{:>5} {:>9} {:>18} {:>11} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9}",
@@ -29,7 +29,7 @@ pub fn run(sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
         "asm+num+solve"
     );
     for &n in sizes {
-        let scenario = crate::parse_scenario(&builtin::paper_elastic(n), "<bench>")?;
+        let scenario = ctx.parse_scenario(&builtin::paper_elastic(n), "<bench>")?;
         let problem = scenario.into_problem()?;
         let mesh = &problem.mesh;
         let dofs = problem.dof_map();
@@ -120,7 +120,12 @@ fn peak_memory_mib() -> Option<f64> {
 /// The nonlinear paper solve (C_κ = 10 000, or the scenario `file` refined to n) against one
 /// linear elastic solve on the same mesh, measured in the same run: medians of `repeat`
 /// end-to-end solves each.
-pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>) -> Result<()> {
+pub fn run_paper(
+    ctx: &crate::RunContext,
+    sizes: &[usize],
+    repeat: usize,
+    file: Option<&std::path::Path>,
+) -> Result<()> {
     let repeat = repeat.max(1);
     let scenario = match file {
         Some(f) => Some(hemicontact::scenario::Scenario::from_file(f)?),
@@ -145,7 +150,7 @@ pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>)
     for &n in sizes {
         let case = match &scenario {
             Some(s) => s.with_resolution(n)?,
-            None => crate::parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?,
+            None => ctx.parse_scenario(&builtin::paper(n, 1.0e4), "<bench>")?,
         };
         let (paper, settings) = (case.into_problem()?, case.settings()?);
         // The linear elastic reference: the same mesh, material, supports and loads, without

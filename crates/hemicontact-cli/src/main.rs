@@ -8,6 +8,7 @@
 //! new complete set, never a mix; a second run into a folder being written fails at once.
 
 mod bench;
+mod output;
 mod study;
 
 /// `println!` that ignores a closed standard output (a pipe into `head`) instead of
@@ -22,7 +23,6 @@ macro_rules! say {
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use hemicontact::io::result_set::ResultSet;
 use hemicontact::io::results::write_results;
 use hemicontact::io::summary::Summary;
 use hemicontact::plot::deformed;
@@ -129,127 +129,45 @@ enum Outcome {
     NotConverged,
 }
 
-/// Set from `--ignore-memory-limit`.
-static IGNORE_MEMORY_LIMIT: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-
-fn apply_memory_flag(mut s: Scenario) -> Scenario {
-    if IGNORE_MEMORY_LIMIT.get().copied().unwrap_or(false) {
-        s.memory_limit = None;
-    }
-    s
+/// What the commands of one run share: the global flags and the run's output folder.
+/// Passed explicitly to every command (no process-global state).
+pub struct RunContext {
+    /// Set from `--ignore-memory-limit`: drop the scenario's memory limit.
+    pub ignore_memory_limit: bool,
+    /// This run's result set, shared with the Ctrl-C handler.
+    pub output: output::Output,
 }
 
-/// Reads a scenario file, honouring `--ignore-memory-limit`.
-pub fn read_scenario(file: &Path) -> Result<Scenario> {
-    Ok(apply_memory_flag(Scenario::from_file(file)?))
-}
-
-/// Parses scenario text, honouring `--ignore-memory-limit`.
-pub fn parse_scenario(text: &str, source: &str) -> Result<Scenario> {
-    Ok(apply_memory_flag(Scenario::from_str(text, source)?))
-}
-
-/// The result set this run is writing (one output folder per run), shared with the Ctrl-C
-/// handler: every write and the commit happen under this lock, so the handler sees the set
-/// either being written (and discards it) or in place.
-static OUTPUT: std::sync::Mutex<Output> = std::sync::Mutex::new(Output::None);
-
-/// State of this run's output folder.
-enum Output {
-    /// No result set begun.
-    None,
-    /// A result set is being written into its staging folder.
-    Writing(ResultSet),
-    /// The result set is in place in this folder.
-    Done(PathBuf),
-}
-
-fn output() -> std::sync::MutexGuard<'static, Output> {
-    OUTPUT
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner)
-}
-
-/// Starts this run's result set for the folder `dir` (failing before any solve if another
-/// run writes there or the folder cannot be written). Nothing in `dir` changes until
-/// [`commit_output`]; see [`hemicontact::io::result_set`].
-pub fn begin_output(dir: &Path) -> Result<()> {
-    let set = ResultSet::begin(dir)?;
-    *output() = Output::Writing(set);
-    Ok(())
-}
-
-/// Runs `f` on this run's result set (begun by [`begin_output`]).
-pub fn with_output<T>(f: impl FnOnce(&mut ResultSet) -> Result<T>) -> Result<T> {
-    match &mut *output() {
-        Output::Writing(set) => f(set),
-        _ => anyhow::bail!("internal error: no result set is being written"),
-    }
-}
-
-/// Puts this run's result set in place as a unit. Returns the final paths of its files.
-pub fn commit_output() -> Result<Vec<PathBuf>> {
-    let mut state = output();
-    match std::mem::replace(&mut *state, Output::None) {
-        Output::Writing(set) => {
-            let dir = set.target().to_path_buf();
-            let files = set.commit()?;
-            *state = Output::Done(dir);
-            Ok(files)
+impl RunContext {
+    fn apply_memory_flag(&self, mut s: Scenario) -> Scenario {
+        if self.ignore_memory_limit {
+            s.memory_limit = None;
         }
-        other => {
-            *state = other;
-            anyhow::bail!("internal error: no result set is being written")
-        }
+        s
     }
-}
 
-/// Discards this run's result set if it was not committed (after an error): the output
-/// folder keeps its previous content.
-fn discard_output() {
-    let mut state = output();
-    if matches!(*state, Output::Writing(_)) {
-        *state = Output::None;
+    /// Reads a scenario file, honouring `--ignore-memory-limit`.
+    pub fn read_scenario(&self, file: &Path) -> Result<Scenario> {
+        Ok(self.apply_memory_flag(Scenario::from_file(file)?))
     }
-}
 
-/// Exit code of a run interrupted by Ctrl-C (128 + SIGINT, the shell convention).
-const INTERRUPTED: i32 = 130;
-
-/// On Ctrl-C: wait for a write or commit in progress to finish, discard a result set not
-/// yet in place (its staging folder and lock are removed, the output folder keeps its
-/// previous content), say which of the two happened, and exit with 130.
-fn install_interrupt_handler() {
-    let _ = ctrlc::set_handler(|| {
-        // Held until exit: no file is written after this point.
-        let mut state = output();
-        let message = match std::mem::replace(&mut *state, Output::None) {
-            Output::None => "interrupted before any result was written".to_string(),
-            Output::Writing(set) => {
-                let dir = set.target().display().to_string();
-                drop(set);
-                format!(
-                    "interrupted: {dir} was left as it was (its previous results, if any, \
-                     are intact); the unfinished new results were discarded"
-                )
-            }
-            Output::Done(dir) => format!(
-                "interrupted after the results were complete: {} holds the new results",
-                dir.display()
-            ),
-        };
-        eprintln!("{message}");
-        std::process::exit(INTERRUPTED);
-    });
+    /// Parses scenario text, honouring `--ignore-memory-limit`.
+    pub fn parse_scenario(&self, text: &str, source: &str) -> Result<Scenario> {
+        Ok(self.apply_memory_flag(Scenario::from_str(text, source)?))
+    }
 }
 
 fn main() -> ExitCode {
-    install_interrupt_handler();
+    let output = output::Output::new();
+    output.install_interrupt_handler();
     let cli = Cli::parse();
-    let _ = IGNORE_MEMORY_LIMIT.set(cli.ignore_memory_limit);
+    let ctx = RunContext {
+        ignore_memory_limit: cli.ignore_memory_limit,
+        output,
+    };
     let result = match cli.command {
-        Command::Check { file } => check(&file).map(|_| Outcome::Done),
-        Command::Solve { file, out } => solve(&file, out.as_deref()),
+        Command::Check { file } => check(&ctx, &file).map(|_| Outcome::Done),
+        Command::Solve { file, out } => solve(&ctx, &file, out.as_deref()),
         Command::Paper {
             n,
             out,
@@ -259,9 +177,9 @@ fn main() -> ExitCode {
         } => {
             if study {
                 let out = out.unwrap_or_else(|| PathBuf::from("out/paper-study"));
-                paper_study(&levels, reference, &out)
+                paper_study(&ctx, &levels, reference, &out)
             } else {
-                paper(n, &out.unwrap_or_else(|| PathBuf::from("out/paper")))
+                paper(&ctx, n, &out.unwrap_or_else(|| PathBuf::from("out/paper")))
             }
         }
         Command::Convergence {
@@ -270,7 +188,7 @@ fn main() -> ExitCode {
             reference,
             out,
             no_nested,
-        } => convergence(&file, &levels, reference, out.as_deref(), !no_nested),
+        } => convergence(&ctx, &file, &levels, reference, out.as_deref(), !no_nested),
         Command::Bench {
             n,
             repeat,
@@ -278,13 +196,13 @@ fn main() -> ExitCode {
             paper,
             scenario,
         } => if paper {
-            bench::run_paper(&n, repeat, scenario.as_deref())
+            bench::run_paper(&ctx, &n, repeat, scenario.as_deref())
         } else {
-            bench::run(&n, repeat, threads)
+            bench::run(&ctx, &n, repeat, threads)
         }
         .map(|_| Outcome::Done),
     };
-    discard_output();
+    ctx.output.discard();
     match result {
         Ok(Outcome::Done) => ExitCode::SUCCESS,
         Ok(Outcome::NotConverged) => ExitCode::from(3),
@@ -308,8 +226,8 @@ fn error_chain(e: &anyhow::Error) -> String {
     message
 }
 
-fn check(file: &Path) -> Result<()> {
-    let scenario = read_scenario(file)?;
+fn check(ctx: &RunContext, file: &Path) -> Result<()> {
+    let scenario = ctx.read_scenario(file)?;
     let (problem, notes) = scenario.into_problem_with_notes()?;
     let settings = scenario.settings()?;
     // The scales of the dimensionless solve: data too far apart to represent the
@@ -460,8 +378,8 @@ fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
     }
 }
 
-fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
-    let scenario = read_scenario(file)?;
+fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
+    let scenario = ctx.read_scenario(file)?;
     let (problem, notes) = scenario.into_problem_with_notes()?;
     print_notes(&notes);
     let settings = scenario.output();
@@ -477,8 +395,9 @@ fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
         }
     };
     // Fail before the solve if the results could not be written.
-    begin_output(&dir)?;
+    ctx.output.begin(&dir)?;
     let case = run_and_write(
+        ctx,
         problem,
         &scenario,
         notes,
@@ -487,7 +406,7 @@ fn solve(file: &Path, out: Option<&Path>) -> Result<Outcome> {
         settings.summary,
         "scenario",
     )?;
-    print_written(&commit_output()?);
+    print_written(&ctx.output.commit()?);
     let cases = [case];
     print_table(&cases);
     Ok(outcome(&cases))
@@ -511,6 +430,7 @@ fn print_written(files: &[PathBuf]) {
 /// Solves `problem` and writes its results into the sub-folder `folder` (`""`: the root)
 /// of this run's result set.
 fn run_and_write(
+    ctx: &RunContext,
     problem: Problem,
     scenario: &Scenario,
     notes: Vec<String>,
@@ -540,7 +460,7 @@ fn run_and_write(
         ("deformed.svg", figure.to_svg().into_bytes()),
         ("deformed.png", figure.to_png()?),
     ];
-    with_output(|set| {
+    ctx.output.with(|set| {
         Ok(write_results(
             set,
             folder,
@@ -644,7 +564,7 @@ fn outcome(cases: &[Case]) -> Outcome {
     }
 }
 
-fn paper(n: usize, out: &Path) -> Result<Outcome> {
+fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
     if n == 0 || !n.is_multiple_of(2) {
         anyhow::bail!(
             "--n {n}: the paper's mesh needs an even, positive number of squares per side"
@@ -656,19 +576,20 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         16.0 / (2.0 * (n * n) as f64)
     );
     // Fail before the solves if the results could not be written.
-    begin_output(out)?;
+    ctx.output.begin(out)?;
     let mut cases = Vec::new();
     for (label, c_kappa, sub) in [
         ("C_kappa = 10000", 10000.0, "locking"),
         ("C_kappa = 0", 0.0, "no-locking"),
     ] {
-        let scenario = parse_scenario(
+        let scenario = ctx.parse_scenario(
             &builtin::paper(n, c_kappa),
             &format!("<built-in paper, {label}>"),
         )?;
         let problem = scenario.into_problem()?;
         say!("{label}:");
         cases.push(run_and_write(
+            ctx,
             problem,
             &scenario,
             Vec::new(),
@@ -684,20 +605,25 @@ fn paper(n: usize, out: &Path) -> Result<Outcome> {
         .collect();
     let comparison = deformed::side_by_side(&panels);
     let (svg, png) = (comparison.to_svg(), comparison.to_png()?);
-    with_output(|set| {
+    ctx.output.with(|set| {
         set.write("comparison.svg", svg.as_bytes())?;
         set.write("comparison.png", &png)?;
         Ok(())
     })?;
-    print_written(&commit_output()?);
+    print_written(&ctx.output.commit()?);
     print_table(&cases);
     Ok(outcome(&cases))
 }
 
-fn paper_study(levels: &[usize], reference: usize, out: &Path) -> Result<Outcome> {
+fn paper_study(
+    ctx: &RunContext,
+    levels: &[usize],
+    reference: usize,
+    out: &Path,
+) -> Result<Outcome> {
     let mut cases = Vec::new();
     for (label, c_kappa) in [("C_kappa = 10000", 10000.0), ("C_kappa = 0", 0.0)] {
-        let scenario = parse_scenario(
+        let scenario = ctx.parse_scenario(
             &builtin::paper(reference, c_kappa),
             &format!("<built-in paper, {label}>"),
         )?;
@@ -710,6 +636,7 @@ fn paper_study(levels: &[usize], reference: usize, out: &Path) -> Result<Outcome
     };
     say!("paper convergence study: levels {levels:?}, reference n = {reference}");
     let studies = study::run(
+        ctx,
         &cases,
         &settings,
         out,
@@ -719,13 +646,14 @@ fn paper_study(levels: &[usize], reference: usize, out: &Path) -> Result<Outcome
 }
 
 fn convergence(
+    ctx: &RunContext,
     file: &Path,
     levels: &[usize],
     reference: usize,
     out: Option<&Path>,
     nested: bool,
 ) -> Result<Outcome> {
-    let scenario = read_scenario(file)?;
+    let scenario = ctx.read_scenario(file)?;
     // Validate once, at the coarsest level, before any long solve.
     scenario
         .with_resolution(levels.first().copied().unwrap_or(reference))?
@@ -750,7 +678,7 @@ fn convergence(
         reference,
         nested_iteration: nested,
     };
-    let studies = study::run(&[(label.clone(), scenario)], &settings, &dir, &label)?;
+    let studies = study::run(ctx, &[(label.clone(), scenario)], &settings, &dir, &label)?;
     Ok(study_outcome(&studies))
 }
 

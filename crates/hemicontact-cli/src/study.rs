@@ -14,13 +14,14 @@ use std::path::Path;
 /// Runs the studies of `cases` (label, scenario) and writes table.md, table.csv,
 /// convergence.png/.svg and summary.json into `out`. Returns the studies.
 pub fn run(
+    ctx: &crate::RunContext,
     cases: &[(String, Scenario)],
     settings: &StudySettings,
     out: &Path,
     title: &str,
 ) -> Result<Vec<Study>> {
     // Fail before the solves if the results could not be written.
-    crate::begin_output(out)?;
+    ctx.output.begin(out)?;
     let solves = cases.len() * (settings.levels.len() + 1);
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(solves as u64)
@@ -52,7 +53,7 @@ pub fn run(
     let table = study_table::markdown(&studies);
     let figure = convergence::figure(&studies, title);
     let (svg, png) = (figure.to_svg(), figure.to_png()?);
-    crate::with_output(|set| {
+    ctx.output.with(|set| {
         set.write("table.md", table.as_bytes())?;
         set.write("table.csv", study_table::csv(&studies).as_bytes())?;
         set.write("convergence.svg", svg.as_bytes())?;
@@ -74,7 +75,7 @@ pub fn run(
         )?;
         Ok(())
     })?;
-    crate::commit_output()?;
+    ctx.output.commit()?;
     crate::say!("{table}");
     crate::say!("total {total:.2} s; wrote {}/{{table.md, table.csv, convergence.png, convergence.svg, summary.json}}", out.display());
     Ok(studies)

@@ -6,7 +6,9 @@
 //! `"converged": false`, and the message naming the law that failed.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::Command;
+mod common;
+
+use common::bin;
 
 const SCENARIO: &str = r#"
 [mesh]
@@ -42,7 +44,7 @@ fn failing_certificate_exits_3_naming_the_law() {
         )
         .unwrap();
         let dir = tmp.path().join(format!("out-{tol}"));
-        let out = Command::new(env!("CARGO_BIN_EXE_hemicontact"))
+        let out = bin()
             .args([
                 "solve",
                 path.to_str().unwrap(),

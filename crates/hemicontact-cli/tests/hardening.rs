@@ -6,9 +6,9 @@
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_hemicontact"))
-}
+mod common;
+
+use common::bin;
 
 /// A mesh whose solve would need more memory than the machine has is refused before
 /// anything is allocated, naming the field and the estimate.

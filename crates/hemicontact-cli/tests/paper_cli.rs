@@ -2,11 +2,9 @@
 //! command-line program.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use std::process::Command;
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_hemicontact"))
-}
+use common::bin;
 
 /// `hemicontact paper` writes, for both cases, the VTU, the contact table, the summary and
 /// the figures, plus the side-by-side figure; the summaries say converged and certify.

@@ -27,9 +27,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_hemicontact"))
-}
+mod common;
+
+use common::{assert_success, bin, text, Rng};
 
 /// A 4 m square on an n × n mesh, clamped at the bottom, pressed on top; with a contact part
 /// on the right if `contact`.
@@ -94,20 +94,6 @@ impl Work {
         names.sort();
         names
     }
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
-
-fn assert_success(out: &Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}\n{}{}",
-        out.status.code(),
-        text(&out.stdout),
-        text(&out.stderr)
-    );
 }
 
 /// Every file under `dir` (relative names, `/`-separated) with its content.
@@ -185,18 +171,6 @@ fn signal(pid: u32, signal: &str) {
         .status();
 }
 
-/// A pseudo-random number in [0, 1) (xorshift; the seed is printed for a rerun).
-struct Random(u64);
-
-impl Random {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 #[test]
 fn signals_at_random_moments_leave_the_old_or_the_new_set() {
     let w = Work::new(16);
@@ -211,7 +185,8 @@ fn signals_at_random_moments_leave_the_old_or_the_new_set() {
         .as_nanos() as u64
         | 1;
     eprintln!("seed {seed}, a whole run takes {whole:?}");
-    let mut random = Random(seed);
+    // The seed is printed for a rerun.
+    let mut random = Rng::new(seed);
     let (mut kept_old, mut got_new, mut while_writing) = (0, 0, 0);
     let trials = 60;
     for trial in 0..trials {
@@ -224,7 +199,7 @@ fn signals_at_random_moments_leave_the_old_or_the_new_set() {
         let sig = if trial % 2 == 0 { "KILL" } else { "INT" };
         let mut child = w.spawn("new");
         let staging = w.dir.join(format!(".out.tmp-{}", child.id()));
-        std::thread::sleep(whole.mul_f64(1.2 * random.next()));
+        std::thread::sleep(whole.mul_f64(1.2 * random.unit()));
         if staging.exists() {
             while_writing += 1;
         }

@@ -16,7 +16,8 @@
 //! done once. Every solve returns a certificate computed from the equilibrium of the body.
 //!
 //! Layout (dependency order): [`mesh`] → [`fem`] → [`material`], [`contact`] (pointwise
-//! laws) → [`assembly`] → [`linalg`] → [`solver`] → [`scenario`] / [`io`] / [`plot`].
+//! laws) → [`assembly`] → [`linalg`] → [`solver`] → [`scenario`] / [`io`] / `plot`
+//! (figures; the cargo feature `plot`, on by default).
 //!
 //! ```
 //! use hemicontact::scenario::Scenario;
@@ -87,6 +88,7 @@ pub mod linalg;
 pub mod material;
 pub mod mesh;
 pub mod norms;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod problem;
 pub mod resources;

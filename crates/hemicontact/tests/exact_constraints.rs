@@ -489,6 +489,7 @@ fn non_finite_start_is_a_reported_breakdown() {
 
 /// The figure of a 3D solution is a front view: the deformed front facets, the visible
 /// contact nodes and the foundations seen edge-on (two walls facing x).
+#[cfg(feature = "plot")]
 #[test]
 fn three_d_figure_is_a_front_view() {
     use hemicontact::plot::{deformed, Prim};

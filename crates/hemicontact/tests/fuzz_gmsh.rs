@@ -38,22 +38,23 @@
 use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
 use hemicontact::mesh::gmsh::{parse_msh, GmshMesh};
-use hemicontact::mesh::Mesh;
 use hemicontact::Error;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::{select, Index};
 use proptest::strategy::ValueTree;
-use proptest::test_runner::{
-    Config, FileFailurePersistence, RngAlgorithm, RngSeed, TestCaseError, TestError, TestRunner,
-};
-use std::cell::{Cell, RefCell};
-use std::collections::{BTreeMap, HashSet};
-use std::hash::{Hash, Hasher};
-use std::panic::{catch_unwind, AssertUnwindSafe};
+use proptest::test_runner::{TestCaseError, TestError, TestRunner};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
-use std::sync::{Mutex, Once, OnceLock};
+use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
+
+mod common;
+
+use common::facet_set;
+use common::fuzz::{
+    catch_panic, digits_as_hash, install_panic_hook, peak_rss_kib, Campaign, Panic, Tally,
+};
 
 /// A case taking longer than this is a hang (the largest seed parses in about a
 /// millisecond).
@@ -548,37 +549,6 @@ fn apply(b: &[u8], m: &Mutation) -> Vec<u8> {
 // The property.
 // ---------------------------------------------------------------------------------------
 
-thread_local! {
-    /// Whether panics on this thread are expected (caught by the fuzzer).
-    static FUZZING: Cell<bool> = const { Cell::new(false) };
-    /// The location and message of the last panic on this thread.
-    static LAST_PANIC: RefCell<Option<(String, String)>> = const { RefCell::new(None) };
-}
-
-fn install_panic_hook() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            if FUZZING.with(Cell::get) {
-                let location = info
-                    .location()
-                    .map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column()))
-                    .unwrap_or_default();
-                let payload = info.payload();
-                let message = payload
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| payload.downcast_ref::<String>().cloned())
-                    .unwrap_or_default();
-                LAST_PANIC.with(|p| *p.borrow_mut() = Some((location, message)));
-            } else {
-                previous(info);
-            }
-        }));
-    });
-}
-
 /// A failure of the property.
 #[derive(Clone, Debug)]
 enum Failure {
@@ -601,35 +571,13 @@ impl Failure {
 
 /// `f` with panics caught and reported as a [`Failure`].
 fn caught<T>(f: impl FnOnce() -> T) -> Result<T, Failure> {
-    FUZZING.with(|c| c.set(true));
-    LAST_PANIC.with(|p| *p.borrow_mut() = None);
-    let r = catch_unwind(AssertUnwindSafe(f));
-    FUZZING.with(|c| c.set(false));
-    r.map_err(|_| {
-        let (location, message) = LAST_PANIC
-            .with(|p| p.borrow_mut().take())
-            .unwrap_or_default();
-        Failure::Panic { location, message }
-    })
+    catch_panic(f).map_err(|Panic { location, message }| Failure::Panic { location, message })
 }
 
 /// A message up to its first quoted token, at most 60 characters, with digit runs as `#`,
 /// to group results.
 fn kind(message: &str) -> String {
-    let mut out = String::new();
-    let mut digits = false;
-    for c in message.chars().take_while(|&c| c != '`').take(60) {
-        if c.is_ascii_digit() {
-            if !digits {
-                out.push('#');
-            }
-            digits = true;
-        } else {
-            out.push(c);
-            digits = false;
-        }
-    }
-    out
+    digits_as_hash(message.chars().take_while(|&c| c != '`').take(60))
 }
 
 /// Checks an accepted mesh: consistent side arrays, non-empty parts, positive measure, and
@@ -678,18 +626,6 @@ fn check_mesh(g: &GmshMesh) -> Result<(), Failure> {
     Ok(())
 }
 
-fn facet_set(m: &Mesh) -> Vec<(usize, Vec<u32>)> {
-    let mut out: Vec<(usize, Vec<u32>)> = (0..m.n_facets())
-        .map(|f| {
-            let mut v = m.facet(f).to_vec();
-            v.sort_unstable();
-            (m.facet_part(f), v)
-        })
-        .collect();
-    out.sort();
-    out
-}
-
 /// Parses one input; returns the kind of the result.
 fn check(bytes: &[u8]) -> Result<String, Failure> {
     let start = Instant::now();
@@ -725,29 +661,10 @@ fn check(bytes: &[u8]) -> Result<String, Failure> {
 
 #[derive(Default)]
 struct Stats {
-    distinct: HashSet<u64>,
-    calls: u64,
+    /// Distinct inputs, calls, and the slowest case with its input's length in bytes.
+    tally: Tally<usize>,
     results: BTreeMap<String, u64>,
     failures: BTreeMap<String, Vec<u8>>,
-    slowest: (Duration, usize),
-}
-
-fn env_u32(name: &str, default: u32) -> u32 {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
-fn peak_rss_kib() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse().ok())
-        })
-        .unwrap_or(0)
 }
 
 /// The campaign, in a child process under an address-space limit when `prlimit` is
@@ -789,45 +706,18 @@ fn fuzz_gmsh_reader() {
 
 fn campaign() {
     install_panic_hook();
-    let cases = env_u32("HEMICONTACT_FUZZ_CASES", 2000);
-    let collect = std::env::var("HEMICONTACT_FUZZ_COLLECT").is_ok_and(|v| v == "1");
-    let seed = std::env::var("HEMICONTACT_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(SEED);
-    let config = Config {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
-            PROPTEST_REGRESSIONS,
-        ))),
-        source_file: Some(file!()),
-        rng_algorithm: RngAlgorithm::ChaCha,
-        rng_seed: RngSeed::Fixed(seed),
-        max_shrink_iters: 4096,
-        max_shrink_time: 60_000,
-        max_local_rejects: 0,
-        max_global_rejects: 0,
-        verbose: 0,
-        fork: false,
-        timeout: 0,
-        ..Config::default()
-    };
+    let campaign = Campaign::from_env(2000, SEED);
+    let (cases, collect, seed) = (campaign.cases, campaign.collect, campaign.seed);
     let stats = Mutex::new(Stats::default());
     let start = Instant::now();
-    let mut runner = TestRunner::new(config);
+    let mut runner = campaign.runner(PROPTEST_REGRESSIONS, file!());
     let result = runner.run(&input(), |input| {
         let bytes = input.bytes();
         let t0 = Instant::now();
         let r = check(&bytes);
         let dt = t0.elapsed();
         let mut st = stats.lock().unwrap();
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        bytes.hash(&mut h);
-        st.distinct.insert(h.finish());
-        st.calls += 1;
-        if dt > st.slowest.0 {
-            st.slowest = (dt, bytes.len());
-        }
+        st.tally.record(&bytes, dt, || bytes.len());
         match r {
             Ok(kind) => {
                 *st.results.entry(kind).or_default() += 1;
@@ -863,11 +753,11 @@ fn campaign() {
     eprintln!(
         "fuzz_gmsh (seed {seed}): {cases} cases, {} calls, {} distinct inputs ({ok} accepted) in \
          {:.1} s; slowest {:?} ({} bytes); peak RSS {} MiB; address-space limit {limit} bytes",
-        st.calls,
-        st.distinct.len(),
+        st.tally.calls,
+        st.tally.distinct.len(),
         elapsed.as_secs_f64(),
-        st.slowest.0,
-        st.slowest.1,
+        st.tally.slowest.0,
+        st.tally.slowest.1,
         peak_rss_kib() / 1024
     );
     eprintln!("results:");

@@ -38,16 +38,17 @@ use hemicontact::Error;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::sample::{select, Index};
-use proptest::test_runner::{
-    Config, FileFailurePersistence, RngAlgorithm, RngSeed, TestCaseError, TestError, TestRunner,
-};
-use std::cell::{Cell, RefCell};
+use proptest::test_runner::{TestCaseError, TestError};
 use std::collections::{BTreeMap, HashSet};
-use std::hash::{Hash, Hasher};
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, Once};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
+
+mod common;
+
+use common::fuzz::{
+    catch_panic, digits_as_hash, install_panic_hook, peak_rss_kib, Campaign, Panic, Tally,
+};
 
 /// Largest 2D mesh (squares `nx · ny`) turned into a problem by the fuzzer.
 const MAX_SQUARES: u64 = 64 * 64 * 4;
@@ -1256,38 +1257,6 @@ fn apply(text: &str, m: &Mutation) -> String {
 // The property.
 // ---------------------------------------------------------------------------------------
 
-thread_local! {
-    /// Whether panics on this thread are expected (caught by the fuzzer): then the panic
-    /// hook records them silently.
-    static FUZZING: Cell<bool> = const { Cell::new(false) };
-    /// The location and message of the last panic on this thread.
-    static LAST_PANIC: RefCell<Option<(String, String)>> = const { RefCell::new(None) };
-}
-
-fn install_panic_hook() {
-    static ONCE: Once = Once::new();
-    ONCE.call_once(|| {
-        let previous = std::panic::take_hook();
-        std::panic::set_hook(Box::new(move |info| {
-            if FUZZING.with(Cell::get) {
-                let location = info
-                    .location()
-                    .map(|l| format!("{}:{}:{}", l.file(), l.line(), l.column()))
-                    .unwrap_or_default();
-                let payload = info.payload();
-                let message = payload
-                    .downcast_ref::<&str>()
-                    .map(|s| s.to_string())
-                    .or_else(|| payload.downcast_ref::<String>().cloned())
-                    .unwrap_or_default();
-                LAST_PANIC.with(|p| *p.borrow_mut() = Some((location, message)));
-            } else {
-                previous(info);
-            }
-        }));
-    });
-}
-
 /// What one input gave.
 #[derive(Clone, Debug, Default)]
 struct Outcome {
@@ -1338,38 +1307,17 @@ impl Failure {
 }
 
 fn run_caught<T>(stage: &'static str, f: impl FnOnce() -> T) -> Result<T, Failure> {
-    FUZZING.with(|c| c.set(true));
-    LAST_PANIC.with(|p| *p.borrow_mut() = None);
-    let r = catch_unwind(AssertUnwindSafe(f));
-    FUZZING.with(|c| c.set(false));
-    r.map_err(|_| {
-        let (location, message) = LAST_PANIC
-            .with(|p| p.borrow_mut().take())
-            .unwrap_or_default();
-        Failure::Panic {
-            stage,
-            location,
-            message,
-        }
+    catch_panic(f).map_err(|Panic { location, message }| Failure::Panic {
+        stage,
+        location,
+        message,
     })
 }
 
-/// Replaces digit runs by `#`, so that messages differing only in numbers group together.
+/// Replaces digit runs by `#` (in the first 120 characters), so that messages differing
+/// only in numbers group together.
 fn normalize(message: &str) -> String {
-    let mut out = String::new();
-    let mut in_digits = false;
-    for c in message.chars().take(120) {
-        if c.is_ascii_digit() {
-            if !in_digits {
-                out.push('#');
-            }
-            in_digits = true;
-        } else {
-            out.push(c);
-            in_digits = false;
-        }
-    }
-    out
+    digits_as_hash(message.chars().take(120))
 }
 
 /// Checks an error; returns its kind.
@@ -1560,8 +1508,8 @@ fn check(text: &str) -> Result<Outcome, Failure> {
 
 #[derive(Default)]
 struct Stats {
-    distinct: HashSet<u64>,
-    calls: u64,
+    /// Distinct inputs, calls, and the slowest case with its input.
+    tally: Tally<String>,
     results: BTreeMap<String, u64>,
     /// Soft findings: kind -> (count, shortest input, detail).
     soft: BTreeMap<String, (u64, String, String)>,
@@ -1570,7 +1518,6 @@ struct Stats {
     /// Unknown failures (collect mode): signature -> shortest input.
     failures: BTreeMap<String, String>,
     skipped_large: u64,
-    slowest: (Duration, String),
 }
 
 fn keep_shortest(slot: &mut String, text: &str) {
@@ -1579,66 +1526,21 @@ fn keep_shortest(slot: &mut String, text: &str) {
     }
 }
 
-fn env_u32(name: &str, default: u32) -> u32 {
-    std::env::var(name)
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(default)
-}
-
-fn peak_rss_kib() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1)?.parse().ok())
-        })
-        .unwrap_or(0)
-}
-
 #[test]
 fn fuzz_scenario_parser_and_validation() {
     install_panic_hook();
-    let cases = env_u32("HEMICONTACT_FUZZ_CASES", 256);
-    let collect = std::env::var("HEMICONTACT_FUZZ_COLLECT").is_ok_and(|v| v == "1");
-    let seed = std::env::var("HEMICONTACT_FUZZ_SEED")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(SEED);
-    let config = Config {
-        cases,
-        failure_persistence: Some(Box::new(FileFailurePersistence::Direct(
-            PROPTEST_REGRESSIONS,
-        ))),
-        source_file: Some(file!()),
-        rng_algorithm: RngAlgorithm::ChaCha,
-        rng_seed: RngSeed::Fixed(seed),
-        max_shrink_iters: 4096,
-        max_shrink_time: 60_000,
-        max_local_rejects: 0,
-        max_global_rejects: 0,
-        verbose: 0,
-        fork: false,
-        timeout: 0,
-        ..Config::default()
-    };
+    let campaign = Campaign::from_env(256, SEED);
+    let (cases, collect, seed) = (campaign.cases, campaign.collect, campaign.seed);
     let stats = Mutex::new(Stats::default());
     let start = Instant::now();
-    let mut runner = TestRunner::new(config);
+    let mut runner = campaign.runner(PROPTEST_REGRESSIONS, file!());
     let result = runner.run(&input(), |input| {
         let text = input.text();
         let t0 = Instant::now();
         let r = check(&text);
         let dt = t0.elapsed();
         let mut st = stats.lock().unwrap();
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        text.hash(&mut h);
-        st.distinct.insert(h.finish());
-        st.calls += 1;
-        if dt > st.slowest.0 {
-            st.slowest = (dt, text.clone());
-        }
+        st.tally.record(&text, dt, || text.clone());
         match r {
             Ok(out) => {
                 for k in out.results {
@@ -1682,11 +1584,11 @@ fn fuzz_scenario_parser_and_validation() {
     eprintln!(
         "fuzz_scenario (seed {seed}): {} cases, {} calls, {} distinct inputs in {:.1} s; {} too large to build; slowest {:?}; peak RSS {} MiB",
         cases,
-        st.calls,
-        st.distinct.len(),
+        st.tally.calls,
+        st.tally.distinct.len(),
         elapsed.as_secs_f64(),
         st.skipped_large,
-        st.slowest.0,
+        st.tally.slowest.0,
         peak_rss_kib() / 1024
     );
     eprintln!("results:");

@@ -39,6 +39,10 @@ use hemicontact::solver::SolverSettings;
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
 
+mod common;
+
+use common::facet_set;
+
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/data/gmsh")
@@ -63,20 +67,6 @@ fn part_measure(mesh: &Mesh, name: &str) -> f64 {
     mesh.part_facets(p)
         .map(|f| mesh.facet_measure_normal(f).0)
         .sum()
-}
-
-/// Boundary facets as a sorted list of (part, sorted vertices): facet order carries no
-/// meaning (the writer groups facets by part).
-fn facet_set(m: &Mesh) -> Vec<(usize, Vec<u32>)> {
-    let mut out: Vec<(usize, Vec<u32>)> = (0..m.n_facets())
-        .map(|f| {
-            let mut v = m.facet(f).to_vec();
-            v.sort_unstable();
-            (m.facet_part(f), v)
-        })
-        .collect();
-    out.sort();
-    out
 }
 
 /// Same nodes (coordinates within `tol`, relative to 1), same cells in the same order,

@@ -24,18 +24,9 @@
 
 mod common;
 
-use common::Rng;
+use common::{random_strain, Rng};
 use hemicontact::material::{Hooke, Plane, StrainEnergy};
 use hemicontact::tensor::{mandel_len, Sym};
-
-/// A random strain of magnitude ~`scale` in dimension `dim`.
-fn random_strain(rng: &mut Rng, dim: usize, scale: f64) -> Sym {
-    let mut e = Sym::zero(dim);
-    for k in 0..mandel_len(dim) {
-        e.c[k] = scale * rng.uniform(-1.0, 1.0);
-    }
-    e
-}
 
 /// Checks `stress ≈ ∇W` and `tangent ≈ ∇σ` by central differences in Mandel components,
 /// and the symmetry of the tangent, at `samples` random strains. Generic, so every law of

@@ -33,42 +33,9 @@ use hemicontact::material::{
 };
 use hemicontact::tensor::{apply, mandel_len, Sym, Tangent};
 
-/// SplitMix64: a tiny deterministic generator, so failures are reproducible.
-struct Rng(u64);
+mod common;
 
-impl Rng {
-    fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [lo, hi).
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        let u = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
-        lo + (hi - lo) * u
-    }
-
-    /// Log-uniform in [lo, hi).
-    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.uniform(lo.ln(), hi.ln()).exp()
-    }
-}
-
-/// A random strain whose Mandel components are uniform in `[-scale, scale]`.
-fn random_strain(rng: &mut Rng, dim: usize, scale: f64) -> Sym {
-    let mut e = Sym::zero(dim);
-    for k in 0..mandel_len(dim) {
-        e.c[k] = scale * rng.uniform(-1.0, 1.0);
-    }
-    e
-}
+use common::{random_strain, Rng};
 
 /// Unit vector `e_k` in Mandel components.
 fn unit(dim: usize, k: usize) -> Sym {

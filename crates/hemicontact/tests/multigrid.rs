@@ -16,12 +16,9 @@ fn setup(text: &str) -> (Problem, SolverSettings) {
     (problem, scenario.settings().unwrap())
 }
 
-fn problem(text: &str) -> Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
-}
+mod common;
+
+use common::problem;
 
 /// A box `(0,2)×(0,1)×(0,1)` with `n` cells per unit length, clamped at the bottom.
 fn box_problem(n: usize) -> Problem {

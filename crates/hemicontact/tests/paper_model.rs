@@ -21,9 +21,9 @@ fn assert_certified(s: &Solution) {
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
 
+/// Plane-strain Lamé constants `(λ, G)` of `E`, `ν`.
 fn lame() -> (f64, f64) {
-    let g = E / (2.0 * (1.0 + NU));
-    (E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)), g)
+    common::lame(E, NU, false)
 }
 
 /// A unit block on rollers (left: x fixed, bottom: y fixed), pressed by `p` on top, expands

@@ -15,18 +15,11 @@ use hemicontact::io::result_set::ResultSet;
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
 
+mod common;
+
 /// A fresh empty folder under the system temporary folder.
 fn work() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "hemicontact-result-set-{}-{}",
-        std::process::id(),
-        std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::fresh_dir("result-set")
 }
 
 /// Sorted names of the entries of `dir`.

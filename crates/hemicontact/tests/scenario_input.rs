@@ -15,6 +15,8 @@
 use hemicontact::scenario::{Scenario, MAX_SCENARIO_BYTES};
 use hemicontact::Error;
 
+mod common;
+
 /// A 2 × 2 square (parts bottom, right, top, left) with `extra` TOML appended.
 fn square(extra: &str) -> String {
     format!(
@@ -57,7 +59,7 @@ fn dev_zero_is_refused_as_not_a_regular_file() {
 
 #[test]
 fn folder_is_refused_as_not_a_regular_file() {
-    let dir = tempfile_dir();
+    let dir = common::fresh_dir("scenario-input");
     let e = Scenario::from_file(&dir).unwrap_err();
     assert_names(
         &e.to_string(),
@@ -65,23 +67,9 @@ fn folder_is_refused_as_not_a_regular_file() {
     );
 }
 
-/// A fresh empty folder under the system temporary folder.
-fn tempfile_dir() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "hemicontact-scenario-input-{}-{}",
-        std::process::id(),
-        std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .unwrap()
-            .as_nanos()
-    ));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn size_limit_is_inclusive_and_one_byte_more_is_refused() {
-    let dir = tempfile_dir();
+    let dir = common::fresh_dir("scenario-input");
     let base = square("[[dirichlet]]\npart = \"bottom\"\n");
     let limit = usize::try_from(MAX_SCENARIO_BYTES).unwrap();
     // A comment line "#xxx…\n" pads the text to exactly the limit.

@@ -3,27 +3,21 @@
 //! code paths as 2D with `LD = 12` element kernels and 2D tangent planes at contact nodes.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::scenario::Scenario;
 use hemicontact::solver::convex::minimize;
 use hemicontact::solver::newton::{NewtonRecord, NewtonSettings};
 use hemicontact::solver::SolverSettings;
 use hemicontact::solver::{solve, System};
 
+mod common;
+
+use common::problem;
+
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
 
+/// Lamé constants `(λ, G)` of `E`, `ν` (3D).
 fn lame() -> (f64, f64) {
-    (
-        E * NU / ((1.0 + NU) * (1.0 - 2.0 * NU)),
-        E / (2.0 * (1.0 + NU)),
-    )
-}
-
-fn problem(text: &str) -> hemicontact::problem::Problem {
-    Scenario::from_str(text, "test")
-        .unwrap()
-        .into_problem()
-        .unwrap()
+    common::lame(E, NU, false)
 }
 
 /// An affine displacement prescribed on the whole boundary of a box is reproduced at the

@@ -6,9 +6,9 @@ use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::uniqueness::{check, trace_constant};
 use hemicontact::solver::SolverSettings;
 
-fn problem(text: &str) -> hemicontact::problem::Problem {
-    setup(text).0
-}
+mod common;
+
+use common::problem;
 
 /// The validated problem and `[solver]` settings of a scenario text.
 fn setup(text: &str) -> (hemicontact::problem::Problem, SolverSettings) {

@@ -1,46 +1,24 @@
 //! Helpers shared by the integration tests: a deterministic pseudo-random generator,
-//! scenario construction, closed-form Lamé constants, and a solve with a prescribed
-//! displacement field on the Dirichlet DOFs.
+//! scenario construction, closed-form Lamé constants, a solve with a prescribed
+//! displacement field on the Dirichlet DOFs, and the harness of the fuzz tests.
 //!
 //! Every test file includes this module with `mod common;` and uses only part of it.
 #![allow(dead_code)]
 
+pub mod fuzz;
+mod rng;
+
+#[allow(unused_imports)] // Not every test file draws random numbers.
+pub use rng::Rng;
+
+use hemicontact::mesh::Mesh;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::newton::NewtonRecord;
 use hemicontact::solver::{convex, SolverSettings, System};
+use hemicontact::tensor::{mandel_len, Sym};
 
-/// A small deterministic generator (SplitMix64), so failures are reproducible without a
-/// dependency.
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator with the given seed.
-    pub fn new(seed: u64) -> Self {
-        Rng(seed)
-    }
-
-    /// Next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
-
-/// Lamé constants `(λ, G)` from E and ν by the textbook formulas (SPEC §2), written out
+/// Lamé constants `(λ, G)` from E and ν by the textbook formulas, written out
 /// here independently of the library: plane strain / 3D
 /// `λ = Eν/((1+ν)(1−2ν))`, plane stress `λ = Eν/(1−ν²)`; `G = E/(2(1+ν))` in both.
 pub fn lame(young: f64, poisson: f64, plane_stress: bool) -> (f64, f64) {
@@ -147,4 +125,43 @@ pub fn assert_certified(s: &hemicontact::solver::Solution, tol: f64) {
         "friction-law residual {:e}",
         c.friction_law
     );
+}
+
+/// Boundary facets as a sorted list of (part, sorted vertices): facet order carries no
+/// meaning (the writer groups facets by part).
+pub fn facet_set(m: &Mesh) -> Vec<(usize, Vec<u32>)> {
+    let mut out: Vec<(usize, Vec<u32>)> = (0..m.n_facets())
+        .map(|f| {
+            let mut v = m.facet(f).to_vec();
+            v.sort_unstable();
+            (m.facet_part(f), v)
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// A random strain of dimension `dim` whose Mandel components are uniform in
+/// `[-scale, scale]`.
+pub fn random_strain(rng: &mut Rng, dim: usize, scale: f64) -> Sym {
+    let mut e = Sym::zero(dim);
+    for k in 0..mandel_len(dim) {
+        e.c[k] = scale * rng.uniform(-1.0, 1.0);
+    }
+    e
+}
+
+/// A fresh empty folder `hemicontact-<prefix>-<process id>-<nanoseconds>` under the system
+/// temporary folder.
+pub fn fresh_dir(prefix: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "hemicontact-{prefix}-{}-{}",
+        std::process::id(),
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap()
+            .as_nanos()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
