@@ -151,8 +151,7 @@ pub fn run_paper(sizes: &[usize], repeat: usize, file: Option<&std::path::Path>)
         // contact and locking.
         let mut linear = paper.clone();
         linear.contact.clear();
-        linear.material.locking = hemicontact::material::LockingPenalty::NONE;
-        linear.material.ideal_locking = None;
+        linear.material.locking = hemicontact::material::Locking::None;
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

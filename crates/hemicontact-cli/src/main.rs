@@ -366,17 +366,15 @@ fn print_problem(problem: &Problem, source: &str) {
         "certificate tolerance {:e} (relative residuals of every law)",
         problem.solver.certificate_tolerance
     );
-    let lock = &problem.material.locking;
-    if let Some(set) = &problem.material.ideal_locking {
-        say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)");
-    } else if lock.c_kappa > 0.0 {
-        say!(
-            "locking    {:?}, penalty C_κ = {:e} Pa",
-            lock.set,
-            lock.c_kappa
-        );
-    } else {
-        say!("locking    none");
+    use hemicontact::material::Locking;
+    match &problem.material.locking {
+        Locking::Ideal(set) => {
+            say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)")
+        }
+        Locking::Penalty(p) if p.c_kappa > 0.0 => {
+            say!("locking    {:?}, penalty C_κ = {:e} Pa", p.set, p.c_kappa)
+        }
+        _ => say!("locking    none"),
     }
     for (k, c) in problem.contact.iter().enumerate() {
         let friction = match &c.friction {
@@ -386,7 +384,11 @@ fn print_problem(problem: &Problem, source: &str) {
                 f.bound,
                 f.mu,
                 f.potential,
-                if f.exact { ", exact stick/slip" } else { "" }
+                if f.is_exact() {
+                    ", exact stick/slip"
+                } else {
+                    ""
+                }
             ),
         };
         let normal = match c.normal {

@@ -1474,14 +1474,26 @@ fn check_problem(p: &hemicontact::problem::Problem, soft: &mut Vec<(String, Stri
             bad("Hencky s0 = reference_strain²", h.s0, true);
         }
     }
-    bad("locking c_kappa", p.material.locking.c_kappa, false);
+    bad(
+        "locking c_kappa",
+        p.material.locking.penalty().map_or(0.0, |l| l.c_kappa),
+        false,
+    );
     bad("mesh diameter", p.diameter(), true);
     bad("mesh measure", p.mesh.measure(), true);
-    bad(
-        "friction regularization ρ_num = friction_regularization · diameter",
-        p.solver.outer.friction_regularization * p.diameter(),
-        true,
-    );
+    for c in &p.contact {
+        if let Some(reg) = c
+            .friction
+            .as_ref()
+            .and_then(|f| f.potential.regularization())
+        {
+            bad(
+                "friction regularization ρ_num = regularization · diameter",
+                reg * p.diameter(),
+                true,
+            );
+        }
+    }
     let pcg = p.solver.newton.pcg_tolerance;
     if !(pcg.is_finite() && pcg >= 1e-12) {
         soft.push((

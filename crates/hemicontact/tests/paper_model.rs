@@ -153,9 +153,15 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     let (pr, s) = sheared_block(0.5 * delta_star, mu);
     assert_certified(&s);
     // The numerical regularization of ‖·‖ in the user's units: a fraction
-    // (`friction_regularization`, 1e-8) of the displacement scale of the solve.
+    // (the friction law's `regularization`, 1e-8) of the displacement scale of the solve.
     let scales = s.report.scales.expect("scales");
-    let rho_num = pr.solver.outer.friction_regularization * scales.displacement;
+    let regularization = pr
+        .contact
+        .iter()
+        .filter_map(|c| c.friction.as_ref()?.potential.regularization())
+        .fold(0.0, f64::max);
+    assert_eq!(regularization, 1e-8);
+    let rho_num = regularization * scales.displacement;
     for c in &s.contact {
         assert_eq!(
             c.friction_state,

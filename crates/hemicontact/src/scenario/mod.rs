@@ -6,17 +6,19 @@
 //! the file, the field, the value and what is allowed.
 
 pub mod builtin;
+mod friction;
 pub mod schema;
 
-use crate::contact::{ContactBoundary, Friction, FrictionPotential, NormalCompliance, NormalLaw};
+use crate::contact::{ContactBoundary, NormTreatment, NormalCompliance, NormalLaw};
 use crate::error::{Error, Result};
-use crate::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane};
+use crate::material::{
+    Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material, Plane,
+};
 use crate::mesh::generate::{self, Rectangle};
 use crate::mesh::Mesh;
 use crate::problem::{Dirichlet, Problem, Traction};
 use schema::{
-    ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, PotentialKind,
-    ScenarioFile,
+    ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, ScenarioFile,
 };
 use std::path::{Path, PathBuf};
 
@@ -545,29 +547,29 @@ impl Scenario {
         }
         let l = &self.file.locking;
         let set = match l.set {
-            LockingSetKind::None => LockingSet::None,
-            LockingSetKind::LimitedCompressibility => LockingSet::LimitedCompressibility {
+            LockingSetKind::None => None,
+            LockingSetKind::LimitedCompressibility => Some(LockingSet::LimitedCompressibility {
                 theta: self.positive(
                     "locking.theta",
                     l.theta,
                     "a volumetric strain threshold θ",
                 )?,
-            },
-            LockingSetKind::Prager => LockingSet::Prager {
+            }),
+            LockingSetKind::Prager => Some(LockingSet::Prager {
                 kappa: self.positive("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
-            },
-            LockingSetKind::Ball => LockingSet::Ball {
+            }),
+            LockingSetKind::Ball => Some(LockingSet::Ball {
                 r: self.positive("locking.radius", l.radius, "a strain radius r")?,
-            },
+            }),
         };
         if l.treatment == LockingTreatment::Exact {
-            if set == LockingSet::None {
+            let Some(set) = set else {
                 return Err(self.err(
                     "locking.treatment",
                     "\"exact\"",
                     "\"exact\" only with a locking set (locking.set)",
                 ));
-            }
+            };
             if let Some(c) = l.c_kappa {
                 return Err(self.err(
                     "locking.c_kappa",
@@ -577,24 +579,25 @@ impl Scenario {
             }
             return Ok(Material {
                 elasticity,
-                locking: LockingPenalty::NONE,
-                ideal_locking: Some(set),
+                locking: Locking::Ideal(set),
             });
         }
-        let c_kappa = match (set, l.c_kappa) {
-            (LockingSet::None, None) => 0.0,
-            (LockingSet::None, Some(c)) => {
+        let locking = match (set, l.c_kappa) {
+            (None, None) => Locking::None,
+            (None, Some(c)) => {
                 return Err(self.err(
                     "locking.c_kappa",
                     c,
                     "only with a locking set (locking.set)",
                 ))
             }
-            (_, Some(c)) if c.is_finite() && c >= 0.0 => c,
+            (Some(set), Some(c)) if c.is_finite() && c >= 0.0 => {
+                Locking::Penalty(LockingPenalty { set, c_kappa: c })
+            }
             (_, Some(c)) => {
                 return Err(self.err("locking.c_kappa", c, "a compliance C_κ ≥ 0 (Pa)"))
             }
-            (_, None) => {
+            (Some(_), None) => {
                 return Err(self.err(
                     "locking.c_kappa",
                     "missing",
@@ -604,8 +607,7 @@ impl Scenario {
         };
         Ok(Material {
             elasticity,
-            locking: LockingPenalty { set, c_kappa },
-            ideal_locking: None,
+            locking,
         })
     }
 
@@ -638,60 +640,7 @@ impl Scenario {
             };
             let friction = match &c.friction {
                 None => None,
-                Some(fs) => {
-                    let potential = match fs.potential {
-                        PotentialKind::Norm => FrictionPotential::Norm,
-                        PotentialKind::Nonconvex => {
-                            let a = self.positive(&f("friction.a"), fs.a, "a parameter 0 < a")?;
-                            if a >= 1.0 {
-                                return Err(self.err(
-                                    &f("friction.a"),
-                                    a,
-                                    "a parameter with 0 < a < 1",
-                                ));
-                            }
-                            FrictionPotential::Nonconvex { a, unit: 1.0 }
-                        }
-                        PotentialKind::Regularized => FrictionPotential::Regularized {
-                            rho: self.positive(
-                                &f("friction.rho"),
-                                fs.rho,
-                                "a regularization length ρ (m)",
-                            )?,
-                        },
-                    };
-                    if fs.potential != PotentialKind::Nonconvex && fs.a.is_some() {
-                        return Err(self.err(
-                            &f("friction.a"),
-                            fs.a.unwrap_or(0.0),
-                            "only with potential = \"nonconvex\"",
-                        ));
-                    }
-                    if fs.potential != PotentialKind::Regularized && fs.rho.is_some() {
-                        return Err(self.err(
-                            &f("friction.rho"),
-                            fs.rho.unwrap_or(0.0),
-                            "only with potential = \"regularized\"",
-                        ));
-                    }
-                    fs.mu
-                        .validate()
-                        .map_err(|msg| self.err(&f("friction.mu"), format!("{:?}", fs.mu), &msg))?;
-                    if fs.exact && !potential.is_nonsmooth() {
-                        return Err(self.err(
-                            &f("friction.exact"),
-                            true,
-                            "exact = true only with potential = \"norm\" or \"nonconvex\" \
-                             (the regularized law (19) is smooth)",
-                        ));
-                    }
-                    Some(Friction {
-                        bound: fs.bound,
-                        mu: fs.mu.clone(),
-                        potential,
-                        exact: fs.exact,
-                    })
-                }
+                Some(fs) => Some(self.build_friction(k, fs)?),
             };
             out.push(ContactBoundary {
                 part,
@@ -899,15 +848,10 @@ impl Scenario {
                 "a factor in (0, 1]",
             ));
         }
-        if !(o.friction_regularization.is_finite()
-            && o.friction_regularization > 0.0
-            && o.friction_regularization < 1e-2)
-        {
-            return Err(self.err(
-                "solver.outer.friction_regularization",
-                o.friction_regularization,
-                "a number in (0, 0.01)",
-            ));
+        if let Some(v) = o.friction_regularization {
+            NormTreatment::Smoothed { regularization: v }
+                .validate()
+                .map_err(|msg| self.err("solver.outer.friction_regularization", v, &msg))?;
         }
         let tol = solver.certificate_tolerance;
         if !(tol.is_finite() && (1e-14..1.0).contains(&tol)) {
@@ -988,6 +932,7 @@ impl Scenario {
             },
             e => e,
         })?;
+        notes.extend(self.friction_notes());
         notes.extend(problem.notes());
         Ok((problem, notes))
     }

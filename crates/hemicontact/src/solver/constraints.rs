@@ -109,11 +109,11 @@ impl ConstraintSettings {
 
 /// Whether the problem has exact constraints (and so multipliers to iterate on).
 pub fn has_exact_constraints(problem: &Problem) -> bool {
-    problem.material.ideal_locking.is_some()
+    problem.material.locking.ideal().is_some()
         || problem
             .contact
             .iter()
-            .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.exact))
+            .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.is_exact()))
 }
 
 /// P-wave modulus `S = λ + 2G` of the small-strain Hooke law of the problem (Pa).
@@ -125,14 +125,11 @@ fn stiffness_scale(problem: &Problem) -> f64 {
     (h.lambda + 2.0 * h.mu).max(h.mu)
 }
 
-/// Penalty r_T of the ideal-locking set `set` (Pa per unit of Q²).
+/// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` (Pa per unit of Q²; see
+/// [`LockingSet::gradient_norm_sq_at_boundary`]).
 pub fn locking_penalty(problem: &Problem, set: &LockingSet) -> f64 {
-    let gamma = problem.solver.constraints.locking_penalty;
-    let s = stiffness_scale(problem);
-    match *set {
-        LockingSet::Prager { kappa } => gamma * s / (2.0 * kappa * kappa),
-        _ => gamma * s,
-    }
+    problem.solver.constraints.locking_penalty * stiffness_scale(problem)
+        / set.gradient_norm_sq_at_boundary()
 }
 
 /// Penalty r_i (Pa/m) of every contact point of weight `weight[i]`.
@@ -163,16 +160,6 @@ pub fn update_locking(
             (current[c] + r * set.q(&eps)).max(0.0)
         })
         .collect()
-}
-
-/// The scale of Q for a set: θ, κ² or r (so that `Q/scale` is a relative violation).
-pub fn q_scale(set: &LockingSet) -> f64 {
-    match *set {
-        LockingSet::None => 1.0,
-        LockingSet::LimitedCompressibility { theta } => theta,
-        LockingSet::Prager { kappa } => kappa * kappa,
-        LockingSet::Ball { r } => r,
-    }
 }
 
 /// KKT residuals of the exact constraints at a solution (all dimensionless).
@@ -225,7 +212,7 @@ pub fn locking_kkt(
     lambda: &[f64],
     kkt: &mut KktCertificate,
 ) {
-    let q_ref = q_scale(set);
+    let q_ref = set.size();
     let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
     let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
     kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
@@ -261,12 +248,13 @@ pub fn stages(problem: &Problem) -> usize {
     let c = &problem.solver.constraints;
     let locking = problem
         .material
-        .ideal_locking
+        .locking
+        .ideal()
         .map_or(0, |_| c.stages(c.locking_penalty));
     let contact = if problem
         .contact
         .iter()
-        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.exact))
+        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.is_exact()))
     {
         c.stages(c.contact_penalty)
     } else {

@@ -214,7 +214,8 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> 
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
     let n_points = system.contact.len();
-    let n_locking = problem.mesh.n_cells() * usize::from(problem.material.ideal_locking.is_some());
+    let n_locking =
+        problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = system.initial_frozen(problem, &u);
@@ -360,7 +361,7 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> 
             tolerance: settings.certificate_tolerance,
         },
     );
-    if let Some(set) = problem.material.ideal_locking {
+    if let Some(set) = problem.material.locking.ideal() {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
         constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
     }
@@ -377,7 +378,7 @@ fn solve_dimensionless(problem: &Problem, mut u: Vec<f64>, length_unit: f64) -> 
         });
         let hint = match worst.law {
             "friction law" => {
-                "; the friction regularization ([solver.outer] friction_regularization) may be \
+                "; the friction regularization ([contact.friction] regularization) may be \
                  too large for this tolerance: lower it, or impose friction exactly \
                  ([contact.friction] exact = true)"
             }
@@ -451,8 +452,8 @@ fn residual(problem: &Problem, system: &System, z: &Frozen, g: &Frozen, u: &[f64
             .max((g.pressure[i] - z.pressure[i]).abs() / r)
             .max(dt / r);
     }
-    if let Some(set) = &problem.material.ideal_locking {
-        let r = system.locking_penalty * constraints::q_scale(set);
+    if let Some(set) = problem.material.locking.ideal() {
+        let r = system.locking_penalty * set.size();
         for (a, b) in g.locking.iter().zip(&z.locking) {
             fp = fp.max((a - b).abs() / r);
         }

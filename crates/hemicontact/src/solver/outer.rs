@@ -54,14 +54,12 @@ pub struct OuterSettings {
     pub depth: usize,
     /// Initial relaxation factor ω ∈ (0, 1] of the plain fixed point. Default 1.
     pub relaxation: f64,
-    /// Numerical regularization of the norm in the friction potential, relative to the
-    /// displacement scale U of the problem ([`super::scaling`]): `ρ_num =
-    /// friction_regularization · U`, reached by continuation from `10⁻² U`
-    /// ([`super::System::set_regularization_stage`]). Default 1e-8: the friction force of a
-    /// point slipping by r misses the bound by `ρ²/(2r²)` of it, far below the certificate
-    /// tolerance wherever the slip exceeds `10⁻⁶ max|u|` (below that a point sticks); the
-    /// paper example's reported digits do not change when it shrinks tenfold (tested).
-    pub friction_regularization: f64,
+    /// Deprecated: the numerical regularization of the norm in the friction potential of
+    /// every contact part, now a parameter of the friction law
+    /// ([`crate::contact::NormTreatment::Smoothed`], scenario key `[contact.friction]
+    /// regularization`); read by the scenario loader only. `None` unless given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_regularization: Option<f64>,
     /// Solve early convex problems inexactly. Default true.
     pub inexact: bool,
 }
@@ -74,7 +72,7 @@ impl Default for OuterSettings {
             acceleration: Acceleration::Anderson,
             depth: 5,
             relaxation: 1.0,
-            friction_regularization: 1e-8,
+            friction_regularization: None,
             inexact: true,
         }
     }
