@@ -2001,7 +2001,11 @@ fn error_messages_name_the_field() {
             "mesh.origin",
         ),
         (
-            edit(&paper, "potential = \"norm\"", "potential = \"cubic\""),
+            edit(
+                &paper,
+                "potential = { kind = \"norm\" }",
+                "potential = { kind = \"cubic\" }",
+            ),
             "potential",
         ),
         (
@@ -2045,8 +2049,8 @@ fn error_messages_name_the_field() {
         (
             edit(
                 &paper,
-                "potential = \"norm\"",
-                "potential = \"norm\"\nrho = 0.1",
+                "potential = { kind = \"norm\" }",
+                "potential = { kind = \"norm\" }\nrho = 0.1",
             ),
             "contact[0].friction.rho",
         ),

@@ -10,6 +10,7 @@
 
 mod common;
 
+use hemicontact::contact::FrictionPotential;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
@@ -311,9 +312,15 @@ fn friction_regularization_does_not_change_reported_digits() {
 /// and the certificate checks the friction force against `F j'(‖u_τ‖)` of the exact law.
 #[test]
 fn nonconvex_friction_potential_run() {
-    let text = builtin::paper(16, 1.0e4)
-        .replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
+    let text = builtin::paper(16, 1.0e4).replace(
+        "potential = { kind = \"norm\" }",
+        "potential = { kind = \"nonconvex\", a = 0.5 }",
+    );
     let pr = problem(&text);
+    assert!(pr.contact.iter().all(|c| matches!(
+        c.friction.as_ref().map(|f| f.potential),
+        Some(FrictionPotential::Nonconvex { .. })
+    )));
     let s = solve(&pr).unwrap();
     assert_certified(&s);
     assert!(s.report.outer.len() > 1);
