@@ -170,8 +170,10 @@ pub enum FrictionBound {
 }
 
 /// The default numerical regularization of the norm, relative to the displacement scale U of
-/// the solve: `ρ_num = 10⁻⁸ U`. The friction force of a sticking point is then resolved to
-/// eight digits, far below any reported digit.
+/// the solve: `ρ_num = 10⁻⁸ U`. The friction force of a point slipping by r misses the bound
+/// by `ρ²/(2r²)` of it, far below the certificate tolerance wherever the slip exceeds
+/// `10⁻⁶ max|u|` (below that a point sticks); the paper example's reported digits do not
+/// change when it shrinks tenfold (tested).
 pub const DEFAULT_REGULARIZATION: f64 = 1e-8;
 
 /// How the nonsmooth convex part `F ‖·‖` of the potentials `norm` and `nonconvex` is
