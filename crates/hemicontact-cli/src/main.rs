@@ -380,15 +380,8 @@ fn print_problem(problem: &Problem, source: &str) {
         let friction = match &c.friction {
             None => "frictionless".to_string(),
             Some(f) => format!(
-                "{:?}-type bound, μ = {:?}, j = {:?}{}",
-                f.bound,
-                f.mu,
-                f.potential,
-                if f.is_exact() {
-                    ", exact stick/slip"
-                } else {
-                    ""
-                }
+                "{:?}-type bound, μ = {:?}, j = {}",
+                f.bound, f.mu, f.potential
             ),
         };
         let normal = match c.normal {

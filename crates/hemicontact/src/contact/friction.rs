@@ -361,6 +361,37 @@ impl FrictionPotential {
     }
 }
 
+impl std::fmt::Display for FrictionPotential {
+    /// The potential as the scenario names it, with its parameters and the treatment of its
+    /// norm, e.g. `nonconvex, a = 0.5 (norm smoothed, ρ_num = 1e-8 U)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
+            NormTreatment::Smoothed { regularization } => {
+                write!(f, " (norm smoothed, ρ_num = {regularization:e} U)")
+            }
+            NormTreatment::Exact => write!(f, " (exact stick/slip)"),
+        };
+        match *self {
+            FrictionPotential::Norm { treatment: t } => {
+                write!(f, "norm")?;
+                treatment(f, t)
+            }
+            FrictionPotential::Nonconvex {
+                a,
+                unit,
+                treatment: t,
+            } => {
+                write!(f, "nonconvex, a = {a}")?;
+                if unit != 1.0 {
+                    write!(f, ", slip unit {unit:e} m")?;
+                }
+                treatment(f, t)
+            }
+            FrictionPotential::Regularized { rho } => write!(f, "regularized, ρ = {rho:e} m"),
+        }
+    }
+}
+
 /// A friction law: bound type, coefficient, potential.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Friction {
