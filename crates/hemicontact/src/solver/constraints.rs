@@ -13,7 +13,7 @@
 //! | `u_ν ≤ g` | `w_i (1/2r)[(λ_i + r(u_ν − g))_+² − λ_i²]` | `λ_i ← (λ_i + r(u_ν − g))_+` |
 //! | `F‖u_τ‖` | `w_i (1/r)[H_F(τ_i + r u_τ) − ‖τ_i‖²/2]` | `τ_i ← proj_{B_F}(τ_i + r u_τ)` |
 //!
-//! (H_F the Huber function, see [`crate::assembly::contact`].) For fixed multipliers every
+//! (H_F the Huber function, see [`crate::contact::friction`].) For fixed multipliers every
 //! term is convex and C¹ with a piecewise smooth gradient — exactly the structure the
 //! existing semismooth Newton solver with line search minimizes, on the same sparsity
 //! pattern and symbolic factorization; with zero multipliers it *is* the nearly-locking
