@@ -157,8 +157,7 @@ pub fn run_paper(
         // contact and locking.
         let mut linear = paper.clone();
         linear.contact.clear();
-        linear.material.locking = hemicontact::material::LockingPenalty::NONE;
-        linear.material.ideal_locking = None;
+        linear.material.locking = hemicontact::material::Locking::None;
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

@@ -286,27 +286,22 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
         "certificate tolerance {:e} (relative residuals of every law)",
         settings.certificate_tolerance
     );
-    let lock = &problem.material.locking;
-    if let Some(set) = &problem.material.ideal_locking {
-        say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)");
-    } else if lock.c_kappa > 0.0 {
-        say!(
-            "locking    {:?}, penalty C_κ = {:e} Pa",
-            lock.set,
-            lock.c_kappa
-        );
-    } else {
-        say!("locking    none");
+    use hemicontact::material::Locking;
+    match &problem.material.locking {
+        Locking::Ideal(set) => {
+            say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)")
+        }
+        Locking::Penalty(p) if p.c_kappa > 0.0 => {
+            say!("locking    {:?}, penalty C_κ = {:e} Pa", p.set, p.c_kappa)
+        }
+        _ => say!("locking    none"),
     }
     for (k, c) in problem.contact.iter().enumerate() {
         let friction = match &c.friction {
             None => "frictionless".to_string(),
             Some(f) => format!(
-                "{:?}-type bound, μ = {:?}, j = {:?}{}",
-                f.bound,
-                f.mu,
-                f.potential,
-                if f.exact { ", exact stick/slip" } else { "" }
+                "{:?}-type bound, μ = {:?}, j = {}",
+                f.bound, f.mu, f.potential
             ),
         };
         let normal = match c.normal {

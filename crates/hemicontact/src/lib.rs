@@ -73,9 +73,8 @@
 //!   constraints (ideal locking, Signorini) are not yet available.
 //! - Every solve is carried out in dimensionless variables ([`solver::scaling`]), so units
 //!   do not matter; the norm `‖·‖` of the friction potential is regularized numerically by
-//!   `ρ_num = 10⁻⁸ U` with U the displacement scale (see
-//!   [`solver::OuterSettings::friction_regularization`]), or imposed exactly with
-//!   `exact = true`. A solve counts as converged only when its certificate passes
+//!   `ρ_num = 10⁻⁸ U` with U the displacement scale (a parameter of the friction law, see
+//!   [`contact::NormTreatment`]), or imposed exactly with `exact = true`. A solve counts as converged only when its certificate passes
 //!   ([`solver::certificate`]).
 #![deny(missing_docs)]
 

@@ -38,7 +38,7 @@ use hemicontact::contact::friction::regularized_norm;
 use hemicontact::contact::nodes::tangent_basis;
 use hemicontact::contact::{
     ContactBoundary, ContactNodes, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,
-    NormalCompliance, NormalLaw,
+    NormTreatment, NormalCompliance, NormalLaw,
 };
 use hemicontact::scenario::Scenario;
 
@@ -291,8 +291,14 @@ const A_J: f64 = 0.3;
 
 fn potentials() -> [FrictionPotential; 3] {
     [
-        FrictionPotential::Norm,
-        FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
+        FrictionPotential::Norm {
+            treatment: NormTreatment::default(),
+        },
+        FrictionPotential::Nonconvex {
+            a: A_J,
+            unit: 1.0,
+            treatment: NormTreatment::default(),
+        },
         FrictionPotential::Regularized { rho: 0.01 },
     ]
 }
@@ -327,12 +333,27 @@ fn friction_potential_slope_is_derivative() {
     let reg = FrictionPotential::Regularized { rho: 0.01 };
     assert!((reg.value(r) - (0.0005f64.sqrt() - 0.01)).abs() < 1e-16);
     assert_eq!(reg.slope(0.0), 0.0);
-    assert_eq!(FrictionPotential::Norm.slope(0.0), 1.0);
     assert_eq!(
-        FrictionPotential::Nonconvex { a: A_J, unit: 1.0 }.slope(0.0),
+        FrictionPotential::Norm {
+            treatment: NormTreatment::default()
+        }
+        .slope(0.0),
         1.0
     );
-    let nc = FrictionPotential::Nonconvex { a: A_J, unit: 1.0 };
+    assert_eq!(
+        FrictionPotential::Nonconvex {
+            a: A_J,
+            unit: 1.0,
+            treatment: NormTreatment::default()
+        }
+        .slope(0.0),
+        1.0
+    );
+    let nc = FrictionPotential::Nonconvex {
+        a: A_J,
+        unit: 1.0,
+        treatment: NormTreatment::default(),
+    };
     // r = 1 > a: a·1 + a(1 − a)/2 = 0.3 + 0.105.
     assert!((nc.value(1.0) - 0.405).abs() < 1e-15);
     // r = 0.1 < a: 0.1 + (a − 1)/(2a)·0.01 = 0.1 − 0.7/0.6·0.01.
@@ -342,7 +363,11 @@ fn friction_potential_slope_is_derivative() {
 #[test]
 fn nonconvex_potential_dc_split_and_regularity() {
     let a = A_J;
-    let j = FrictionPotential::Nonconvex { a, unit: 1.0 };
+    let j = FrictionPotential::Nonconvex {
+        a,
+        unit: 1.0,
+        treatment: NormTreatment::default(),
+    };
     let alpha = j.alpha_j();
     assert!((alpha - (1.0 - a) / a).abs() < 1e-15);
     let h_val = |r: f64| r - j.value(r);
@@ -431,7 +456,9 @@ fn nonconvex_potential_dc_split_and_regularity() {
     assert!((j.h_slope(a) - (1.0 - a)).abs() < 1e-15);
     // The convex potentials have no h.
     for p in [
-        FrictionPotential::Norm,
+        FrictionPotential::Norm {
+            treatment: NormTreatment::default(),
+        },
         FrictionPotential::Regularized { rho: 0.01 },
     ] {
         assert_eq!(p.alpha_j(), 0.0);
@@ -528,7 +555,7 @@ fn off_kink(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64], margin: f64)
             .map(|a| (tau[a] + r * xi[a]).powi(2))
             .sum::<f64>()
             .sqrt();
-        let exact = cb.friction.as_ref().is_some_and(|f| f.exact);
+        let exact = cb.friction.as_ref().is_some_and(|f| f.is_exact());
         (u_nu - gap).abs() > margin && (!exact || (nz - frozen.bound[i]).abs() > r * margin)
     })
 }
@@ -713,7 +740,7 @@ fn assembled_contact_terms_2d_match_finite_differences() {
         dim: d,
         nodes: &nodes,
         boundaries: &problem.contact,
-        rho_num: RHO_NUM,
+        regularization_floor: RHO_NUM,
         penalty: &penalty,
     };
     let equations = dofs.equations().to_vec();
@@ -769,8 +796,9 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Tresca,
                 mu: FrictionCoefficient::Constant { mu: 0.5 },
-                potential: FrictionPotential::Norm,
-                exact: false,
+                potential: FrictionPotential::Norm {
+                    treatment: NormTreatment::default(),
+                },
             }),
         },
         ContactBoundary {
@@ -780,8 +808,11 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: paper_exponential(),
-                potential: FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
-                exact: false,
+                potential: FrictionPotential::Nonconvex {
+                    a: A_J,
+                    unit: 1.0,
+                    treatment: NormTreatment::default(),
+                },
             }),
         },
         ContactBoundary {
@@ -792,7 +823,6 @@ fn assembled_contact_terms_3d_match_finite_differences() {
                 bound: FrictionBound::Coulomb,
                 mu: table(),
                 potential: FrictionPotential::Regularized { rho: 0.005 },
-                exact: false,
             }),
         },
         ContactBoundary {
@@ -810,8 +840,9 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Tresca,
                 mu: FrictionCoefficient::Constant { mu: 0.5 },
-                potential: FrictionPotential::Norm,
-                exact: true,
+                potential: FrictionPotential::Norm {
+                    treatment: NormTreatment::Exact,
+                },
             }),
         },
         ContactBoundary {
@@ -821,8 +852,11 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: paper_exponential(),
-                potential: FrictionPotential::Nonconvex { a: A_J, unit: 1.0 },
-                exact: true,
+                potential: FrictionPotential::Nonconvex {
+                    a: A_J,
+                    unit: 1.0,
+                    treatment: NormTreatment::Exact,
+                },
             }),
         },
         ContactBoundary {
@@ -832,8 +866,9 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: table(),
-                potential: FrictionPotential::Norm,
-                exact: true,
+                potential: FrictionPotential::Norm {
+                    treatment: NormTreatment::Exact,
+                },
             }),
         },
     ];
@@ -880,7 +915,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         dim: d,
         nodes: &nodes,
         boundaries: &boundaries,
-        rho_num: RHO_NUM,
+        regularization_floor: RHO_NUM,
         penalty: &penalty,
     };
     let np = nodes.len();

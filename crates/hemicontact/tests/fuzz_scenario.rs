@@ -1426,14 +1426,26 @@ fn check_problem(
             bad("Hencky s0 = reference_strain²", h.s0, true);
         }
     }
-    bad("locking c_kappa", p.material.locking.c_kappa, false);
+    bad(
+        "locking c_kappa",
+        p.material.locking.penalty().map_or(0.0, |l| l.c_kappa),
+        false,
+    );
     bad("mesh diameter", p.diameter(), true);
     bad("mesh measure", p.mesh.measure(), true);
-    bad(
-        "friction regularization ρ_num = friction_regularization · diameter",
-        settings.outer.friction_regularization * p.diameter(),
-        true,
-    );
+    for c in &p.contact {
+        if let Some(reg) = c
+            .friction
+            .as_ref()
+            .and_then(|f| f.potential.regularization())
+        {
+            bad(
+                "friction regularization ρ_num = regularization · diameter",
+                reg * p.diameter(),
+                true,
+            );
+        }
+    }
     let pcg = settings.newton.pcg_tolerance;
     if !(pcg.is_finite() && pcg >= 1e-12) {
         soft.push((
@@ -1897,7 +1909,11 @@ fn error_messages_name_the_field() {
             "mesh.origin",
         ),
         (
-            edit(&paper, "potential = \"norm\"", "potential = \"cubic\""),
+            edit(
+                &paper,
+                "potential = { kind = \"norm\" }",
+                "potential = { kind = \"cubic\" }",
+            ),
             "potential",
         ),
         (
@@ -1941,8 +1957,8 @@ fn error_messages_name_the_field() {
         (
             edit(
                 &paper,
-                "potential = \"norm\"",
-                "potential = \"norm\"\nrho = 0.1",
+                "potential = { kind = \"norm\" }",
+                "potential = { kind = \"norm\" }\nrho = 0.1",
             ),
             "contact[0].friction.rho",
         ),

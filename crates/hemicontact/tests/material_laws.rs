@@ -29,7 +29,8 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::material::{
-    AugmentedLocking, Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, StrainEnergy,
+    AugmentedLocking, Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material,
+    StrainEnergy,
 };
 use hemicontact::tensor::{apply, mandel_len, Sym, Tangent};
 
@@ -202,11 +203,10 @@ fn penalty_only(set: LockingSet) -> Material {
             lambda: 0.0,
             mu: 0.0,
         }),
-        locking: LockingPenalty {
+        locking: Locking::Penalty(LockingPenalty {
             set,
             c_kappa: C_KAPPA,
-        },
-        ideal_locking: None,
+        }),
     }
 }
 
@@ -268,8 +268,7 @@ fn combined_materials_match_finite_differences() {
         ] {
             let law = Material {
                 elasticity,
-                locking: penalty,
-                ideal_locking: None,
+                locking: Locking::Penalty(penalty),
             };
             for dim in [2, 3] {
                 let seed = 500 + 10 * k as u64 + dim as u64 + if ename == "hooke" { 0 } else { 5 };
@@ -302,7 +301,6 @@ fn closed_form_dq(set: LockingSet, eps: &Sym) -> Sym {
             Sym::from_matrix(eps.dim, &dev)
         }
         LockingSet::Ball { .. } => eps.scaled(1.0 / eps.norm()),
-        LockingSet::None => Sym::zero(eps.dim),
     }
 }
 
@@ -322,7 +320,6 @@ fn on_boundary(set: LockingSet, eps: &Sym) -> Sym {
             vol.add_scaled(std::f64::consts::SQRT_2 * kappa / dev.norm(), &dev)
         }
         LockingSet::Ball { r } => eps.scaled(r / eps.norm()),
-        LockingSet::None => *eps,
     }
 }
 
@@ -573,7 +570,6 @@ fn augmented_locking_matches_finite_differences_and_the_penalty() {
             LockingSet::LimitedCompressibility { theta } => theta,
             LockingSet::Prager { kappa } => kappa * kappa,
             LockingSet::Ball { r } => r,
-            LockingSet::None => 1.0,
         };
         let r = C_KAPPA;
         // λ < r q_ref / 2 keeps the active region away from the kinks of ∂Q (tr ε = 0, ε = 0).

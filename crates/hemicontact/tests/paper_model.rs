@@ -10,6 +10,7 @@
 
 mod common;
 
+use hemicontact::contact::FrictionPotential;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::builtin;
 use hemicontact::solver::{solve, FrictionState, Mixing, NormalState, Solution, SolverSettings};
@@ -146,9 +147,15 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     let (pr, s) = sheared_block(0.5 * delta_star, mu);
     assert_certified(&s);
     // The numerical regularization of ‖·‖ in the user's units: a fraction
-    // (`friction_regularization`, 1e-8) of the displacement scale of the solve.
+    // (the friction law's `regularization`, 1e-8) of the displacement scale of the solve.
     let scales = s.report.scales.expect("scales");
-    let rho_num = SolverSettings::default().outer.friction_regularization * scales.displacement;
+    let regularization = pr
+        .contact
+        .iter()
+        .filter_map(|c| c.friction.as_ref()?.potential.regularization())
+        .fold(0.0, f64::max);
+    assert_eq!(regularization, 1e-8);
+    let rho_num = regularization * scales.displacement;
     for c in &s.contact {
         assert_eq!(
             c.friction_state,
@@ -304,9 +311,15 @@ fn friction_regularization_does_not_change_reported_digits() {
 /// and the certificate checks the friction force against `F j'(‖u_τ‖)` of the exact law.
 #[test]
 fn nonconvex_friction_potential_run() {
-    let text = builtin::paper(16, 1.0e4)
-        .replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
+    let text = builtin::paper(16, 1.0e4).replace(
+        "potential = { kind = \"norm\" }",
+        "potential = { kind = \"nonconvex\", a = 0.5 }",
+    );
     let (pr, settings) = common::setup(&text);
+    assert!(pr.contact.iter().all(|c| matches!(
+        c.friction.as_ref().map(|f| f.potential),
+        Some(FrictionPotential::Nonconvex { .. })
+    )));
     let s = solve(&pr, &settings).unwrap();
     assert_certified(&s);
     assert!(s.report.outer.len() > 1);

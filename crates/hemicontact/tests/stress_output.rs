@@ -23,8 +23,8 @@ mod common;
 use common::{lame, problem};
 use hemicontact::io::vtu::solution_vtu;
 use hemicontact::material::{
-    AugmentedLocking, Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane,
-    StrainEnergy,
+    AugmentedLocking, Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material,
+    Plane, StrainEnergy,
 };
 use hemicontact::solver::SolverSettings;
 use hemicontact::tensor::Sym;
@@ -338,7 +338,7 @@ fn out_of_plane_stress_is_the_derivative_of_the_energy() {
     assert!((lc.plane_strain_stress_zz(&eps) - 130.0).abs() < 1e-9);
     // Ideal locking: the multiplier stress λ_T sgn(tr ε) I has zz part λ_T.
     let mut material = Material::elastic(Elasticity::Hooke(hooke));
-    material.ideal_locking = Some(LockingSet::LimitedCompressibility { theta: 0.005 });
+    material.locking = Locking::Ideal(LockingSet::LimitedCompressibility { theta: 0.005 });
     let s = material.stress_3x3(&eps, Plane::Strain, 50.0);
     assert!((s[2][2] - (400.0 * 0.018 + 50.0)).abs() < 1e-12);
     assert!((s[0][0] - (400.0 * 0.018 + 600.0 * 0.03 + 50.0)).abs() < 1e-12);

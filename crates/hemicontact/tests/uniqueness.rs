@@ -82,7 +82,10 @@ fn condition_uses_the_constants_of_the_laws() {
     assert_eq!(u.holds, u.lhs < u.m_a);
     assert!((u.margin - (u.m_a - u.lhs)).abs() < 1e-9);
     // The nonconvex potential (17) adds μ₀ α_j with α_j = (1 − a)/a.
-    let text = text.replace("potential = \"norm\"", "potential = \"nonconvex\"\na = 0.5");
+    let text = text.replace(
+        "potential = { kind = \"norm\" }",
+        "potential = { kind = \"nonconvex\", a = 0.5 }",
+    );
     let u2 = check(&problem(&text), &SolverSettings::default()).unwrap();
     assert!((u2.alpha_j - 1.0).abs() < 1e-12);
     assert!((u2.lhs - (0.4 * 1.0 + 30.0) * gamma * gamma).abs() < 1e-9 * u2.lhs);

@@ -10,9 +10,11 @@
 
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,
-    NormalCompliance, NormalLaw,
+    NormTreatment, NormalCompliance, NormalLaw,
 };
-use hemicontact::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material};
+use hemicontact::material::{
+    Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material,
+};
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem, Traction};
@@ -66,7 +68,7 @@ fn builder(material: Material, contact: Option<ContactBoundary>) -> Result<Probl
     b.build()
 }
 
-fn friction(potential: FrictionPotential, exact: bool) -> ContactBoundary {
+fn friction(potential: FrictionPotential) -> ContactBoundary {
     ContactBoundary {
         part: 0,
         gap: 0.0,
@@ -75,7 +77,6 @@ fn friction(potential: FrictionPotential, exact: bool) -> ContactBoundary {
             bound: FrictionBound::Coulomb,
             mu: FrictionCoefficient::Constant { mu: 0.3 },
             potential,
-            exact,
         }),
     }
 }
@@ -120,36 +121,47 @@ value = [0.0, -1.0]
 /// The valid problem is accepted: the checks below fail on their datum alone.
 #[test]
 fn the_reference_problem_is_valid() {
-    builder(hooke(), Some(friction(FrictionPotential::Norm, false))).unwrap();
+    let norm = FrictionPotential::Norm {
+        treatment: NormTreatment::default(),
+    };
+    builder(hooke(), Some(friction(norm))).unwrap();
     Scenario::from_str(BASE, "case.toml")
         .unwrap()
         .into_problem()
         .unwrap();
 }
 
-/// Friction laws check their parameters: the nonconvex potential needs 0 < a < 1, exact
-/// stick/slip needs a potential whose convex part is the norm.
+/// Friction laws check their parameters: the nonconvex potential needs 0 < a < 1, a
+/// smoothed norm a regularization below 1 % of the displacement scale.
 #[test]
 fn friction_laws_validate_themselves() {
-    let a = FrictionPotential::Nonconvex { a: 1.5, unit: 1.0 };
+    let a = FrictionPotential::Nonconvex {
+        a: 1.5,
+        unit: 1.0,
+        treatment: NormTreatment::Exact,
+    };
     assert_eq!(
-        invalid_field(builder(hooke(), Some(friction(a, false)))),
+        invalid_field(builder(hooke(), Some(friction(a)))),
         "contact[0].friction.a"
     );
-    let smooth = FrictionPotential::Regularized { rho: 1e-3 };
+    let coarse = FrictionPotential::Norm {
+        treatment: NormTreatment::Smoothed {
+            regularization: 0.5,
+        },
+    };
     assert_eq!(
-        invalid_field(builder(hooke(), Some(friction(smooth, true)))),
-        "contact[0].friction.exact"
+        invalid_field(builder(hooke(), Some(friction(coarse)))),
+        "contact[0].friction.regularization"
     );
     let text = format!(
         "{BASE}[[contact]]\npart = \"right\"\nc_nu = 10.0\n[contact.friction]\nbound = \
-         \"coulomb\"\npotential = \"nonconvex\"\na = 1.5\nmu = {{ law = \"constant\", mu = 0.3 }}\n"
+         \"coulomb\"\npotential = {{ kind = \"nonconvex\", a = 1.5 }}\nmu = {{ law = \"constant\", mu = 0.3 }}\n"
     );
-    assert_eq!(scenario_field(&text), "contact[0].friction.a");
+    assert_eq!(scenario_field(&text), "contact[0].friction.potential.a");
 }
 
 /// Materials check their constants: a Hencky transition strain of zero, an ideal-locking
-/// set that is no set, a negative locking threshold.
+/// set with a NaN threshold, a negative locking threshold.
 #[test]
 fn materials_validate_themselves() {
     let hencky = Material::elastic(Elasticity::Hencky(Hencky {
@@ -162,19 +174,19 @@ fn materials_validate_themselves() {
         invalid_field(builder(hencky, None)),
         "material.elasticity.s0"
     );
-    let ideal_none = Material {
-        ideal_locking: Some(LockingSet::None),
+    let ideal_nan = Material {
+        locking: Locking::Ideal(LockingSet::Prager { kappa: f64::NAN }),
         ..hooke()
     };
     assert_eq!(
-        invalid_field(builder(ideal_none, None)),
-        "material.ideal_locking"
+        invalid_field(builder(ideal_nan, None)),
+        "material.locking.kappa"
     );
     let negative = Material {
-        locking: LockingPenalty {
+        locking: Locking::Penalty(LockingPenalty {
             set: LockingSet::LimitedCompressibility { theta: -0.1 },
             c_kappa: 1.0,
-        },
+        }),
         ..hooke()
     };
     assert_eq!(

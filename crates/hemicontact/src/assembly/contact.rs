@@ -14,13 +14,15 @@
 //!   `(1/2r) [(λ + r(u_ν − g))_+² − λ²]`, i.e. normal compliance of stiffness r at the gap
 //!   `g − λ/r` ([`crate::contact::NormalLaw::effective`]);
 //! - exact friction (multiplier τ_i = −σ_τ, the friction traction): `F j_cvx(ξ) = F‖ξ‖`
-//!   becomes the Moreau envelope `(1/r) [H_F(τ + rξ) − ‖τ‖²/2]` with the Huber function
-//!   `H_F(z) = ‖z‖²/2` (‖z‖ ≤ F), `F‖z‖ − F²/2` (‖z‖ > F), whose gradient is the projection
-//!   `proj_{B_F}(τ + rξ)` onto the ball of radius F.
+//!   becomes its Moreau envelope at τ + rξ.
+//!
+//! The tangential term, smoothed or exact, is the friction law's
+//! ([`crate::contact::Friction::tangential_term`]); this module maps tangential and global
+//! coordinates.
 
 use super::pattern::{SystemPattern, FIXED_SLOT};
-use crate::contact::friction::regularized_norm;
-use crate::contact::{ContactBoundary, ContactNodes};
+pub use crate::contact::friction::project_ball;
+use crate::contact::{ContactBoundary, ContactNodes, TangentialData};
 
 /// The quantities frozen for one convex subproblem: the friction data of the
 /// convexification and the multipliers of the exact constraints.
@@ -54,19 +56,6 @@ impl Frozen {
     }
 }
 
-/// Projection of the `m`-vector `z` onto the ball of radius `f ≥ 0`; returns it with
-/// whether `z` was inside (stick).
-#[inline]
-pub fn project_ball(z: &[f64; 2], m: usize, f: f64) -> ([f64; 2], bool) {
-    let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
-    if nz <= f {
-        (*z, true)
-    } else {
-        let s = f / nz;
-        ([z[0] * s, z[1] * s], false)
-    }
-}
-
 /// The state of one contact point at a displacement u.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PointState {
@@ -91,8 +80,9 @@ pub struct ContactAssembler<'a> {
     pub nodes: &'a ContactNodes,
     /// The contact boundaries (laws and gaps).
     pub boundaries: &'a [ContactBoundary],
-    /// Numerical regularization ρ_num of the norm in j_cvx (m).
-    pub rho_num: f64,
+    /// Continuation floor of the numerical regularization ρ_num of a smoothed norm (m; 0:
+    /// the laws' own values), see [`crate::contact::FrictionPotential::convex_rho`].
+    pub regularization_floor: f64,
     /// Augmented-Lagrangian penalty r_i per point (Pa/m) of the exact constraints.
     pub penalty: &'a [f64],
 }
@@ -141,11 +131,14 @@ impl<'a> ContactAssembler<'a> {
                 frozen.pressure[i] = s.pressure;
             }
             let Some(fr) = &cb.friction else { continue };
-            if fr.exact {
-                let r = self.penalty[i];
-                let tau = current.traction[i];
-                let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
-                frozen.traction[i] = project_ball(&z, m, current.bound[i]).0;
+            if let Some(tau) = fr.updated_traction(
+                &s.u_tau,
+                m,
+                &current.traction[i],
+                self.penalty[i],
+                current.bound[i],
+            ) {
+                frozen.traction[i] = tau;
             }
             // At a Signorini point a Coulomb bound takes the pressure from the current
             // multiplier, not from the update `(λ + r(u_ν − g))_+`: the two agree at the
@@ -224,51 +217,21 @@ impl<'a> ContactAssembler<'a> {
         }
         let p = law.pressure(u_nu, gap);
         let kn = law.stiffness(u_nu, gap);
-        // Tangential part: w [F φ(ξ) − b·ξ].
+        // Tangential part: w times the friction law's term.
         let mut gt = [0.0; 2];
         let mut ht = [[0.0; 2]; 2];
-        if cb.friction.as_ref().is_some_and(|f| f.exact) {
-            // Moreau envelope of F‖·‖ at τ + rξ (see the module documentation).
-            let f = frozen.bound[i];
-            let b = frozen.linear[i];
-            let tau = frozen.traction[i];
-            let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
-            let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
-            let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
-            let (g, _) = project_ball(&z, m, f);
-            let huber = if f > 0.0 && nz <= f {
-                for a in 0..m {
-                    ht[a][a] = r;
-                }
-                0.5 * nz * nz
-            } else if nz == 0.0 {
-                // F = 0 and z = 0: the envelope is flat (zero curvature).
-                0.0
-            } else {
-                for a in 0..m {
-                    for c in 0..m {
-                        let delta = if a == c { 1.0 } else { 0.0 };
-                        ht[a][c] = r * f / nz * (delta - z[a] * z[c] / (nz * nz));
-                    }
-                }
-                f * nz - 0.5 * f * f
+        if let Some(fr) = &cb.friction {
+            let data = TangentialData {
+                bound: frozen.bound[i],
+                linear: frozen.linear[i],
+                traction: frozen.traction[i],
+                penalty: r,
+                regularization_floor: self.regularization_floor,
             };
-            energy += w * ((huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
-            for a in 0..m {
-                gt[a] = g[a] - b[a];
-            }
-        } else if let Some(fr) = &cb.friction {
-            let f = frozen.bound[i];
-            let b = frozen.linear[i];
-            let rho = fr.potential.convex_rho(self.rho_num);
-            let (phi, g, h) = regularized_norm(&xi, m, rho);
-            energy += w * (f * phi - (0..m).map(|a| b[a] * xi[a]).sum::<f64>());
-            for a in 0..m {
-                gt[a] = f * g[a] - b[a];
-                for c in 0..m {
-                    ht[a][c] = f * h[a][c];
-                }
-            }
+            let term = fr.tangential_term(&xi, m, &data);
+            energy += w * term.energy;
+            gt = term.gradient;
+            ht = term.hessian;
         }
         let mut gradient = [0.0; 3];
         let mut hessian = [[0.0; 3]; 3];

@@ -14,9 +14,24 @@
 //! variables are made dimensionless (ℓ becomes ℓ/U for a displacement scale U).
 //! | regularized (19) | `√(r² + ρ²) − ρ` | j | 0 |
 //!
-//! The norm is nonsmooth at 0. The solver works with its regularization
-//! `√(r² + ρ_num²) − ρ_num`, with a numerical `ρ_num` far below every displacement of
-//! interest (see [`crate::solver::OuterSettings::friction_regularization`]).
+//! The norm is nonsmooth at 0. For the potentials whose convex part is the norm (`norm`,
+//! `nonconvex`) the law says how the term `F ‖·‖` is treated ([`NormTreatment`]): either
+//! smoothed to `F (√(r² + ρ_num²) − ρ_num)`, with a numerical `ρ_num` far below every
+//! displacement of interest, or imposed exactly by an augmented Lagrangian. The regularized
+//! law (19) is smooth already and carries no treatment, so exact stick/slip of a smooth law
+//! cannot be expressed.
+//!
+//! ## The tangential term of one contact point
+//!
+//! With the frozen bound `F ≥ 0`, linear term `b` (the linearized concave part), the
+//! tangential energy at slip ξ is ([`Friction::tangential_term`])
+//!
+//! - smoothed norm or law (19): `F φ_ρ(ξ) − b·ξ`, `φ_ρ(ξ) = √(‖ξ‖² + ρ²) − ρ`;
+//! - exact stick/slip, multiplier τ (the friction traction) and penalty r: the Moreau
+//!   envelope of `F‖·‖`, `(1/r) [H_F(τ + rξ) − ‖τ‖²/2] − b·ξ`, with the Huber function
+//!   `H_F(z) = ‖z‖²/2` (‖z‖ ≤ F), `F‖z‖ − F²/2` (‖z‖ > F), whose gradient is the projection
+//!   `proj_{B_F}(τ + rξ)` onto the ball of radius F; the multiplier update is
+//!   `τ ← proj_{B_F}(τ + r ξ)` ([`Friction::updated_traction`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -154,11 +169,69 @@ pub enum FrictionBound {
     Coulomb,
 }
 
-/// The friction potential j; see the module documentation.
+/// The default numerical regularization of the norm, relative to the displacement scale U of
+/// the solve: `ρ_num = 10⁻⁸ U`. The friction force of a point slipping by r misses the bound
+/// by `ρ²/(2r²)` of it, far below the certificate tolerance wherever the slip exceeds
+/// `10⁻⁶ max|u|` (below that a point sticks); the paper example's reported digits do not
+/// change when it shrinks tenfold (tested).
+pub const DEFAULT_REGULARIZATION: f64 = 1e-8;
+
+/// How the nonsmooth convex part `F ‖·‖` of the potentials `norm` and `nonconvex` is
+/// imposed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NormTreatment {
+    /// Smoothed to `F (√(‖ξ‖² + ρ_num²) − ρ_num)` with `ρ_num = regularization · U`, U the
+    /// displacement scale of the solve (the law keeps this relative value when it is made
+    /// dimensionless). The solver reaches it by continuation from `10⁻² U`.
+    Smoothed {
+        /// `ρ_num / U`, dimensionless, in (0, 10⁻²).
+        regularization: f64,
+    },
+    /// Exact stick/slip: `F ‖·‖` is imposed by an augmented Lagrangian with the friction
+    /// traction as multiplier (sticking points then have zero slip to round-off, slipping
+    /// points carry exactly the bound); see the module documentation.
+    Exact,
+}
+
+impl Default for NormTreatment {
+    fn default() -> Self {
+        NormTreatment::Smoothed {
+            regularization: DEFAULT_REGULARIZATION,
+        }
+    }
+}
+
+impl NormTreatment {
+    /// Checks the parameters; returns what is wrong.
+    ///
+    /// # Errors
+    /// A message naming the parameter and what is allowed.
+    pub fn validate(&self) -> Result<(), String> {
+        match *self {
+            NormTreatment::Smoothed { regularization }
+                if !(regularization.is_finite()
+                    && regularization > 0.0
+                    && regularization < 1e-2) =>
+            {
+                Err(format!(
+                    "regularization = {regularization}: a number in (0, 0.01) (relative to the \
+                     displacement scale)"
+                ))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The friction potential j; see the module documentation. The potentials whose convex part
+/// is the norm carry its [`NormTreatment`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FrictionPotential {
     /// `j(ξ) = ‖ξ‖`.
-    Norm,
+    Norm {
+        /// How the norm is imposed.
+        treatment: NormTreatment,
+    },
     /// The paper's nonconvex example (17) with parameter `0 < a < 1`, for the slip measured
     /// in the unit ℓ: `j(r) = ℓ j₁₇(r/ℓ)`.
     Nonconvex {
@@ -166,6 +239,8 @@ pub enum FrictionPotential {
         a: f64,
         /// The slip unit ℓ of the formula (m); 1 for the paper's law.
         unit: f64,
+        /// How the convex part, the norm, is imposed.
+        treatment: NormTreatment,
     },
     /// The regularized Coulomb law (19) `√(‖ξ‖² + ρ²) − ρ`.
     Regularized {
@@ -179,12 +254,20 @@ impl FrictionPotential {
     ///
     /// # Errors
     /// [`crate::Error::Invalid`]: the nonconvex potential needs `0 < a < 1` and a finite
-    /// positive slip unit, the regularized one a finite `rho > 0` (m).
+    /// positive slip unit, the regularized one a finite `rho > 0` (m), a smoothed norm a
+    /// `regularization` in (0, 0.01) ([`NormTreatment::validate`]).
     pub fn validate(&self) -> crate::Result<()> {
         use crate::error::require;
+        if let Some(treatment) = self.treatment() {
+            if let (Err(msg), NormTreatment::Smoothed { regularization }) =
+                (treatment.validate(), treatment)
+            {
+                return Err(crate::Error::invalid("regularization", regularization, msg));
+            }
+        }
         match *self {
-            FrictionPotential::Norm => Ok(()),
-            FrictionPotential::Nonconvex { a, unit } => {
+            FrictionPotential::Norm { .. } => Ok(()),
+            FrictionPotential::Nonconvex { a, unit, .. } => {
                 require(a > 0.0 && a < 1.0, "a", a, "a parameter with 0 < a < 1")?;
                 require(
                     unit.is_finite() && unit > 0.0,
@@ -205,8 +288,8 @@ impl FrictionPotential {
     /// `j(ξ)` as a function of `r = ‖ξ‖` (the exact law, no numerical regularization).
     pub fn value(&self, r: f64) -> f64 {
         match *self {
-            FrictionPotential::Norm => r,
-            FrictionPotential::Nonconvex { a, unit } => {
+            FrictionPotential::Norm { .. } => r,
+            FrictionPotential::Nonconvex { a, unit, .. } => {
                 let x = r / unit;
                 unit * if x <= a {
                     x + (a - 1.0) / (2.0 * a) * x * x
@@ -222,8 +305,8 @@ impl FrictionPotential {
     /// and (17) have `∂j(0)` = the unit ball (returned value 1), the regularized law 0.
     pub fn slope(&self, r: f64) -> f64 {
         match *self {
-            FrictionPotential::Norm => 1.0,
-            FrictionPotential::Nonconvex { a, unit } => {
+            FrictionPotential::Norm { .. } => 1.0,
+            FrictionPotential::Nonconvex { a, unit, .. } => {
                 let x = r / unit;
                 if x <= a {
                     1.0 - (1.0 - a) * x / a
@@ -245,24 +328,39 @@ impl FrictionPotential {
     /// convex potentials.
     pub fn h_slope(&self, r: f64) -> f64 {
         match *self {
-            FrictionPotential::Nonconvex { a, unit } => (1.0 - a) * (r / (a * unit)).min(1.0),
+            FrictionPotential::Nonconvex { a, unit, .. } => (1.0 - a) * (r / (a * unit)).min(1.0),
             _ => 0.0,
         }
     }
 
-    /// The ρ of the convex part `j_cvx = √(r² + ρ²) − ρ`: the law's own ρ for (19), the
-    /// numerical `rho_num` for the norm and (17).
-    pub fn convex_rho(&self, rho_num: f64) -> f64 {
+    /// How the norm of the convex part is imposed; `None` for the smooth law (19).
+    pub fn treatment(&self) -> Option<NormTreatment> {
         match *self {
-            FrictionPotential::Regularized { rho } => rho,
-            _ => rho_num,
+            FrictionPotential::Norm { treatment }
+            | FrictionPotential::Nonconvex { treatment, .. } => Some(treatment),
+            FrictionPotential::Regularized { .. } => None,
         }
     }
 
-    /// Whether the convex part `j_cvx` is the (nonsmooth) norm, so that it can be imposed
-    /// exactly; false for the smooth law (19).
-    pub fn is_nonsmooth(&self) -> bool {
-        !matches!(self, FrictionPotential::Regularized { .. })
+    /// The numerical regularization `ρ_num / U` of the smoothed norm; `None` for exact
+    /// stick/slip and for the smooth law (19).
+    pub fn regularization(&self) -> Option<f64> {
+        match self.treatment() {
+            Some(NormTreatment::Smoothed { regularization }) => Some(regularization),
+            _ => None,
+        }
+    }
+
+    /// The ρ of the smoothed convex part `√(r² + ρ²) − ρ`: the law's own ρ for (19), its
+    /// numerical regularization, but at least `floor` (the continuation stage of the
+    /// solver), for a smoothed norm. Not used for exact stick/slip.
+    pub fn convex_rho(&self, floor: f64) -> f64 {
+        match *self {
+            FrictionPotential::Regularized { rho } => rho,
+            _ => self
+                .regularization()
+                .map_or(floor, |target| target.max(floor)),
+        }
     }
 
     /// Bound `c_j` of `∂j` (`|ζ| ≤ c_j` for `ζ ∈ ∂j(ξ)`): 1 for all three potentials.
@@ -275,23 +373,56 @@ impl FrictionPotential {
     /// (the Lipschitz constant of ∇h; 1/m for ℓ = 1 m).
     pub fn alpha_j(&self) -> f64 {
         match *self {
-            FrictionPotential::Nonconvex { a, unit } => (1.0 - a) / (a * unit),
+            FrictionPotential::Nonconvex { a, unit, .. } => (1.0 - a) / (a * unit),
             _ => 0.0,
         }
     }
 
     /// The same law for the dimensionless slip `r̂ = r/U` (U the displacement scale, m):
-    /// `ĵ(r̂) = j(U r̂)/U`, so ρ̂ = ρ/U and ℓ̂ = ℓ/U.
+    /// `ĵ(r̂) = j(U r̂)/U`, so ρ̂ = ρ/U and ℓ̂ = ℓ/U. The treatment of the norm is unchanged:
+    /// its regularization is relative to U already.
     pub fn nondimensional(&self, displacement: f64) -> Self {
         match *self {
-            FrictionPotential::Norm => FrictionPotential::Norm,
-            FrictionPotential::Nonconvex { a, unit } => FrictionPotential::Nonconvex {
+            FrictionPotential::Norm { treatment } => FrictionPotential::Norm { treatment },
+            FrictionPotential::Nonconvex { a, unit, treatment } => FrictionPotential::Nonconvex {
                 a,
                 unit: unit / displacement,
+                treatment,
             },
             FrictionPotential::Regularized { rho } => FrictionPotential::Regularized {
                 rho: rho / displacement,
             },
+        }
+    }
+}
+
+impl std::fmt::Display for FrictionPotential {
+    /// The potential as the scenario names it, with its parameters and the treatment of its
+    /// norm, e.g. `nonconvex, a = 0.5 (norm smoothed, ρ_num = 1e-8 U)`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
+            NormTreatment::Smoothed { regularization } => {
+                write!(f, " (norm smoothed, ρ_num = {regularization:e} U)")
+            }
+            NormTreatment::Exact => write!(f, " (exact stick/slip)"),
+        };
+        match *self {
+            FrictionPotential::Norm { treatment: t } => {
+                write!(f, "norm")?;
+                treatment(f, t)
+            }
+            FrictionPotential::Nonconvex {
+                a,
+                unit,
+                treatment: t,
+            } => {
+                write!(f, "nonconvex, a = {a}")?;
+                if unit != 1.0 {
+                    write!(f, ", slip unit {unit:e} m")?;
+                }
+                treatment(f, t)
+            }
+            FrictionPotential::Regularized { rho } => write!(f, "regularized, ρ = {rho:e} m"),
         }
     }
 }
@@ -303,36 +434,65 @@ pub struct Friction {
     pub bound: FrictionBound,
     /// The slip-dependent coefficient μ.
     pub mu: FrictionCoefficient,
-    /// The potential j.
+    /// The potential j, with the treatment of its norm.
     pub potential: FrictionPotential,
-    /// Exact stick/slip: the nonsmooth convex part `F ‖·‖` of the potential is imposed by
-    /// an augmented Lagrangian with the friction traction as multiplier (sticking points
-    /// then have zero slip to round-off, slipping points carry exactly the bound), instead
-    /// of the numerical regularization ρ_num. Only for the potentials whose convex part is
-    /// the norm (`norm`, `nonconvex`); the regularized law (19) is smooth already.
-    pub exact: bool,
+}
+
+/// The frozen data of the tangential term of one contact point (see the module
+/// documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TangentialData {
+    /// Friction bound F ≥ 0 (Pa, or N/m in 2D).
+    pub bound: f64,
+    /// Linear term b (Pa), tangential coordinates.
+    pub linear: [f64; 2],
+    /// Exact stick/slip: the multiplier τ (Pa, tangential coordinates).
+    pub traction: [f64; 2],
+    /// Exact stick/slip: the augmented-Lagrangian penalty r > 0 (Pa/m).
+    pub penalty: f64,
+    /// Smoothed norm: the smallest ρ_num (m) to use, the continuation stage of the solver
+    /// (0: the law's own value).
+    pub regularization_floor: f64,
+}
+
+/// Energy density (Pa·m), gradient (Pa) and Hessian (Pa/m) of the tangential term with
+/// respect to the tangential displacement ξ, in tangential coordinates (first m entries).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TangentialTerm {
+    /// Energy.
+    pub energy: f64,
+    /// Gradient (the friction traction `−σ_τ` of the term).
+    pub gradient: [f64; 2],
+    /// (Generalized) Hessian.
+    pub hessian: [[f64; 2]; 2],
+}
+
+/// Projection of the `m`-vector `z` onto the ball of radius `f ≥ 0`; returns it with
+/// whether `z` was inside (stick).
+#[inline]
+pub fn project_ball(z: &[f64; 2], m: usize, f: f64) -> ([f64; 2], bool) {
+    let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
+    if nz <= f {
+        (*z, true)
+    } else {
+        let s = f / nz;
+        ([z[0] * s, z[1] * s], false)
+    }
 }
 
 impl Friction {
-    /// Checks the coefficient, the potential and the treatment of stick/slip.
+    /// Checks the coefficient and the potential (exact stick/slip with a potential whose
+    /// convex part is not the norm cannot be represented).
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming the parameter: `mu` as
     /// [`FrictionCoefficient::validate`], the potential's parameters as
-    /// [`FrictionPotential::validate`], and `exact` only for a potential whose convex part
-    /// is the norm.
+    /// [`FrictionPotential::validate`].
     pub fn validate(&self) -> crate::Result<()> {
         self.mu
             .validate()
             .map_err(|msg| crate::Error::invalid("mu", format!("{:?}", self.mu), msg))?;
-        self.potential.validate()?;
-        crate::error::require(
-            !self.exact || self.potential.is_nonsmooth(),
-            "exact",
-            true,
-            "exact = true only with potential = \"norm\" or \"nonconvex\" (the \
-             regularized law (19) is smooth)",
-        )
+        self.potential.validate()
     }
 
     /// The friction bound `F` at slip `r = ‖u_τ‖` and contact pressure `p`.
@@ -343,6 +503,95 @@ impl Friction {
             FrictionBound::Tresca => mu,
             FrictionBound::Coulomb => mu * pressure,
         }
+    }
+
+    /// Whether stick/slip is exact (the norm imposed by an augmented Lagrangian).
+    #[inline]
+    pub fn is_exact(&self) -> bool {
+        self.potential.treatment() == Some(NormTreatment::Exact)
+    }
+
+    /// The tangential term at the tangential displacement ξ (`m` = d − 1 components) with
+    /// the frozen data `data` (see the module documentation): `F φ_ρ(ξ) − b·ξ` with
+    /// `ρ = ` [`FrictionPotential::convex_rho`], or for exact stick/slip the Moreau envelope
+    /// `(1/r) [H_F(τ + rξ) − ‖τ‖²/2] − b·ξ` with gradient `proj_{B_F}(τ + rξ) − b` and
+    /// Hessian `r I` (stick, ‖τ + rξ‖ ≤ F, F > 0) or
+    /// `r F/‖z‖ (I − z zᵀ/‖z‖²)`, `z = τ + rξ` (slip).
+    #[inline]
+    pub fn tangential_term(
+        &self,
+        xi: &[f64; 2],
+        m: usize,
+        data: &TangentialData,
+    ) -> TangentialTerm {
+        let f = data.bound;
+        let b = data.linear;
+        let mut gt = [0.0; 2];
+        let mut ht = [[0.0; 2]; 2];
+        let energy;
+        if self.is_exact() {
+            let r = data.penalty;
+            let tau = data.traction;
+            let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
+            let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
+            let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
+            let (g, _) = project_ball(&z, m, f);
+            let huber = if f > 0.0 && nz <= f {
+                for a in 0..m {
+                    ht[a][a] = r;
+                }
+                0.5 * nz * nz
+            } else if nz == 0.0 {
+                // F = 0 and z = 0: the envelope is flat (zero curvature).
+                0.0
+            } else {
+                for a in 0..m {
+                    for c in 0..m {
+                        let delta = if a == c { 1.0 } else { 0.0 };
+                        ht[a][c] = r * f / nz * (delta - z[a] * z[c] / (nz * nz));
+                    }
+                }
+                f * nz - 0.5 * f * f
+            };
+            energy = (huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>();
+            for a in 0..m {
+                gt[a] = g[a] - b[a];
+            }
+        } else {
+            let rho = self.potential.convex_rho(data.regularization_floor);
+            let (phi, g, h) = regularized_norm(xi, m, rho);
+            energy = f * phi - (0..m).map(|a| b[a] * xi[a]).sum::<f64>();
+            for a in 0..m {
+                gt[a] = f * g[a] - b[a];
+                for c in 0..m {
+                    ht[a][c] = f * h[a][c];
+                }
+            }
+        }
+        TangentialTerm {
+            energy,
+            gradient: gt,
+            hessian: ht,
+        }
+    }
+
+    /// The multiplier update of exact stick/slip, `τ ← proj_{B_F}(τ + r ξ)`, for the
+    /// tangential displacement ξ (`m` components), multiplier `traction`, penalty `penalty`
+    /// and frozen bound `bound`; `None` unless stick/slip is exact.
+    #[inline]
+    pub fn updated_traction(
+        &self,
+        xi: &[f64; 2],
+        m: usize,
+        traction: &[f64; 2],
+        penalty: f64,
+        bound: f64,
+    ) -> Option<[f64; 2]> {
+        if !self.is_exact() {
+            return None;
+        }
+        let z = [traction[0] + penalty * xi[0], traction[1] + penalty * xi[1]];
+        Some(project_ball(&z, m, bound).0)
     }
 }
 

@@ -11,7 +11,10 @@ pub mod friction;
 pub mod nodes;
 pub mod normal;
 
-pub use friction::{Friction, FrictionBound, FrictionCoefficient, FrictionPotential};
+pub use friction::{
+    Friction, FrictionBound, FrictionCoefficient, FrictionPotential, NormTreatment, TangentialData,
+    TangentialTerm,
+};
 pub use nodes::ContactNodes;
 pub use normal::{NormalCompliance, NormalLaw};
 

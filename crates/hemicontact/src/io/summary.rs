@@ -93,7 +93,7 @@ impl Summary {
         }
         let h = &problem.material.elasticity.small_strain_hooke(d);
         let strains = BulkAssembler::new(mesh, &problem.material).cell_strains(&solution.u);
-        let locked_cells = if problem.material.ideal_locking.is_some() {
+        let locked_cells = if problem.material.locking.ideal().is_some() {
             solution
                 .locking_multiplier
                 .iter()
@@ -102,7 +102,7 @@ impl Summary {
         } else {
             strains
                 .iter()
-                .filter(|e| problem.material.locking.is_active(e))
+                .filter(|e| problem.material.locking.is_penalty_active(e))
                 .count()
         };
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);

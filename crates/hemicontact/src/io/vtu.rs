@@ -7,6 +7,7 @@
 
 use crate::assembly::BulkAssembler;
 use crate::error::Result;
+use crate::material::Locking;
 use crate::mesh::Mesh;
 use crate::problem::Problem;
 use crate::solver::Solution;
@@ -239,20 +240,21 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
     let mut q = Vec::with_capacity(n_cells);
     let mut multiplier = Vec::with_capacity(n_cells);
     let locking = &problem.material.locking;
-    let ideal = problem.material.ideal_locking;
-    let set = ideal.unwrap_or(locking.set);
+    let set = locking.set();
     for (c, e) in strains.iter().enumerate() {
-        let (act, lambda) = match ideal {
-            Some(_) => {
+        let (act, lambda) = match locking {
+            Locking::Ideal(_) => {
                 let l = solution.locking_multiplier.get(c).copied().unwrap_or(0.0);
                 (l > 0.0, l)
             }
-            None => (
-                locking.is_active(e),
-                locking.c_kappa * locking.set.q(e).max(0.0),
-            ),
+            Locking::Penalty(p) => (p.is_active(e), p.c_kappa * p.set.q(e).max(0.0)),
+            Locking::None => (false, 0.0),
         };
-        let ideal_multiplier = if ideal.is_some() { lambda } else { 0.0 };
+        let ideal_multiplier = if locking.ideal().is_some() {
+            lambda
+        } else {
+            0.0
+        };
         let s = problem
             .material
             .stress_3x3(e, problem.plane, ideal_multiplier);
@@ -262,7 +264,7 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         tr.push(e.trace());
         active.push(i32::from(act));
         multiplier.push(if lambda.is_finite() { lambda } else { 0.0 });
-        let qv = set.q(e);
+        let qv = set.map_or(0.0, |set| set.q(e));
         q.push(if qv.is_finite() { qv } else { 0.0 });
     }
     let n = mesh.n_nodes();

@@ -10,17 +10,15 @@
 //! compressibility `C_κ (|tr ε| − θ)_+ sgn(tr ε) I`) and generalized tangent
 //! `C_κ (H(Q) ∂Q⊗∂Q + Q_+ ∂²Q)` with `H` the Heaviside step (taken 0 at Q = 0). Ψ is convex
 //! (Q convex, `t ↦ t_+²` convex and nondecreasing) and C¹ with a piecewise smooth gradient,
-//! which is what the semismooth Newton method needs. `C_κ = 0` is the material without
-//! locking.
+//! which is what the semismooth Newton method needs. `C_κ = 0` adds nothing.
 
 use super::StrainEnergy;
 use crate::tensor::{add_identity, add_outer, zero_tangent, Sym, Tangent};
 
-/// A locking set B; see the module documentation.
+/// A locking set B; see the module documentation. (A material without locking has no set:
+/// [`super::Locking::None`].)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LockingSet {
-    /// No locking: B is the whole space.
-    None,
     /// `|tr ε| ≤ θ` (the paper's example, θ = κ²).
     LimitedCompressibility {
         /// Threshold θ > 0 on the volumetric strain.
@@ -45,7 +43,6 @@ impl LockingSet {
     /// q = e²).
     pub fn nondimensional(&self, e: f64) -> (LockingSet, f64) {
         match *self {
-            LockingSet::None => (LockingSet::None, 1.0),
             LockingSet::LimitedCompressibility { theta } => {
                 (LockingSet::LimitedCompressibility { theta: theta / e }, e)
             }
@@ -61,7 +58,6 @@ impl LockingSet {
     /// finite and positive.
     pub fn validate(&self) -> crate::Result<()> {
         let (field, v, what) = match *self {
-            LockingSet::None => return Ok(()),
             LockingSet::LimitedCompressibility { theta } => {
                 ("theta", theta, "a volumetric strain threshold θ > 0")
             }
@@ -71,11 +67,34 @@ impl LockingSet {
         crate::error::require(v.is_finite() && v > 0.0, field, v, what)
     }
 
+    /// The size of B, the unit in which a value of Q is small or large: θ for limited
+    /// compressibility, κ² for Prager's set, r for the ball (so that `Q/size` is a relative
+    /// violation of the constraint).
+    #[inline]
+    pub fn size(&self) -> f64 {
+        match *self {
+            LockingSet::LimitedCompressibility { theta } => theta,
+            LockingSet::Prager { kappa } => kappa * kappa,
+            LockingSet::Ball { r } => r,
+        }
+    }
+
+    /// `|∂Q|²` on the boundary ∂B = {Q = 0}, which turns a stiffness per unit of strain
+    /// into one per unit of Q: 1 for limited compressibility (measured per unit trace,
+    /// `|∂Q/∂(tr ε)| = 1`), `‖ε^D‖² = 2κ²` for Prager's set (`½‖ε^D‖² = κ²` on ∂B), and
+    /// `‖ε/‖ε‖‖² = 1` for the ball.
+    #[inline]
+    pub fn gradient_norm_sq_at_boundary(&self) -> f64 {
+        match *self {
+            LockingSet::Prager { kappa } => 2.0 * kappa * kappa,
+            LockingSet::LimitedCompressibility { .. } | LockingSet::Ball { .. } => 1.0,
+        }
+    }
+
     /// `Q(ε)`: negative inside B, zero on its boundary, positive outside.
     #[inline]
     pub fn q(&self, eps: &Sym) -> f64 {
         match *self {
-            LockingSet::None => f64::NEG_INFINITY,
             LockingSet::LimitedCompressibility { theta } => eps.trace().abs() - theta,
             LockingSet::Prager { kappa } => {
                 let dev = eps.deviator();
@@ -89,7 +108,6 @@ impl LockingSet {
     #[inline]
     pub fn dq(&self, eps: &Sym) -> Sym {
         match *self {
-            LockingSet::None => Sym::zero(eps.dim),
             LockingSet::LimitedCompressibility { .. } => {
                 Sym::identity(eps.dim).scaled(eps.trace().signum())
             }
@@ -108,11 +126,11 @@ impl LockingSet {
     /// Out-of-plane component `∂Q/∂ε_zz` of a two-dimensional strain `eps` under plane
     /// strain (`ε_zz = 0`, Q read as a function of `tr ε` and `ε:ε`, see
     /// [`crate::material`]): `sgn(tr ε)` for limited compressibility, `−tr ε / 2` for
-    /// Prager's set (the zz entry of `ε − (tr ε/2) I`), 0 for the ball and for no locking.
+    /// Prager's set (the zz entry of `ε − (tr ε/2) I`), 0 for the ball.
     #[inline]
     pub fn dq_zz(&self, eps: &Sym) -> f64 {
         match *self {
-            LockingSet::None | LockingSet::Ball { .. } => 0.0,
+            LockingSet::Ball { .. } => 0.0,
             LockingSet::LimitedCompressibility { .. } => eps.trace().signum(),
             LockingSet::Prager { .. } => -eps.trace() / eps.dim as f64,
         }
@@ -123,7 +141,7 @@ impl LockingSet {
     fn add_d2q(&self, t: &mut Tangent, eps: &Sym, s: f64) {
         let d = eps.dim;
         match *self {
-            LockingSet::None | LockingSet::LimitedCompressibility { .. } => {}
+            LockingSet::LimitedCompressibility { .. } => {}
             LockingSet::Prager { .. } => {
                 let i = Sym::identity(d);
                 add_identity(t, d, s);
@@ -151,17 +169,11 @@ pub struct LockingPenalty {
 }
 
 impl LockingPenalty {
-    /// No locking.
-    pub const NONE: LockingPenalty = LockingPenalty {
-        set: LockingSet::None,
-        c_kappa: 0.0,
-    };
-
     /// Checks the set and the compliance.
     ///
     /// # Errors
     /// [`crate::Error::Invalid`]: the set as [`LockingSet::validate`], `c_kappa` finite and
-    /// ≥ 0, and 0 without a locking set.
+    /// ≥ 0.
     pub fn validate(&self) -> crate::Result<()> {
         self.set.validate()?;
         let c = self.c_kappa;
@@ -170,12 +182,6 @@ impl LockingPenalty {
             "c_kappa",
             c,
             "a compliance C_κ ≥ 0 (Pa)",
-        )?;
-        crate::error::require(
-            c == 0.0 || self.set != LockingSet::None,
-            "c_kappa",
-            c,
-            "only with a locking set",
         )
     }
 

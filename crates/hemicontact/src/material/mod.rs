@@ -189,23 +189,67 @@ impl StrainEnergy for Elasticity {
     }
 }
 
-/// The bulk material of the body: elasticity plus the nearly-locking penalty.
+/// How the body locks: not at all, nearly (the penalty Ψ) or ideally (the exact constraint).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Locking {
+    /// No locking.
+    None,
+    /// Nearly locking: the penalty `Ψ(ε) = (C_κ/2) Q(ε)_+²` added to the stored energy.
+    Penalty(LockingPenalty),
+    /// Ideal locking: the exact constraint `ε_T ∈ B` in every cell, imposed by an augmented
+    /// Lagrangian ([`AugmentedLocking`]) with a stress multiplier per cell.
+    Ideal(LockingSet),
+}
+
+impl Locking {
+    /// The nearly-locking penalty, if any.
+    #[inline]
+    pub fn penalty(&self) -> Option<&LockingPenalty> {
+        match self {
+            Locking::Penalty(p) => Some(p),
+            _ => None,
+        }
+    }
+
+    /// The set of ideal locking, if any.
+    #[inline]
+    pub fn ideal(&self) -> Option<LockingSet> {
+        match *self {
+            Locking::Ideal(set) => Some(set),
+            _ => None,
+        }
+    }
+
+    /// The locking set B (penalty or ideal), if any.
+    #[inline]
+    pub fn set(&self) -> Option<LockingSet> {
+        match *self {
+            Locking::None => None,
+            Locking::Penalty(p) => Some(p.set),
+            Locking::Ideal(set) => Some(set),
+        }
+    }
+
+    /// Whether the penalty is active at `eps` (`C_κ > 0` and `Q(ε) > 0`); false without a
+    /// penalty.
+    #[inline]
+    pub fn is_penalty_active(&self, eps: &Sym) -> bool {
+        self.penalty().is_some_and(|p| p.is_active(eps))
+    }
+}
+
+/// The bulk material of the body: elasticity plus locking.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Elasticity operator A = ∂W.
     pub elasticity: Elasticity,
-    /// Nearly-locking penalty Ψ ([`LockingPenalty::NONE`] without locking or with ideal
-    /// locking).
-    pub locking: LockingPenalty,
-    /// Ideal locking: the exact constraint `ε_T ∈ B` in every cell, imposed by an augmented
-    /// Lagrangian ([`AugmentedLocking`]); `None` for no or nearly locking.
-    pub ideal_locking: Option<LockingSet>,
+    /// Locking: none, nearly (a penalty in the stored energy) or ideal (a constraint).
+    pub locking: Locking,
 }
 
 impl Material {
-    /// Checks the elasticity constants (under `elasticity.`), the nearly-locking penalty
-    /// (under `locking.`) and the ideal-locking set (under `ideal_locking.`), which must
-    /// not both be given.
+    /// Checks the elasticity constants (under `elasticity.`) and the locking set and
+    /// compliance (under `locking.`).
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming the parameter.
@@ -213,31 +257,19 @@ impl Material {
         self.elasticity
             .validate(dim)
             .map_err(|e| e.within("elasticity"))?;
-        self.locking.validate().map_err(|e| e.within("locking"))?;
-        if let Some(set) = self.ideal_locking {
-            crate::error::require(
-                set != LockingSet::None,
-                "ideal_locking",
-                "none",
-                "a locking set (ideal locking constrains the strain to it)",
-            )?;
-            set.validate().map_err(|e| e.within("ideal_locking"))?;
-            crate::error::require(
-                self.locking.c_kappa == 0.0,
-                "locking.c_kappa",
-                self.locking.c_kappa,
-                "0 with ideal locking (ideal locking has no compliance)",
-            )?;
+        match &self.locking {
+            Locking::None => Ok(()),
+            Locking::Penalty(p) => p.validate(),
+            Locking::Ideal(set) => set.validate(),
         }
-        Ok(())
+        .map_err(|e| e.within("locking"))
     }
 
     /// A material with elasticity `elasticity` and no locking.
     pub fn elastic(elasticity: Elasticity) -> Self {
         Material {
             elasticity,
-            locking: LockingPenalty::NONE,
-            ideal_locking: None,
+            locking: Locking::None,
         }
     }
 }
@@ -246,25 +278,27 @@ impl Material {
     /// The same material for the dimensionless strain `ε̂ = ε/e` and energy density
     /// `Ŵ = W/(S e²)` (S the stress scale, Pa), with the unit of its ideal-locking
     /// multiplier `S e²/q` (Pa; q the unit of the locking function,
-    /// [`LockingSet::nondimensional`]). The penalty `Ψ = (C_κ/2) Q_+²` keeps its form with
-    /// `Ĉ_κ = C_κ q²/(S e²)`.
+    /// [`LockingSet::nondimensional`]; `S e` without ideal locking). The penalty
+    /// `Ψ = (C_κ/2) Q_+²` keeps its form with `Ĉ_κ = C_κ q²/(S e²)`.
     pub fn nondimensional(&self, stress: f64, e: f64) -> (Material, f64) {
-        let (set, q) = self.locking.set.nondimensional(e);
-        let locking = LockingPenalty {
-            set,
-            c_kappa: self.locking.c_kappa * (q / e) * (q / e) / stress,
-        };
-        let (ideal_locking, multiplier_unit) = match self.ideal_locking {
-            Some(b) => {
-                let (set, q) = b.nondimensional(e);
-                (Some(set), stress * (e / q) * e)
+        let (locking, multiplier_unit) = match self.locking {
+            Locking::None => (Locking::None, stress * e),
+            Locking::Penalty(p) => {
+                let (set, q) = p.set.nondimensional(e);
+                let penalty = LockingPenalty {
+                    set,
+                    c_kappa: p.c_kappa * (q / e) * (q / e) / stress,
+                };
+                (Locking::Penalty(penalty), stress * e)
             }
-            None => (None, stress * e),
+            Locking::Ideal(b) => {
+                let (set, q) = b.nondimensional(e);
+                (Locking::Ideal(set), stress * (e / q) * e)
+            }
         };
         let material = Material {
             elasticity: self.elasticity.nondimensional(stress, e),
             locking,
-            ideal_locking,
         };
         (material, multiplier_unit)
     }
@@ -273,25 +307,29 @@ impl Material {
 impl StrainEnergy for Material {
     #[inline]
     fn energy(&self, eps: &Sym) -> f64 {
-        self.elasticity.energy(eps) + self.locking.energy(eps)
+        match &self.locking {
+            Locking::Penalty(p) => self.elasticity.energy(eps) + p.energy(eps),
+            _ => self.elasticity.energy(eps),
+        }
     }
     #[inline]
     fn stress(&self, eps: &Sym) -> Sym {
         let s = self.elasticity.stress(eps);
-        if self.locking.c_kappa == 0.0 {
-            return s;
+        match &self.locking {
+            Locking::Penalty(p) if p.c_kappa != 0.0 => s.add_scaled(1.0, &p.stress(eps)),
+            _ => s,
         }
-        let p = self.locking.stress(eps);
-        s.add_scaled(1.0, &p)
     }
     #[inline]
     fn tangent(&self, eps: &Sym) -> Tangent {
         let mut t = self.elasticity.tangent(eps);
-        if self.locking.is_active(eps) {
-            let p = self.locking.tangent(eps);
-            for (row, prow) in t.iter_mut().zip(p.iter()) {
-                for (a, b) in row.iter_mut().zip(prow.iter()) {
-                    *a += b;
+        if let Locking::Penalty(penalty) = &self.locking {
+            if penalty.is_active(eps) {
+                let p = penalty.tangent(eps);
+                for (row, prow) in t.iter_mut().zip(p.iter()) {
+                    for (a, b) in row.iter_mut().zip(prow.iter()) {
+                        *a += b;
+                    }
                 }
             }
         }
@@ -300,10 +338,10 @@ impl StrainEnergy for Material {
     #[inline]
     fn plane_strain_stress_zz(&self, eps: &Sym) -> f64 {
         let s = self.elasticity.plane_strain_stress_zz(eps);
-        if self.locking.c_kappa == 0.0 {
-            return s;
+        match &self.locking {
+            Locking::Penalty(p) if p.c_kappa != 0.0 => s + p.plane_strain_stress_zz(eps),
+            _ => s,
         }
-        s + self.locking.plane_strain_stress_zz(eps)
     }
 }
 
@@ -316,13 +354,13 @@ impl Material {
     /// 0 under plane stress. The out-of-plane shear stresses are 0.
     pub fn stress_3x3(&self, eps: &Sym, plane: Plane, multiplier: f64) -> [[f64; 3]; 3] {
         let mut s = self.stress(eps);
-        let set = self.ideal_locking.unwrap_or(LockingSet::None);
-        if multiplier > 0.0 {
+        let ideal = self.locking.ideal().filter(|_| multiplier > 0.0);
+        if let Some(set) = ideal {
             s = s.add_scaled(multiplier, &set.dq(eps));
         }
         let zz = if eps.dim == 2 && plane == Plane::Strain {
             let mut zz = self.plane_strain_stress_zz(eps);
-            if multiplier > 0.0 {
+            if let Some(set) = ideal {
                 zz += multiplier * set.dq_zz(eps);
             }
             zz

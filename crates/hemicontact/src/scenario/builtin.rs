@@ -52,7 +52,7 @@ law = "normal-compliance"
 c_nu = 10000.0
 [contact.friction]
 bound = "coulomb"
-potential = "norm"
+potential = { kind = "norm" }
 mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 "#;
 

@@ -6,18 +6,20 @@
 //! the file, the field, the value and what is allowed.
 
 pub mod builtin;
+mod friction;
 pub mod schema;
 
-use crate::contact::{ContactBoundary, Friction, FrictionPotential, NormalCompliance, NormalLaw};
+use crate::contact::{ContactBoundary, NormalCompliance, NormalLaw};
 use crate::error::{Error, Result};
-use crate::material::{Elasticity, Hencky, Hooke, LockingPenalty, LockingSet, Material, Plane};
+use crate::material::{
+    Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material, Plane,
+};
 use crate::mesh::generate::{self, Rectangle};
 use crate::mesh::Mesh;
 use crate::problem::{Dirichlet, Problem, Traction};
 use crate::solver::SolverSettings;
 use schema::{
-    ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, PotentialKind,
-    ScenarioFile,
+    ElasticityModel, LockingSetKind, LockingTreatment, MeshKind, NormalLawKind, ScenarioFile,
 };
 use std::path::{Path, PathBuf};
 
@@ -537,29 +539,29 @@ impl Scenario {
         }
         let l = &self.file.locking;
         let set = match l.set {
-            LockingSetKind::None => LockingSet::None,
-            LockingSetKind::LimitedCompressibility => LockingSet::LimitedCompressibility {
+            LockingSetKind::None => None,
+            LockingSetKind::LimitedCompressibility => Some(LockingSet::LimitedCompressibility {
                 theta: self.required(
                     "locking.theta",
                     l.theta,
                     "a volumetric strain threshold θ",
                 )?,
-            },
-            LockingSetKind::Prager => LockingSet::Prager {
+            }),
+            LockingSetKind::Prager => Some(LockingSet::Prager {
                 kappa: self.required("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
-            },
-            LockingSetKind::Ball => LockingSet::Ball {
+            }),
+            LockingSetKind::Ball => Some(LockingSet::Ball {
                 r: self.required("locking.radius", l.radius, "a strain radius r")?,
-            },
+            }),
         };
         if l.treatment == LockingTreatment::Exact {
-            if set == LockingSet::None {
+            let Some(set) = set else {
                 return Err(self.err(
                     "locking.treatment",
                     "\"exact\"",
                     "\"exact\" only with a locking set (locking.set)",
                 ));
-            }
+            };
             if let Some(c) = l.c_kappa {
                 return Err(self.err(
                     "locking.c_kappa",
@@ -569,21 +571,25 @@ impl Scenario {
             }
             return Ok(Material {
                 elasticity,
-                locking: LockingPenalty::NONE,
-                ideal_locking: Some(set),
+                locking: Locking::Ideal(set),
             });
         }
-        let c_kappa = match (set, l.c_kappa) {
-            (LockingSet::None, None) => 0.0,
-            (LockingSet::None, Some(c)) => {
+        let locking = match (set, l.c_kappa) {
+            (None, None) => Locking::None,
+            (None, Some(c)) => {
                 return Err(self.err(
                     "locking.c_kappa",
                     c,
                     "only with a locking set (locking.set)",
                 ))
             }
-            (_, Some(c)) => c,
-            (_, None) => {
+            (Some(set), Some(c)) if c.is_finite() && c >= 0.0 => {
+                Locking::Penalty(LockingPenalty { set, c_kappa: c })
+            }
+            (_, Some(c)) => {
+                return Err(self.err("locking.c_kappa", c, "a compliance C_κ ≥ 0 (Pa)"))
+            }
+            (Some(_), None) => {
                 return Err(self.err(
                     "locking.c_kappa",
                     "missing",
@@ -593,8 +599,7 @@ impl Scenario {
         };
         Ok(Material {
             elasticity,
-            locking: LockingPenalty { set, c_kappa },
-            ideal_locking: None,
+            locking,
         })
     }
 
@@ -624,43 +629,7 @@ impl Scenario {
             };
             let friction = match &c.friction {
                 None => None,
-                Some(fs) => {
-                    let potential = match fs.potential {
-                        PotentialKind::Norm => FrictionPotential::Norm,
-                        PotentialKind::Nonconvex => {
-                            let a =
-                                self.required(&f("friction.a"), fs.a, "a parameter 0 < a < 1")?;
-                            FrictionPotential::Nonconvex { a, unit: 1.0 }
-                        }
-                        PotentialKind::Regularized => FrictionPotential::Regularized {
-                            rho: self.required(
-                                &f("friction.rho"),
-                                fs.rho,
-                                "a regularization length ρ (m)",
-                            )?,
-                        },
-                    };
-                    if fs.potential != PotentialKind::Nonconvex && fs.a.is_some() {
-                        return Err(self.err(
-                            &f("friction.a"),
-                            fs.a.unwrap_or(0.0),
-                            "only with potential = \"nonconvex\"",
-                        ));
-                    }
-                    if fs.potential != PotentialKind::Regularized && fs.rho.is_some() {
-                        return Err(self.err(
-                            &f("friction.rho"),
-                            fs.rho.unwrap_or(0.0),
-                            "only with potential = \"regularized\"",
-                        ));
-                    }
-                    Some(Friction {
-                        bound: fs.bound,
-                        mu: fs.mu.clone(),
-                        potential,
-                        exact: fs.exact,
-                    })
-                }
+                Some(fs) => Some(self.build_friction(k, fs)?),
             };
             out.push(ContactBoundary {
                 part,
@@ -765,6 +734,7 @@ impl Scenario {
             e => e.in_file(&self.source, field_in_file),
         })?;
         self.check_solve_memory(&problem)?;
+        notes.extend(self.friction_notes());
         notes.extend(problem.notes());
         Ok((problem, notes))
     }
@@ -835,8 +805,6 @@ fn field_in_file(field: &str) -> String {
         ("material.elasticity", "material.young"),
         ("material.locking.r", "locking.radius"),
         ("material.locking", "locking"),
-        ("material.ideal_locking.r", "locking.radius"),
-        ("material.ideal_locking", "locking"),
     ];
     for (from, to) in renamed {
         if let Some(rest) = field.strip_prefix(from) {

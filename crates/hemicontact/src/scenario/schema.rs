@@ -46,11 +46,15 @@
 //! c_nu = 10000.0            # Pa/m
 //! [contact.friction]        # optional (default: frictionless)
 //! bound = "coulomb"         # or "tresca"
-//! potential = "norm"        # or "nonconvex" (with a = …), "regularized" (with rho = …)
+//! potential = { kind = "norm" }     # (default)
+//! # potential = { kind = "nonconvex", a = 0.5 }
+//! # potential = { kind = "regularized", rho = 1e-3 }   # m
 //! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
 //! # mu = { law = "constant", mu = 0.3 }
 //! # mu = { law = "table", points = [[0.0, 0.4], [0.01, 0.1]] }
 //! exact = false             # true: exact stick/slip (potentials norm and nonconvex)
+//! regularization = 1e-8     # else the norm is smoothed with ρ_num = regularization · U
+//!                           # (U the displacement scale of the solve; default 1e-8)
 //!
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
@@ -64,6 +68,10 @@
 //! [output]
 //! dir = "out/example"       # default: given on the command line
 //! ```
+//!
+//! Deprecated forms, still read with a note: `potential = "nonconvex"` with a sibling
+//! `a = 0.5` (likewise `"norm"`, `"regularized"` with `rho`), and `[solver.outer]
+//! friction_regularization` for the `regularization` of every contact part.
 //!
 //! Entries that contradict each other are refused, naming both: two `[[dirichlet]]`
 //! prescribing one component with different values at a common node (one part, or a corner
@@ -277,7 +285,7 @@ pub struct ContactSpec {
     pub friction: Option<FrictionSpec>,
 }
 
-/// Friction potential name.
+/// Friction potential name (the deprecated form `potential = "nonconvex"`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PotentialKind {
@@ -290,20 +298,75 @@ pub enum PotentialKind {
     Regularized,
 }
 
+/// A friction potential with its parameters, `potential = { kind = "…", … }`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum PotentialLaw {
+    /// `j = ‖ξ‖` (a variant with no fields rather than a unit variant, so that unknown
+    /// fields in its table are refused).
+    Norm {},
+    /// The paper's nonconvex example (17) with parameter `0 < a < 1` (slips in m).
+    Nonconvex {
+        /// a_j (dimensionless).
+        a: f64,
+    },
+    /// The regularized law (19) `√(‖ξ‖² + ρ²) − ρ`.
+    Regularized {
+        /// ρ > 0 (m).
+        rho: f64,
+    },
+}
+
+/// `potential`: a table `{ kind = "…", … }`, or the deprecated bare name whose parameter
+/// is a sibling key (`a`, `rho`) of `[contact.friction]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum PotentialSpec {
+    /// `potential = { kind = "nonconvex", a = 0.5 }`.
+    Law(PotentialLaw),
+    /// `potential = "nonconvex"` (deprecated).
+    Name(PotentialKind),
+}
+
+impl<'de> Deserialize<'de> for PotentialSpec {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        use serde::de::{self, IntoDeserializer};
+        struct Visit;
+        impl<'de> de::Visitor<'de> for Visit {
+            type Value = PotentialSpec;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str(
+                    "a friction potential { kind = \"norm\" }, { kind = \"nonconvex\", a = … } \
+                     or { kind = \"regularized\", rho = … }",
+                )
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<PotentialSpec, E> {
+                let name: de::value::StrDeserializer<E> = v.into_deserializer();
+                PotentialKind::deserialize(name).map(PotentialSpec::Name)
+            }
+            fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<PotentialSpec, A::Error> {
+                PotentialLaw::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(PotentialSpec::Law)
+            }
+        }
+        deserializer.deserialize_any(Visit)
+    }
+}
+
 /// `[contact.friction]`.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionSpec {
     /// Friction bound type.
     pub bound: FrictionBound,
-    /// Potential j.
-    #[serde(default)]
-    pub potential: PotentialKind,
-    /// Parameter a_j of the nonconvex potential, 0 < a < 1.
-    #[serde(default)]
+    /// Potential j; `norm` if absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub potential: Option<PotentialSpec>,
+    /// Deprecated: parameter a_j of `potential = "nonconvex"`, 0 < a < 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub a: Option<f64>,
-    /// Parameter ρ > 0 of the regularized potential (m).
-    #[serde(default)]
+    /// Deprecated: parameter ρ > 0 of `potential = "regularized"` (m).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rho: Option<f64>,
     /// The coefficient μ(r).
     pub mu: FrictionCoefficient,
@@ -311,6 +374,12 @@ pub struct FrictionSpec {
     /// potentials `norm` and `nonconvex` only. Default false.
     #[serde(default)]
     pub exact: bool,
+    /// Numerical regularization of the norm, relative to the displacement scale U of the
+    /// solve (`ρ_num = regularization · U`), in (0, 0.01); potentials `norm` and
+    /// `nonconvex` without `exact` only. Default 1e-8
+    /// ([`crate::contact::friction::DEFAULT_REGULARIZATION`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub regularization: Option<f64>,
 }
 
 /// `[[dirichlet]]`.

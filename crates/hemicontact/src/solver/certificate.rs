@@ -356,7 +356,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             Some(fr) => {
                 let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
                 let wf = w * s.bound;
-                let slipping = if fr.exact {
+                let slipping = if fr.is_exact() {
                     let (r, tau) = (ca.penalty[i], frozen.traction[i]);
                     let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
                     let stick = frozen.bound[i] > 0.0
@@ -406,7 +406,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 .contact_violation
                 .max((s.u_nu - cb.gap).max(0.0) / u_scale);
         }
-        exact_any |= cb.friction.as_ref().is_some_and(|f| f.exact);
+        exact_any |= cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
             boundary: ca.nodes.boundary[i] as usize,

@@ -13,7 +13,7 @@
 //! | `u_ν ≤ g` | `w_i (1/2r)[(λ_i + r(u_ν − g))_+² − λ_i²]` | `λ_i ← (λ_i + r(u_ν − g))_+` |
 //! | `F‖u_τ‖` | `w_i (1/r)[H_F(τ_i + r u_τ) − ‖τ_i‖²/2]` | `τ_i ← proj_{B_F}(τ_i + r u_τ)` |
 //!
-//! (H_F the Huber function, see [`crate::assembly::contact`].) For fixed multipliers every
+//! (H_F the Huber function, see [`crate::contact::friction`].) For fixed multipliers every
 //! term is convex and C¹ with a piecewise smooth gradient — exactly the structure the
 //! existing semismooth Newton solver with line search minimizes, on the same sparsity
 //! pattern and symbolic factorization; with zero multipliers it *is* the nearly-locking
@@ -130,11 +130,11 @@ impl ConstraintSettings {
 
 /// Whether the problem has exact constraints (and so multipliers to iterate on).
 pub fn has_exact_constraints(problem: &Problem) -> bool {
-    problem.material.ideal_locking.is_some()
+    problem.material.locking.ideal().is_some()
         || problem
             .contact
             .iter()
-            .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.exact))
+            .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.is_exact()))
 }
 
 /// P-wave modulus `S = λ + 2G` of the small-strain Hooke law of the problem (Pa).
@@ -146,14 +146,11 @@ fn stiffness_scale(problem: &Problem) -> f64 {
     (h.lambda + 2.0 * h.mu).max(h.mu)
 }
 
-/// Penalty r_T of the ideal-locking set `set` (Pa per unit of Q²) for the penalty factor
-/// `gamma` ([`ConstraintSettings::locking_penalty`]).
+/// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` for the penalty factor
+/// `gamma` ([`ConstraintSettings::locking_penalty`]; Pa per unit of Q², see
+/// [`LockingSet::gradient_norm_sq_at_boundary`]).
 pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
-    let s = stiffness_scale(problem);
-    match *set {
-        LockingSet::Prager { kappa } => gamma * s / (2.0 * kappa * kappa),
-        _ => gamma * s,
-    }
+    gamma * stiffness_scale(problem) / set.gradient_norm_sq_at_boundary()
 }
 
 /// Penalty r_i (Pa/m) of every contact point of weight `weight[i]` for the penalty factor
@@ -184,16 +181,6 @@ pub fn update_locking(
             (current[c] + r * set.q(&eps)).max(0.0)
         })
         .collect()
-}
-
-/// The scale of Q for a set: θ, κ² or r (so that `Q/scale` is a relative violation).
-pub fn q_scale(set: &LockingSet) -> f64 {
-    match *set {
-        LockingSet::None => 1.0,
-        LockingSet::LimitedCompressibility { theta } => theta,
-        LockingSet::Prager { kappa } => kappa * kappa,
-        LockingSet::Ball { r } => r,
-    }
 }
 
 /// KKT residuals of the exact constraints at a solution (all dimensionless).
@@ -246,7 +233,7 @@ pub fn locking_kkt(
     lambda: &[f64],
     kkt: &mut KktCertificate,
 ) {
-    let q_ref = q_scale(set);
+    let q_ref = set.size();
     let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
     let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
     kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
@@ -281,12 +268,13 @@ pub fn zero_multipliers(frozen: &mut Frozen, n_cells: usize, ideal: bool) {
 pub fn stages(problem: &Problem, c: &ConstraintSettings) -> usize {
     let locking = problem
         .material
-        .ideal_locking
+        .locking
+        .ideal()
         .map_or(0, |_| c.stages(c.locking_penalty));
     let contact = if problem
         .contact
         .iter()
-        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.exact))
+        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.is_exact()))
     {
         c.stages(c.contact_penalty)
     } else {

@@ -233,7 +233,7 @@ fn solve_dimensionless(
             tolerance: settings.certificate_tolerance,
         },
     );
-    if let Some(set) = problem.material.ideal_locking {
+    if let Some(set) = problem.material.locking.ideal() {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
         constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
     }
@@ -250,7 +250,7 @@ fn solve_dimensionless(
         });
         let hint = match worst.law {
             "friction law" => {
-                "; the friction regularization ([solver.outer] friction_regularization) may be \
+                "; the friction regularization ([contact.friction] regularization) may be \
                  too large for this tolerance: lower it, or impose friction exactly \
                  ([contact.friction] exact = true)"
             }

@@ -62,14 +62,12 @@ pub struct OuterSettings {
     pub depth: usize,
     /// Initial relaxation factor ω ∈ (0, 1] of the plain fixed point. Default 1.
     pub relaxation: f64,
-    /// Numerical regularization of the norm in the friction potential, relative to the
-    /// displacement scale U of the problem ([`super::scaling`]): `ρ_num =
-    /// friction_regularization · U`, reached by continuation from `10⁻² U`
-    /// ([`super::System::set_regularization_stage`]). Default 1e-8: the friction force of a
-    /// point slipping by r misses the bound by `ρ²/(2r²)` of it, far below the certificate
-    /// tolerance wherever the slip exceeds `10⁻⁶ max|u|` (below that a point sticks); the
-    /// paper example's reported digits do not change when it shrinks tenfold (tested).
-    pub friction_regularization: f64,
+    /// Deprecated: the numerical regularization of the norm in the friction potential of
+    /// every contact part, now a parameter of the friction law
+    /// ([`crate::contact::NormTreatment::Smoothed`], scenario key `[contact.friction]
+    /// regularization`); read by the scenario loader only. `None` unless given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_regularization: Option<f64>,
     /// Solve early convex problems inexactly. Default true.
     pub inexact: bool,
 }
@@ -82,7 +80,7 @@ impl Default for OuterSettings {
             acceleration: Acceleration::Anderson,
             depth: 5,
             relaxation: 1.0,
-            friction_regularization: 1e-8,
+            friction_regularization: None,
             inexact: true,
         }
     }
@@ -99,7 +97,7 @@ impl OuterSettings {
     /// # Errors
     /// [`crate::Error::Invalid`] naming the setting (`tolerance` in (0, 1), `depth` from 1
     /// to [`MAX_DEPTH`], `max_iterations` ≥ 1, `relaxation` in (0, 1],
-    /// `friction_regularization` in (0, 0.01)).
+    /// the deprecated `friction_regularization`, if given, in (0, 0.01)).
     pub fn validate(&self) -> crate::Result<()> {
         use crate::error::require;
         let tol = self.tolerance;
@@ -127,13 +125,15 @@ impl OuterSettings {
             self.relaxation,
             "a factor in (0, 1]",
         )?;
-        let rho = self.friction_regularization;
-        require(
-            rho.is_finite() && rho > 0.0 && rho < 1e-2,
-            "friction_regularization",
-            rho,
-            "a number in (0, 0.01)",
-        )
+        match self.friction_regularization {
+            Some(rho) => require(
+                rho.is_finite() && rho > 0.0 && rho < 1e-2,
+                "friction_regularization",
+                rho,
+                "a number in (0, 0.01)",
+            ),
+            None => Ok(()),
+        }
     }
 }
 
@@ -216,7 +216,8 @@ pub fn run(
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
     let n_points = system.contact.len();
-    let n_locking = problem.mesh.n_cells() * usize::from(problem.material.ideal_locking.is_some());
+    let n_locking =
+        problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = system.initial_frozen(problem, u);
@@ -233,7 +234,7 @@ pub fn run(
     };
     let mut stop = StopReason::IterationCap;
     let stages = constraints::stages(problem, &settings.constraints)
-        .max(system::regularization_stages(problem, settings));
+        .max(system::regularization_stages(problem));
     for k in 0..settings.outer.max_iterations.max(1) {
         system.set_penalty_stage(&settings.constraints, k);
         system.set_regularization_stage(k);
@@ -390,8 +391,8 @@ pub fn fixed_point_residual(
             .max((g.pressure[i] - z.pressure[i]).abs() / r)
             .max(dt / r);
     }
-    if let Some(set) = &problem.material.ideal_locking {
-        let r = system.locking_penalty * constraints::q_scale(set);
+    if let Some(set) = problem.material.locking.ideal() {
+        let r = system.locking_penalty * set.size();
         for (a, b) in g.locking.iter().zip(&z.locking) {
             fp = fp.max((a - b).abs() / r);
         }

@@ -28,13 +28,11 @@ pub struct System {
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
     pub contact_slots: Vec<u32>,
-    /// Numerical regularization ρ_num of the norm in the friction potential, in units of
-    /// the displacement scale (the solver works in dimensionless variables, see
-    /// [`super::scaling`]).
-    pub rho_num: f64,
-    /// The target value of `rho_num`, reached by continuation
-    /// ([`System::set_regularization_stage`]).
-    rho_target: f64,
+    /// Continuation floor of the numerical regularization ρ_num of a smoothed norm in the
+    /// friction potential, in units of the displacement scale (the solver works in
+    /// dimensionless variables, see [`super::scaling`]); each law uses the larger of this
+    /// and its own value ([`System::set_regularization_stage`]). 0: the laws' own values.
+    pub regularization_floor: f64,
     /// Augmented-Lagrangian penalty r_i per contact point (Pa/m), see
     /// [`super::constraints`].
     pub contact_penalty: Vec<f64>,
@@ -93,19 +91,23 @@ pub const REGULARIZATION_START: f64 = 1e-2;
 pub const REGULARIZATION_STEP: f64 = 0.1;
 
 /// Number of outer iterations the regularization continuation of `problem` needs to reach
-/// its target: 0 without a contact point whose friction is regularized numerically (the
-/// potentials `norm` and `nonconvex` without `exact`).
-pub fn regularization_stages(problem: &Problem, settings: &super::SolverSettings) -> usize {
-    let regularized = problem.contact.iter().any(|c| {
-        c.friction
-            .as_ref()
-            .is_some_and(|f| f.potential.is_nonsmooth() && !f.exact)
-    });
-    let target = settings.outer.friction_regularization;
-    if !regularized || target >= REGULARIZATION_START {
-        return 0;
-    }
-    ((REGULARIZATION_START / target).ln() / REGULARIZATION_STEP.recip().ln()).ceil() as usize
+/// the targets of its friction laws: the largest over the contact parts whose norm is
+/// smoothed (0 without one).
+pub fn regularization_stages(problem: &Problem) -> usize {
+    problem
+        .contact
+        .iter()
+        .filter_map(|c| c.friction.as_ref()?.potential.regularization())
+        .map(|target| {
+            if target >= REGULARIZATION_START {
+                0
+            } else {
+                ((REGULARIZATION_START / target).ln() / REGULARIZATION_STEP.recip().ln()).ceil()
+                    as usize
+            }
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
@@ -147,7 +149,7 @@ impl System {
         let gamma = &settings.constraints;
         let contact_penalty =
             super::constraints::contact_penalties(problem, gamma.contact_penalty, &contact.weight);
-        let locking_penalty = problem.material.ideal_locking.map_or(0.0, |set| {
+        let locking_penalty = problem.material.locking.ideal().map_or(0.0, |set| {
             super::constraints::locking_penalty(problem, gamma.locking_penalty, &set)
         });
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
@@ -183,8 +185,7 @@ impl System {
             linear_solver,
             contact,
             contact_slots,
-            rho_num: settings.outer.friction_regularization,
-            rho_target: settings.outer.friction_regularization,
+            regularization_floor: 0.0,
             full_penalty: (contact_penalty.clone(), locking_penalty),
             contact_penalty,
             locking_penalty,
@@ -211,14 +212,14 @@ impl System {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
             boundaries: &problem.contact,
-            rho_num: self.rho_num,
+            regularization_floor: self.regularization_floor,
             penalty: &self.contact_penalty,
         }
     }
 
     /// The ideal-locking term of `problem` with the cell multipliers of `frozen`.
     fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
-        problem.material.ideal_locking.map(|set| IdealLocking {
+        problem.material.locking.ideal().map(|set| IdealLocking {
             set,
             r: self.locking_penalty,
             multipliers: &frozen.locking,
@@ -237,22 +238,21 @@ impl System {
     }
 
     /// Sets the friction regularization of outer iteration `k`: continuation from
-    /// [`REGULARIZATION_START`] down by [`REGULARIZATION_STEP`] per outer iteration to its target value,
-    /// which it reaches at iteration [`regularization_stages`]. A sticking point of the
+    /// [`REGULARIZATION_START`] down by [`REGULARIZATION_STEP`] per outer iteration to the
+    /// target value of each law, which all reach by iteration [`regularization_stages`]. A sticking point of the
     /// regularized norm `√(r² + ρ²)` has curvature 1/ρ only within |r| ≲ ρ; approached from
     /// slips many times ρ, Newton sees almost no curvature and overshoots, so a small ρ
     /// is reached from a large one, each convex problem warm-started from the last.
     pub fn set_regularization_stage(&mut self, k: usize) {
-        self.rho_num = self
-            .rho_target
-            .max(REGULARIZATION_START * REGULARIZATION_STEP.powi(k.min(300) as i32));
+        self.regularization_floor =
+            REGULARIZATION_START * REGULARIZATION_STEP.powi(k.min(300) as i32);
     }
 
     /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
     /// all multipliers zero (so the first problem is the penalty problem).
     pub fn initial_frozen(&self, problem: &Problem, u: &[f64]) -> Frozen {
         let mut zero = Frozen::zero(self.contact.len());
-        let ideal = problem.material.ideal_locking.is_some();
+        let ideal = problem.material.locking.ideal().is_some();
         super::constraints::zero_multipliers(&mut zero, problem.mesh.n_cells(), ideal);
         let mut frozen = self.contact_assembler(problem).freeze(u, &zero);
         super::constraints::zero_multipliers(&mut frozen, problem.mesh.n_cells(), ideal);
@@ -263,7 +263,7 @@ impl System {
     /// updates from `current` (see [`super::constraints`]).
     pub fn freeze(&self, problem: &Problem, u: &[f64], current: &Frozen) -> Frozen {
         let mut next = self.contact_assembler(problem).freeze(u, current);
-        if let Some(set) = problem.material.ideal_locking {
+        if let Some(set) = problem.material.locking.ideal() {
             next.locking = super::constraints::update_locking(
                 &problem.mesh,
                 &set,
@@ -318,7 +318,7 @@ impl System {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
             boundaries: &problem.contact,
-            rho_num: self.rho_num,
+            regularization_floor: self.regularization_floor,
             penalty: &self.contact_penalty,
         };
         let hc = if hessian {
