@@ -20,9 +20,14 @@ For every result set it compares
     drawn from the data compared above);
 and reports the solve times (report.timings.total) of both and their ratio.
 
+Residuals (the certificate, the laws' residuals per contact node, Newton residuals, see
+RESIDUAL) are round-off at a converged answer: their differences are reported apart and
+judged by the converged flags, or against --tolerance with --judge-residuals.
+
 Prints one table, writes it with the details as Markdown to --report, and exits 1 if a
 relative difference exceeds --tolerance, an exit code or converged flag differs, a file
-exists on one side only, or non-numeric content differs; 0 otherwise.
+exists on one side only, or non-numeric content (text, flags, the number of iterations)
+differs; 0 otherwise.
 """
 
 import argparse
@@ -39,6 +44,13 @@ import numpy as np
 
 FIGURE_SUFFIXES = {".png", ".svg"}
 
+# Residuals: how far an answer is from satisfying its equations (the certificate, the
+# laws' residuals per contact node, Newton residual histories) and the nodes where they are
+# largest. At a converged answer they are round-off, so any change of round-off changes
+# them by up to 100 % of themselves: they are reported in a column of their own and judged
+# by the converged flags (the certificate), not by --tolerance unless --judge-residuals.
+RESIDUAL = re.compile(r"residual|certificate|round_off")
+
 
 class SetResult:
     """The comparison of one result set: differences, flags, iterations and times."""
@@ -48,6 +60,7 @@ class SetResult:
         self.identical = True  # every file byte-identical (summary.json: apart from timings)
         self.max_abs = 0.0
         self.max_rel = 0.0
+        self.max_rel_residual = 0.0
         self.arrays = []  # (relative difference, absolute difference, "file: array")
         self.problems = []  # differences that no tolerance covers (shape, text, files)
         self.figures = 0  # number of figure files in the set
@@ -58,18 +71,23 @@ class SetResult:
         self.times = (None, None)  # report.timings.total in seconds
 
     def add_numeric(self, label, abs_diff, rel_diff):
-        """Records one numeric comparison (array or scalar group)."""
+        """Records one numeric comparison (array or scalar group) labelled "file: name"."""
+        residual = bool(RESIDUAL.search(label.split(": ", 1)[-1]))
         if abs_diff > 0 or rel_diff > 0:
-            self.arrays.append((rel_diff, abs_diff, label))
-        self.max_abs = max(self.max_abs, abs_diff)
-        self.max_rel = max(self.max_rel, rel_diff)
+            self.arrays.append((rel_diff, abs_diff, label + (" (residual)" if residual else "")))
+        if residual:
+            self.max_rel_residual = max(self.max_rel_residual, rel_diff)
+        else:
+            self.max_abs = max(self.max_abs, abs_diff)
+            self.max_rel = max(self.max_rel, rel_diff)
 
-    def failed(self, tolerance):
+    def failed(self, tolerance, judge_residuals=False):
         """Whether this set shows a difference beyond what --tolerance allows."""
         codes_differ = self.exit_codes is not None and self.exit_codes[0] != self.exit_codes[1]
         return (
             bool(self.problems)
             or self.max_rel > tolerance
+            or (judge_residuals and self.max_rel_residual > tolerance)
             or codes_differ
             or self.converged[0] != self.converged[1]
         )
@@ -203,7 +221,11 @@ def compare_summary(result, rel, base, head):
             groups.setdefault(re.sub(r"\[\d+\]", "[]", path), ({}, {}))[side][path] = value
     for group, (vb, vh) in sorted(groups.items()):
         if vb.keys() != vh.keys():
-            result.problems.append(f"{rel}: {group}: {len(vb)} vs {len(vh)} entries")
+            # one message per list: "report.newton[]: 58 vs 56 entries"
+            head, _, _ = group.rpartition("[]")
+            msg = f"{rel}: {head}[]: {len(vb)} vs {len(vh)} entries" if head else f"{rel}: {group}: missing on one side"
+            if msg not in result.problems:
+                result.problems.append(msg)
             continue
         paths = sorted(vb)
         if all(is_number(vb[p]) and is_number(vh[p]) for p in paths):
@@ -299,13 +321,13 @@ def fmt_pair(pair, fmt="{}"):
     return show(a) if a == b and fmt == "{}" else f"{show(a)} / {show(b)}"
 
 
-def row(r, tolerance):
+def row(r, tolerance, judge_residuals):
     """The table's cells for one result set."""
-    if r.identical:
-        same = "yes"
-    elif r.failed(tolerance):
+    if r.failed(tolerance, judge_residuals):
         same = "NO"
-    elif r.max_rel > 0 or r.arrays:
+    elif r.identical:
+        same = "yes"
+    elif r.arrays:
         same = "within tol."
     else:
         same = "data yes"  # only figures differ
@@ -327,6 +349,7 @@ def row(r, tolerance):
         r.name,
         same,
         f"{r.max_rel:.1e}" if r.max_rel else "0",
+        f"{r.max_rel_residual:.1e}" if r.max_rel_residual else "0",
         fmt_pair(r.iterations),
         fmt_pair(r.times, "{:.3f}"),
         ratio,
@@ -338,10 +361,12 @@ LEGEND = (
     "identical?: yes = every file byte-identical (summary.json apart from timings); "
     "data yes = only figures differ; within tol. = numbers differ by at most the tolerance; "
     "NO = a difference beyond the tolerance, or in exit code, converged flag, files or text. "
-    "max rel diff: max |base - head| / max(|base|, |head|) per array, largest over the set."
+    "max rel diff: max |base - head| / max(|base|, |head|) per array, largest over the set's "
+    "data; residuals: the same over the residuals (certificate, law residuals, Newton "
+    "residuals: round-off at a converged answer, judged through the converged flags)."
 )
 
-HEADER = ["case", "identical?", "max rel diff", "iterations outer/Newton (base / head)",
+HEADER = ["case", "identical?", "max rel diff", "residuals", "iterations outer/Newton (base / head)",
           "solve time s (base / head)", "head/base", "notes"]
 
 
@@ -351,14 +376,17 @@ def main():
     ap.add_argument("--tolerance", type=float, default=1e-12)
     ap.add_argument("--report", type=Path, required=True, help="Markdown report to write")
     ap.add_argument("--meta", action="append", default=[], help="a line for the report's header")
+    ap.add_argument("--judge-residuals", action="store_true",
+                    help="hold the residuals' differences against --tolerance too")
     ap.add_argument("--skipped", action="append", default=[], help="a run skipped (--quick)")
     args = ap.parse_args()
 
     results = []
     for run_dir in sorted(p for p in args.runs.iterdir() if p.is_dir()):
         results.extend(compare_run(run_dir.name, run_dir))
-    rows = [row(r, args.tolerance) for r in results]
-    failed = [r for r in results if r.failed(args.tolerance)]
+    judge = args.judge_residuals
+    rows = [row(r, args.tolerance, judge) for r in results]
+    failed = [r for r in results if r.failed(args.tolerance, judge)]
 
     widths = [max(len(x) for x in col) for col in zip(HEADER, *rows)]
     for cells in [HEADER, *rows]:
@@ -395,9 +423,14 @@ def main():
     args.report.write_text("\n".join(md))
 
     for r in failed:
+        if r.exit_codes is not None and r.exit_codes[0] != r.exit_codes[1]:
+            print(f"  {r.name}: exit code {fmt_pair(r.exit_codes)}")
+        if r.converged[0] != r.converged[1]:
+            print(f"  {r.name}: converged {fmt_pair(r.converged)}")
         for p in r.problems[:10]:
             print(f"  {r.name}: {p}")
-        for rel, ab, label in sorted(r.arrays, reverse=True)[:5]:
+        judged = [a for a in r.arrays if judge or not a[2].endswith("(residual)")]
+        for rel, ab, label in sorted(judged, reverse=True)[:5]:
             print(f"  {r.name}: {label}: max rel {rel:.3e}, max abs {ab:.3e}")
     print(verdict)
     print(f"report: {args.report}")
