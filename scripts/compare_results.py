@@ -438,4 +438,11 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except Exception:  # a broken output or a bug here, not a difference: exit 2, not 1
+        import traceback
+
+        traceback.print_exc()
+        print("compare_results.py: could not compare (see above)", file=sys.stderr)
+        sys.exit(2)
