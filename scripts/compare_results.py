@@ -49,7 +49,10 @@ FIGURE_SUFFIXES = {".png", ".svg"}
 # largest. At a converged answer they are round-off, so any change of round-off changes
 # them by up to 100 % of themselves: they are reported in a column of their own and judged
 # by the converged flags (the certificate), not by --tolerance unless --judge-residuals.
-RESIDUAL = re.compile(r"residual|certificate|round_off")
+RESIDUAL = re.compile(
+    r"residual(?!_tolerance)|round_off|certificate\.(equilibrium|normal_law|friction_law"
+    r"|worst_|kkt\.\w*(violation|complementarity|min_multiplier|stick_slip))"
+)
 
 
 class SetResult:
