@@ -66,6 +66,7 @@ class SetResult:
         self.max_rel_residual = 0.0
         self.arrays = []  # (relative difference, absolute difference, "file: array")
         self.problems = []  # differences that no tolerance covers (shape, text, files)
+        self.added = []  # summary fields new in head and accepted by --new-field
         self.figures = 0  # number of figure files in the set
         self.figures_differ = []
         self.exit_codes = None  # (base, head), on the run's first set
@@ -202,6 +203,10 @@ def flatten(value, path, out):
         out[path] = value
 
 
+# Summary fields that head adds and that are accepted as a schema addition (--new-field).
+NEW_FIELDS = []
+
+
 def is_number(x):
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
@@ -223,6 +228,15 @@ def compare_summary(result, rel, base, head):
         for path, value in leaves.items():
             groups.setdefault(re.sub(r"\[\d+\]", "[]", path), ({}, {}))[side][path] = value
     for group, (vb, vh) in sorted(groups.items()):
+        if group == "scenario" and {Path(str(v)).name for v in [*vb.values(), *vh.values()]} == {
+            Path(str(v)).name for v in vb.values()
+        }:
+            # The same scenario file name, run from each revision's own folder.
+            continue
+        if not vb and any(group == f or group.startswith(f + ".") for f in NEW_FIELDS):
+            if group not in result.added:
+                result.added.append(group)
+            continue
         if vb.keys() != vh.keys():
             # one message per list: "report.newton[]: 58 vs 56 entries"
             head, _, _ = group.rpartition("[]")
@@ -348,6 +362,8 @@ def row(r, tolerance, judge_residuals):
         notes.append("figures identical")
     if r.problems:
         notes.append(f"{len(r.problems)} non-numeric difference(s)")
+    if r.added:
+        notes.append("new in head: " + ", ".join(r.added))
     return [
         r.name,
         same,
@@ -382,7 +398,10 @@ def main():
     ap.add_argument("--judge-residuals", action="store_true",
                     help="hold the residuals' differences against --tolerance too")
     ap.add_argument("--skipped", action="append", default=[], help="a run skipped (--quick)")
+    ap.add_argument("--new-field", action="append", default=[],
+                    help="a summary.json field (dotted path) that only head writes, accepted as a schema addition")
     args = ap.parse_args()
+    NEW_FIELDS.extend(args.new_field)
 
     results = []
     for run_dir in sorted(p for p in args.runs.iterdir() if p.is_dir()):

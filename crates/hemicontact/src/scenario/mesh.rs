@@ -1,0 +1,320 @@
+//! The mesh of a scenario: `[mesh]` generated (rectangle, box) or read from a Gmsh file,
+//! refined for convergence studies, and checked against the memory available.
+
+use super::schema::MeshKind;
+use super::Scenario;
+use crate::error::{Error, Result};
+use crate::mesh::generate::{self, Rectangle};
+use crate::mesh::Mesh;
+use crate::problem::Problem;
+
+impl Scenario {
+    /// The same scenario with `n` squares along x (and proportionally many along y), for
+    /// mesh-refinement studies.
+    ///
+    /// # Errors
+    /// [`Error::Scenario`] if the mesh is read from a file (it cannot be refined), if `n` is
+    /// zero or the y count would not be an integer.
+    pub fn with_resolution(&self, n: usize) -> Result<Scenario> {
+        let m = &self.file.mesh;
+        if m.kind == MeshKind::Gmsh {
+            return Err(self.err(
+                "mesh.kind",
+                "\"gmsh\"",
+                "a generated mesh (\"rectangle\" or \"box\"): a read mesh cannot be refined; \
+                 use a generated mesh for convergence studies",
+            ));
+        }
+        let Some(counts) = &m.n else {
+            return Err(self.err(
+                "mesh.n",
+                "missing",
+                "subdivisions per side (required for a generated mesh)",
+            ));
+        };
+        let nx = counts.first().copied().unwrap_or(0);
+        let allowed = "a resolution for which every count scales to an integer from 1 to the generator's maximum";
+        let bad = || {
+            self.err(
+                "mesh.n",
+                format!("{counts:?} scaled to {n} along x"),
+                allowed,
+            )
+        };
+        if n == 0 || nx == 0 {
+            return Err(bad());
+        }
+        let n64 = n as u64;
+        let mut scaled = Vec::with_capacity(counts.len());
+        for &k in counts {
+            let product = n64.checked_mul(k).ok_or_else(bad)?;
+            if !product.is_multiple_of(nx)
+                || product / nx == 0
+                || product / nx > generate::MAX_SUBDIVISIONS as u64
+            {
+                return Err(bad());
+            }
+            scaled.push(product / nx);
+        }
+        let mut out = self.clone();
+        out.file.mesh.n = Some(scaled);
+        Ok(out)
+    }
+
+    /// The mesh of `[mesh]`, and the notes of the Gmsh reader.
+    pub(super) fn build_mesh(&self) -> Result<(Mesh, Vec<String>)> {
+        let m = &self.file.mesh;
+        match m.kind {
+            MeshKind::Gmsh => self.read_mesh(),
+            MeshKind::Rectangle | MeshKind::Box => {
+                if let Some(file) = &m.file {
+                    return Err(self.err(
+                        "mesh.file",
+                        format!("{:?}", file.display().to_string()),
+                        "only with kind = \"gmsh\" (a generated mesh has no file)",
+                    ));
+                }
+                Ok((self.generate_mesh()?, Vec::new()))
+            }
+        }
+    }
+
+    /// Reads the Gmsh file of `[mesh]`, checking the memory needed to read it and to solve
+    /// on it against [`Scenario::memory_limit`].
+    pub(super) fn read_mesh(&self) -> Result<(Mesh, Vec<String>)> {
+        let m = &self.file.mesh;
+        let given = [
+            ("mesh.origin", m.origin.is_some()),
+            ("mesh.size", m.size.is_some()),
+            ("mesh.n", m.n.is_some()),
+            ("mesh.pattern", m.pattern.is_some()),
+        ];
+        if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
+            return Err(self.err(
+                field,
+                "given",
+                "nothing with kind = \"gmsh\": the mesh comes from mesh.file (origin, size, n \
+                 and pattern are for generated meshes)",
+            ));
+        }
+        let Some(file) = &m.file else {
+            return Err(self.err(
+                "mesh.file",
+                "missing",
+                "the path of a Gmsh .msh file (format 4.1), relative to the scenario file's \
+                 folder (required with kind = \"gmsh\")",
+            ));
+        };
+        let path = match &self.dir {
+            Some(dir) if file.is_relative() => dir.join(file),
+            _ => file.clone(),
+        };
+        let shown = format!("{:?}", file.display().to_string());
+        let unreadable = |e: std::io::Error| {
+            self.err(
+                "mesh.file",
+                &shown,
+                &format!(
+                    "a readable Gmsh .msh file, relative to the scenario file's folder ({}: {e})",
+                    path.display()
+                ),
+            )
+        };
+        let too_large = |need: u64, limit: u64, what: String| {
+            self.err(
+                "mesh.file",
+                &shown,
+                &format!(
+                    "a mesh whose {what} fits in memory: it needs about {} (estimate), {} are \
+                     available; use --ignore-memory-limit to try anyway",
+                    crate::resources::gib(need),
+                    crate::resources::gib(limit)
+                ),
+            )
+        };
+        let meta = std::fs::metadata(&path).map_err(unreadable)?;
+        if !meta.is_file() {
+            return Err(unreadable(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a regular file",
+            )));
+        }
+        let bytes = meta.len();
+        if let Some(limit) = self.memory_limit {
+            let need = crate::resources::estimate_mesh_read(bytes);
+            if need > limit {
+                return Err(too_large(need, limit, format!("file ({bytes} bytes)")));
+            }
+        }
+        let read = match crate::mesh::gmsh::read_msh(&path) {
+            Err(Error::Io { source, .. }) => return Err(unreadable(source)),
+            other => other?,
+        };
+        let mesh = read.mesh;
+        if let Some(limit) = self.memory_limit {
+            // The free equations are known only with the boundary conditions: a lower bound
+            // here, the estimate itself in `check_solve_memory`.
+            let need = self.file.solver.linear_solver.memory_lower_bound(
+                mesh.dim(),
+                mesh.dim() * mesh.n_nodes(),
+                mesh.n_nodes() as u64,
+                mesh.n_cells() as u64,
+            );
+            if need > limit {
+                return Err(too_large(
+                    need,
+                    limit,
+                    format!("solve ({} nodes, {} cells)", mesh.n_nodes(), mesh.n_cells()),
+                ));
+            }
+        }
+        Ok((mesh, read.notes))
+    }
+
+    /// Generates the rectangle or box of `[mesh]`.
+    pub(super) fn generate_mesh(&self) -> Result<Mesh> {
+        let m = &self.file.mesh;
+        let dim = if m.kind == MeshKind::Box { 3 } else { 2 };
+        let axes = if dim == 2 { "[lx, ly]" } else { "[lx, ly, lz]" };
+        let Some(size) = &m.size else {
+            return Err(self.err(
+                "mesh.size",
+                "missing",
+                &format!("{dim} lengths {axes} (required for a generated mesh)"),
+            ));
+        };
+        let Some(counts) = &m.n else {
+            return Err(self.err(
+                "mesh.n",
+                "missing",
+                &format!("{dim} subdivision counts (required for a generated mesh)"),
+            ));
+        };
+        if size.len() != dim {
+            return Err(self.err(
+                "mesh.size",
+                format!("{size:?}"),
+                &format!("{dim} lengths {axes}"),
+            ));
+        }
+        if counts.len() != dim {
+            return Err(self.err("mesh.n", format!("{counts:?}"), &format!("{dim} counts")));
+        }
+        for (k, &s) in size.iter().enumerate() {
+            if !(s.is_finite() && s > 0.0) {
+                return Err(self.err(&format!("mesh.size[{k}]"), s, "a positive length"));
+            }
+        }
+        for (k, &n) in counts.iter().enumerate() {
+            if n == 0 || n > generate::MAX_SUBDIVISIONS as u64 {
+                return Err(self.err(
+                    &format!("mesh.n[{k}]"),
+                    n,
+                    &format!("an integer from 1 to {}", generate::MAX_SUBDIVISIONS),
+                ));
+            }
+        }
+        let origin = match &m.origin {
+            None => [0.0; 3],
+            Some(o) => self.finite("mesh.origin", o, dim)?,
+        };
+        if m.pattern() == generate::CutPattern::Symmetric && !counts[0].is_multiple_of(2) {
+            return Err(self.err(
+                "mesh.n[0]",
+                counts[0],
+                "an even number with pattern = \"symmetric\" (mirror symmetry about the centre plane)",
+            ));
+        }
+        if let Some(limit) = self.memory_limit {
+            // The free equations are known only with the boundary conditions: a lower bound
+            // here, before anything is allocated, the estimate itself in
+            // `check_solve_memory`.
+            let nodes: u64 = counts.iter().map(|&c| c + 1).product();
+            let cells: u64 = counts.iter().product::<u64>() * if dim == 2 { 2 } else { 6 };
+            let max_free = (dim as u64).saturating_mul(nodes);
+            let need = self.file.solver.linear_solver.memory_lower_bound(
+                dim,
+                usize::try_from(max_free).unwrap_or(usize::MAX),
+                nodes,
+                cells,
+            );
+            if need > limit {
+                return Err(self.err(
+                    "mesh.n",
+                    format!("{counts:?}"),
+                    &format!(
+                        "a mesh whose solve fits in memory: this one needs about {} (estimate), {} are available; \
+                         use --ignore-memory-limit to try anyway",
+                        crate::resources::gib(need),
+                        crate::resources::gib(limit)
+                    ),
+                ));
+            }
+        }
+        let n = |k: usize| counts[k] as usize;
+        let generated = if dim == 2 {
+            generate::rectangle(&Rectangle {
+                origin: [origin[0], origin[1]],
+                size: [size[0], size[1]],
+                n: [n(0), n(1)],
+                pattern: m.pattern(),
+            })
+        } else {
+            generate::cuboid(&generate::BoxSpec {
+                origin,
+                size: [size[0], size[1], size[2]],
+                n: [n(0), n(1), n(2)],
+                pattern: m.pattern(),
+            })
+        };
+        // A generated mesh can only be invalid through the numbers of [mesh]: name them.
+        generated.map_err(|e| match e {
+            Error::Mesh(msg) => self.err(
+                "mesh.size / mesh.origin / mesh.n",
+                format!("size {size:?}, origin {:?}, n {counts:?}", m.origin),
+                &format!("sizes and an origin for which the cells are representable ({msg})"),
+            ),
+            other => other,
+        })
+    }
+
+    /// Checks the estimated memory of a solve of `problem` against
+    /// [`Scenario::memory_limit`], for the linear solver the solve will use
+    /// ([`crate::solver::system::resolved_linear_solver`]).
+    pub(super) fn check_solve_memory(&self, problem: &Problem) -> Result<()> {
+        let Some(limit) = self.memory_limit else {
+            return Ok(());
+        };
+        let mesh = &problem.mesh;
+        let kind =
+            crate::solver::system::resolved_linear_solver(problem, self.file.solver.linear_solver);
+        let need = kind.memory_estimate(
+            mesh.dim(),
+            problem.dof_map().n_free(),
+            mesh.n_nodes() as u64,
+            mesh.n_cells() as u64,
+        );
+        if need <= limit {
+            return Ok(());
+        }
+        let (field, value) = match &self.file.mesh.n {
+            Some(n) if self.file.mesh.kind != MeshKind::Gmsh => ("mesh.n", format!("{n:?}")),
+            _ => (
+                "mesh.file",
+                format!("{} nodes, {} cells", mesh.n_nodes(), mesh.n_cells()),
+            ),
+        };
+        Err(self.err(
+            field,
+            value,
+            &format!(
+                "a mesh whose solve fits in memory: this one needs about {} (estimate) with \
+                 linear_solver = \"{}\", {} are available; use --ignore-memory-limit to try \
+                 anyway",
+                crate::resources::gib(need),
+                format!("{kind:?}").to_lowercase(),
+                crate::resources::gib(limit)
+            ),
+        ))
+    }
+}
