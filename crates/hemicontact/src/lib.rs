@@ -65,12 +65,14 @@
 //! - Meshes: generated rectangles (triangles) and boxes (tetrahedra), or Gmsh `.msh` 4.1
 //!   files ([`mesh::gmsh`]; P1 simplices only, physical groups as boundary parts; cell
 //!   regions are read but one material applies to the whole mesh; read meshes cannot be
-//!   refined for convergence studies). Figures are drawn for 2D problems.
+//!   refined for convergence studies). Figures (cargo feature `plot`) are drawn in 2D and,
+//!   for 3D problems, as a front view.
 //! - The contact gap is one number per contact part, measured along the outward normal at
 //!   each contact node: on a curved boundary the foundation is the boundary's offset by the
 //!   gap, not a plane.
-//! - Locking by the nearly-locking penalty and contact by normal compliance; the exact
-//!   constraints (ideal locking, Signorini) are not yet available.
+//! - Locking by the nearly-locking penalty or ideal (exact) locking; contact by normal
+//!   compliance or the Signorini condition; friction with a smoothed or exact stick/slip.
+//!   Exact constraints are imposed by augmented Lagrangians ([`solver::constraints`]).
 //! - Every solve is carried out in dimensionless variables ([`solver::scaling`]), so units
 //!   do not matter; the norm `‖·‖` of the friction potential is regularized numerically by
 //!   `ρ_num = 10⁻⁸ U` with U the displacement scale (a parameter of the friction law, see
