@@ -31,12 +31,12 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
     for &n in sizes {
         let scenario = ctx.parse_scenario(&builtin::paper_elastic(n), "<bench>")?;
         let problem = scenario.into_problem()?;
-        let mesh = &problem.mesh;
+        let mesh = problem.mesh();
         let dofs = problem.dof_map();
         let t = Instant::now();
         let pattern = SystemPattern::new(mesh, &dofs)?;
         let t_pattern = t.elapsed().as_secs_f64();
-        let bulk = BulkAssembler::new(mesh, &problem.material);
+        let bulk = BulkAssembler::new(mesh, problem.material());
         let u = problem.prescribed_displacement();
         let mut grad = vec![0.0; u.len()];
         let mut hess = vec![0.0; pattern.nnz()];
@@ -155,9 +155,13 @@ pub fn run_paper(
         let (paper, settings) = (case.into_problem()?, case.settings()?);
         // The linear elastic reference: the same mesh, material, supports and loads, without
         // contact and locking.
-        let mut linear = paper.clone();
-        linear.contact.clear();
-        linear.material.locking = hemicontact::material::Locking::None;
+        let linear = paper
+            .to_builder()
+            .without_contact()
+            .material(hemicontact::material::Material::elastic(
+                paper.material().elasticity,
+            ))
+            .build()?;
         let mut t_lin = Vec::new();
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();

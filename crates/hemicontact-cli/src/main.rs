@@ -244,12 +244,12 @@ fn check(ctx: &RunContext, file: &Path) -> Result<()> {
     let iterative =
         hemicontact::solver::system::resolved_linear_solver(&problem, settings.linear_solver)
             == hemicontact::solver::LinearSolver::Iterative;
-    if !problem.contact.is_empty() && iterative {
+    if !problem.contact().is_empty() && iterative {
         say!(
             "uniqueness (Theorem 4): not checked — the discrete trace constant needs a Cholesky \
              factorization, and this scenario uses the iterative linear solver"
         );
-    } else if !problem.contact.is_empty() {
+    } else if !problem.contact().is_empty() {
         print_uniqueness(&hemicontact::solver::uniqueness::check(
             &problem, &settings,
         )?);
@@ -259,7 +259,7 @@ fn check(ctx: &RunContext, file: &Path) -> Result<()> {
 }
 
 fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     let dofs = problem.dof_map();
     say!("scenario   {source}");
     say!("dimension  {}", mesh.dim());
@@ -271,7 +271,7 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
         dofs.n_free(),
         dofs.n_dofs() - dofs.n_free()
     );
-    let h = problem.material.elasticity.small_strain_hooke(mesh.dim());
+    let h = problem.material().elasticity.small_strain_hooke(mesh.dim());
     say!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
     match hemicontact::solver::scaling::Scales::of(problem) {
         Ok(scales) => say!(
@@ -287,7 +287,7 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
         settings.certificate_tolerance
     );
     use hemicontact::material::Locking;
-    match &problem.material.locking {
+    match problem.material().locking {
         Locking::Ideal(set) => {
             say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)")
         }
@@ -296,7 +296,7 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
         }
         _ => say!("locking    none"),
     }
-    for (k, c) in problem.contact.iter().enumerate() {
+    for (k, c) in problem.contact().iter().enumerate() {
         let friction = match &c.friction {
             None => "frictionless".to_string(),
             Some(f) => format!(
@@ -322,13 +322,13 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
         let facets = mesh.part_facets(p).count();
         let nodes = mesh.part_nodes(p).len();
         let mut roles = Vec::new();
-        if problem.dirichlet.iter().any(|b| b.part == p) {
+        if problem.dirichlet().iter().any(|b| b.part == p) {
             roles.push("Dirichlet");
         }
-        if problem.tractions.iter().any(|t| t.part == p) {
+        if problem.tractions().iter().any(|t| t.part == p) {
             roles.push("Neumann");
         }
-        if problem.contact.iter().any(|c| c.part == p) {
+        if problem.contact().iter().any(|c| c.part == p) {
             roles.push("contact");
         }
         let role = if roles.is_empty() {

@@ -32,25 +32,27 @@ pub struct Traction {
 /// The problem: find the displacement minimizing the total energy under the given data.
 ///
 /// A `Problem` is built by [`Problem::builder`] … [`ProblemBuilder::build`], which checks
-/// every law and datum; the solver settings are separate ([`crate::solver::solve`]).
+/// every law and datum, and cannot be changed afterwards (derive a changed one with
+/// [`Problem::to_builder`]): a `Problem` is always valid. The solver settings are separate
+/// ([`crate::solver::solve`]).
 #[derive(Clone, Debug)]
 pub struct Problem {
     /// The mesh.
-    pub mesh: Mesh,
+    pub(crate) mesh: Mesh,
     /// The bulk material.
-    pub material: Material,
+    pub(crate) material: Material,
     /// The plane idealization of a 2D problem: plane strain (`ε_zz = 0`, the out-of-plane
     /// stress follows from the law) or plane stress (`σ_zz = 0`); `Strain` in 3D. The
     /// material's constants already reflect it; the stress output uses it for σ_zz.
-    pub plane: crate::material::Plane,
+    pub(crate) plane: crate::material::Plane,
     /// Dirichlet conditions (Γ_D).
-    pub dirichlet: Vec<Dirichlet>,
+    pub(crate) dirichlet: Vec<Dirichlet>,
     /// Surface tractions (Γ_N).
-    pub tractions: Vec<Traction>,
+    pub(crate) tractions: Vec<Traction>,
     /// Constant body force `f_0` (N/m³).
-    pub body_force: [f64; 3],
+    pub(crate) body_force: [f64; 3],
     /// Contact boundaries (Γ_C), each facing a rigid foundation.
-    pub contact: Vec<ContactBoundary>,
+    pub(crate) contact: Vec<ContactBoundary>,
 }
 
 /// The data of a [`Problem`] under construction; [`ProblemBuilder::build`] checks them.
@@ -81,6 +83,24 @@ impl ProblemBuilder {
     /// Sets the constant body force `f_0` (N/m³).
     pub fn body_force(mut self, f: [f64; 3]) -> Self {
         self.problem.body_force = f;
+        self
+    }
+
+    /// Replaces the mesh (the part indices of the conditions must fit it).
+    pub fn mesh(mut self, mesh: Mesh) -> Self {
+        self.problem.mesh = mesh;
+        self
+    }
+
+    /// Replaces the material.
+    pub fn material(mut self, material: Material) -> Self {
+        self.problem.material = material;
+        self
+    }
+
+    /// Removes every contact boundary.
+    pub fn without_contact(mut self) -> Self {
+        self.problem.contact.clear();
         self
     }
 
@@ -115,6 +135,41 @@ impl Problem {
                 contact: Vec::new(),
             },
         }
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The bulk material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// The plane idealization of a 2D problem (`Strain` in 3D).
+    pub fn plane(&self) -> crate::material::Plane {
+        self.plane
+    }
+
+    /// The Dirichlet conditions (Γ_D), in the order given.
+    pub fn dirichlet(&self) -> &[Dirichlet] {
+        &self.dirichlet
+    }
+
+    /// The surface tractions (Γ_N), in the order given.
+    pub fn tractions(&self) -> &[Traction] {
+        &self.tractions
+    }
+
+    /// The constant body force `f_0` (N/m³).
+    pub fn body_force(&self) -> [f64; 3] {
+        self.body_force
+    }
+
+    /// The contact boundaries (Γ_C), in the order given.
+    pub fn contact(&self) -> &[ContactBoundary] {
+        &self.contact
     }
 
     /// A builder holding this problem's data, to derive a changed problem from it.

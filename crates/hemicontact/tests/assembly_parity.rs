@@ -15,12 +15,12 @@ fn parallel_assembly_matches_serial() {
         .into_problem()
         .unwrap();
     let dofs = problem.dof_map();
-    let pattern = SystemPattern::new(&problem.mesh, &dofs).unwrap();
-    let bulk = BulkAssembler::new(&problem.mesh, &problem.material);
+    let pattern = SystemPattern::new(problem.mesh(), &dofs).unwrap();
+    let bulk = BulkAssembler::new(problem.mesh(), problem.material());
     // A displacement that activates the locking penalty in part of the body.
-    let u: Vec<f64> = (0..2 * problem.mesh.n_nodes())
+    let u: Vec<f64> = (0..2 * problem.mesh().n_nodes())
         .map(|k| {
-            let x = problem.mesh.node(k / 2);
+            let x = problem.mesh().node(k / 2);
             if k % 2 == 0 {
                 0.05 * x[0] * x[1]
             } else {

@@ -62,7 +62,7 @@ fn support_reactions_are_not_contact_forces() {
             .contact
             .iter()
             .find(|c| {
-                let x = p.mesh.node(c.node as usize);
+                let x = p.mesh().node(c.node as usize);
                 x[0] == 0.0 && x[1] == 0.0
             })
             .expect("the corner is a contact point");

@@ -727,19 +727,19 @@ fn assembled_contact_terms_2d_match_finite_differences() {
         .into_problem()
         .unwrap();
     let nodes = problem.contact_nodes();
-    let d = problem.mesh.dim();
+    let d = problem.mesh().dim();
     assert_eq!(d, 2);
     // right: y = 1, 2 (the bottom corner is on Γ_D); top: x = 0, 1, 2; left: y = 1, 2.
     assert_eq!(nodes.len(), 7);
-    let ndof = d * problem.mesh.n_nodes();
+    let ndof = d * problem.mesh().n_nodes();
     let dofs = problem.dof_map();
-    let pattern = SystemPattern::new(&problem.mesh, &dofs).unwrap();
+    let pattern = SystemPattern::new(problem.mesh(), &dofs).unwrap();
     let slots = contact_slots(&nodes, d, dofs.equations(), &pattern);
     let penalty = vec![500.0; nodes.len()];
     let asm = ContactAssembler {
         dim: d,
         nodes: &nodes,
-        boundaries: &problem.contact,
+        boundaries: problem.contact(),
         regularization_floor: RHO_NUM,
         penalty: &penalty,
     };

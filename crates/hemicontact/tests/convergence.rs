@@ -147,7 +147,7 @@ body_force = [{:?}, {:?}]
 
 /// Per-cell constant strains `[e_xx, e_yy, e_xy]` of a P1 field.
 fn p1_strains(problem: &Problem, v: &[f64]) -> Vec<[f64; 3]> {
-    BulkAssembler::new(&problem.mesh, &problem.material)
+    BulkAssembler::new(problem.mesh(), problem.material())
         .cell_strains(v)
         .into_iter()
         .map(|e| [e.c[0], e.c[1], e.c[2] / SQRT2])
@@ -157,7 +157,7 @@ fn p1_strains(problem: &Problem, v: &[f64]) -> Vec<[f64; 3]> {
 /// `‖u − v_h‖_E²` for the exact `u` and a P1 field with cell strains `eh`: on each
 /// triangle the integrand is quadratic, integrated exactly by the edge-midpoint rule.
 fn error_energy_sq(problem: &Problem, eh: &[[f64; 3]], lambda: f64, g: f64) -> f64 {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     let mut sum = 0.0;
     for (c, e_c) in eh.iter().enumerate() {
         let x = mesh.cell_coords(c);
@@ -173,7 +173,7 @@ fn error_energy_sq(problem: &Problem, eh: &[[f64; 3]], lambda: f64, g: f64) -> f
 
 /// `Σ_T |T| W(ε_T)` for per-cell constant strains.
 fn discrete_energy_sq(problem: &Problem, e: &[[f64; 3]], lambda: f64, g: f64) -> f64 {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     (0..mesh.n_cells())
         .map(|c| simplex::signed_measure(2, &mesh.cell_coords(c)) * w(lambda, g, e[c]))
         .sum()
@@ -181,7 +181,7 @@ fn discrete_energy_sq(problem: &Problem, e: &[[f64; 3]], lambda: f64, g: f64) ->
 
 /// The nodal interpolant `I_h u` (DOF order).
 fn interpolant(problem: &Problem) -> Vec<f64> {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     (0..mesh.n_nodes())
         .flat_map(|k| exact_u(mesh.node(k)))
         .collect()
@@ -213,7 +213,7 @@ fn energy_error_converges_with_order_one() {
             "n = {n}: u_h is worse than I_h u"
         );
         // The library's energy norm agrees with the hand computation on a P1 field.
-        let lib = hemicontact::norms::energy_norm(&pr.mesh, &hooke, &uh);
+        let lib = hemicontact::norms::energy_norm(pr.mesh(), &hooke, &uh);
         let hand = discrete_energy_sq(&pr, &eh, lambda, g);
         assert!(
             (lib * lib - hand).abs() <= 1e-12 * hand,
@@ -253,7 +253,7 @@ fn galerkin_orthogonality_on_perturbed_meshes() {
     let mut rng = common::Rng::new(21);
     for n in [8usize, 16] {
         let base = scenario(n, f);
-        let mesh = &base.mesh;
+        let mesh = base.mesh();
         let h = 1.0 / n as f64;
         let mut coords = mesh.coords().to_vec();
         for x in coords.chunks_mut(2) {
@@ -276,10 +276,7 @@ fn galerkin_orthogonality_on_perturbed_meshes() {
             mesh.part_names().to_vec(),
         )
         .expect("perturbed mesh is valid");
-        let pr = Problem {
-            mesh: perturbed,
-            ..base.clone()
-        };
+        let pr = base.to_builder().mesh(perturbed).build().unwrap();
         let (uh, _) = solve_with_prescribed_field(&pr, exact_u);
         let interp = interpolant(&pr);
         let eh = p1_strains(&pr, &uh);
@@ -306,7 +303,7 @@ fn galerkin_orthogonality_on_perturbed_meshes() {
         // The library's energy norm of the discrete difference.
         let dv: Vec<f64> = uh.iter().zip(&interp).map(|(a, b)| a - b).collect();
         let hooke = Hooke::from_young_poisson(YOUNG, POISSON, 2, Plane::Strain);
-        let lib = hemicontact::norms::energy_norm(&pr.mesh, &hooke, &dv);
+        let lib = hemicontact::norms::energy_norm(pr.mesh(), &hooke, &dv);
         assert!(
             (lib * lib - diff).abs() <= 1e-10 * diff,
             "energy_norm {lib:e} vs {diff:e}"

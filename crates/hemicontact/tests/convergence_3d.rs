@@ -92,8 +92,8 @@ body_force = [{:?}, {:?}, {:?}]
 
 /// `‖u − v_h‖_E²` for a P1 field `v` (exact 4-point rule per tetrahedron).
 fn error_energy_sq(problem: &Problem, v: &[f64], lambda: f64, g: f64) -> f64 {
-    let mesh = &problem.mesh;
-    let strains = BulkAssembler::new(mesh, &problem.material).cell_strains(v);
+    let mesh = problem.mesh();
+    let strains = BulkAssembler::new(mesh, problem.material()).cell_strains(v);
     let (qa, qb) = (0.585_410_196_624_968_5, 0.138_196_601_125_010_5);
     let mut sum = 0.0;
     for (c, e) in strains.iter().enumerate() {
@@ -133,8 +133,8 @@ fn energy_error_converges_with_order_one_in_3d() {
     for &n in &levels {
         let pr = scenario(n, f);
         let (uh, _) = solve_with_prescribed_field(&pr, exact_u);
-        let interp: Vec<f64> = (0..pr.mesh.n_nodes())
-            .flat_map(|k| exact_u(pr.mesh.node(k)))
+        let interp: Vec<f64> = (0..pr.mesh().n_nodes())
+            .flat_map(|k| exact_u(pr.mesh().node(k)))
             .collect();
         let err_h = error_energy_sq(&pr, &uh, lambda, g);
         let err_i = error_energy_sq(&pr, &interp, lambda, g);

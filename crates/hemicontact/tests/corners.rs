@@ -60,11 +60,16 @@ fn merge_parts(mesh: &Mesh, into: &str, from: &str) -> Mesh {
 /// the two sides merged into the one part `bottom`.
 fn two_and_one(text: &str) -> (Problem, Problem) {
     let two = common::problem(text);
-    let mut one = two.clone();
-    one.mesh = merge_parts(&two.mesh, "bottom", "right");
-    let right = two.mesh.part_index("right").unwrap();
-    one.contact.retain(|c| c.part != right);
-    assert_eq!((two.contact.len(), one.contact.len()), (2, 1));
+    let right = two.mesh().part_index("right").unwrap();
+    let mut one = two
+        .to_builder()
+        .mesh(merge_parts(two.mesh(), "bottom", "right"))
+        .without_contact();
+    for c in two.contact().iter().filter(|c| c.part != right) {
+        one = one.contact(c.clone());
+    }
+    let one = one.build().unwrap();
+    assert_eq!((two.contact().len(), one.contact().len()), (2, 1));
     (two, one)
 }
 
@@ -103,8 +108,8 @@ fn corner_node_is_one_point_per_side() {
     let (_, one) = two_and_one(&text);
     let points = one.contact_nodes();
     let h = 0.25;
-    let corner = (0..one.mesh.n_nodes())
-        .find(|&v| one.mesh.node(v) == [1.0, 0.0])
+    let corner = (0..one.mesh().n_nodes())
+        .find(|&v| one.mesh().node(v) == [1.0, 0.0])
         .unwrap() as u32;
     let at: Vec<usize> = (0..points.len())
         .filter(|&i| points.node[i] == corner)
@@ -123,7 +128,7 @@ fn corner_node_is_one_point_per_side() {
     let total: f64 = points.weight.iter().sum();
     assert!((total - (2.0 - h / 2.0)).abs() < 1e-14, "{total}");
     for i in (0..points.len()).filter(|i| !at.contains(i)) {
-        let x = one.mesh.node(points.node[i] as usize);
+        let x = one.mesh().node(points.node[i] as usize);
         let n = points.normal[i];
         let expected = if x[1] == 0.0 {
             [0.0, -1.0, 0.0]
@@ -178,8 +183,8 @@ fn signorini_corner_does_not_penetrate_either_foundation() {
     let (_, one) = two_and_one(&square(SIGNORINI));
     let s = hemicontact::solver::solve(&one, &SolverSettings::default()).unwrap();
     assert!(s.report.converged);
-    let corner = (0..one.mesh.n_nodes())
-        .find(|&v| one.mesh.node(v) == [1.0, 0.0])
+    let corner = (0..one.mesh().n_nodes())
+        .find(|&v| one.mesh().node(v) == [1.0, 0.0])
         .unwrap();
     let (ux, uy) = (s.u[2 * corner], s.u[2 * corner + 1]);
     let gap = 0.01;
@@ -236,10 +241,10 @@ fn half_disc_arc_is_one_point_per_node() {
         .unwrap();
     assert!(notes.iter().all(|n| !n.contains("corner")), "{notes:?}");
     let points = problem.contact_nodes();
-    let part = problem.mesh.part_index("contact").unwrap();
+    let part = problem.mesh().part_index("contact").unwrap();
     let excluded = problem.fully_prescribed();
     let nodes: Vec<u32> = problem
-        .mesh
+        .mesh()
         .part_nodes(part)
         .into_iter()
         .filter(|&v| !excluded[v as usize])

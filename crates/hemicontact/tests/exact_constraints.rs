@@ -37,7 +37,7 @@ fn assert_kkt(s: &Solution, tol: f64) {
 
 /// Cell strain (ε_xx, ε_yy, ε_xy) of a P1 triangle, computed here from the nodal values.
 fn strains(p: &hemicontact::problem::Problem, u: &[f64]) -> Vec<[f64; 3]> {
-    let m = &p.mesh;
+    let m = p.mesh();
     (0..m.n_cells())
         .map(|c| {
             let v = m.cell(c);
@@ -128,7 +128,7 @@ value = [0.0, {}]
             assert!(rel(l, lm, 1.0) < 1e-8, "cell {c}: multiplier {l} vs {lm}");
         }
         let kkt = s.report.certificate.kkt.as_ref().unwrap();
-        assert_eq!(kkt.n_locked, if locked { prob.mesh.n_cells() } else { 0 });
+        assert_eq!(kkt.n_locked, if locked { prob.mesh().n_cells() } else { 0 });
     }
 }
 
@@ -239,8 +239,8 @@ fn sheared_block_on_tresca_foundation_slides_at_the_bound_or_sticks() {
         let prob = problem(&text);
         let s = solve(&prob, &SolverSettings::default()).unwrap();
         assert_kkt(&s, 1e-8);
-        let top = prob.mesh.part_index("top").unwrap();
-        let top_nodes = prob.mesh.part_nodes(top);
+        let top = prob.mesh().part_index("top").unwrap();
+        let top_nodes = prob.mesh().part_nodes(top);
         let rx: f64 = top_nodes.iter().map(|&n| s.reactions[2 * n as usize]).sum();
         let u_max = s.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if slides {
@@ -452,7 +452,7 @@ fn cube_with_all_exact_constraints_is_certified_and_symmetric() {
     let cert = &s.report.certificate;
     assert!(cert.n_contact > 0, "no contact");
     // Mirror symmetry x ↦ 4 − x: u_x(x) = −u_x(x̄), u_y, u_z equal.
-    let m = &prob.mesh;
+    let m = prob.mesh();
     let scale = s.u.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     for n in 0..m.n_nodes() {
         let x = m.node(n);

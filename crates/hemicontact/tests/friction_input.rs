@@ -42,7 +42,7 @@ fn problem(text: &str) -> (Problem, Vec<String>) {
 
 fn friction(text: &str) -> (Friction, Vec<String>) {
     let (p, notes) = problem(text);
-    (p.contact[0].friction.clone().expect("friction"), notes)
+    (p.contact()[0].friction.clone().expect("friction"), notes)
 }
 
 /// The scenario error of `text`, as displayed.
@@ -85,8 +85,8 @@ fn table_and_deprecated_forms_give_identical_problems() {
     ] {
         let (p_new, notes_new) = problem(&square(new, ""));
         let (p_old, notes_old) = problem(&square(old, ""));
-        assert_eq!(p_new.contact, p_old.contact, "{new} vs {old}");
-        assert_eq!(p_new.material, p_old.material);
+        assert_eq!(p_new.contact(), p_old.contact(), "{new} vs {old}");
+        assert_eq!(p_new.material(), p_old.material());
         assert!(
             !notes_new.iter().any(|n| n.contains("deprecated")),
             "{notes_new:?}"
@@ -210,7 +210,7 @@ fn deprecated_outer_key_sets_every_law_with_a_note() {
         "",
         "[solver.outer]\nfriction_regularization = 1e-6\n",
     ));
-    assert_eq!(new.contact, old.contact);
+    assert_eq!(new.contact(), old.contact());
     assert!(!notes_new.iter().any(|n| n.contains("deprecated")));
     let note = notes_old
         .iter()
@@ -229,7 +229,7 @@ fn deprecated_outer_key_sets_every_law_with_a_note() {
         "regularization = 1e-6",
         "[solver.outer]\nfriction_regularization = 1e-6\n",
     ));
-    assert_eq!(both.contact, new.contact);
+    assert_eq!(both.contact(), new.contact());
 }
 
 #[test]

@@ -1414,7 +1414,7 @@ fn check_problem(
             ));
         }
     };
-    match &p.material.elasticity {
+    match p.material().elasticity {
         Elasticity::Hooke(h) => {
             bad("Hooke lambda", h.lambda, false);
             bad("Hooke mu", h.mu, true);
@@ -1428,12 +1428,12 @@ fn check_problem(
     }
     bad(
         "locking c_kappa",
-        p.material.locking.penalty().map_or(0.0, |l| l.c_kappa),
+        p.material().locking.penalty().map_or(0.0, |l| l.c_kappa),
         false,
     );
     bad("mesh diameter", p.diameter(), true);
-    bad("mesh measure", p.mesh.measure(), true);
-    for c in &p.contact {
+    bad("mesh measure", p.mesh().measure(), true);
+    for c in p.contact() {
         if let Some(reg) = c
             .friction
             .as_ref()
@@ -1807,7 +1807,7 @@ fn bug_box_nan_measure_accepted() {
     let text = bug_input("box-size-overflow-nan-measure.toml");
     let r = Scenario::from_str(&text, "fuzz").and_then(|s| s.into_problem());
     match r {
-        Ok(p) => panic!("accepted: mesh measure {:e}", p.mesh.measure()),
+        Ok(p) => panic!("accepted: mesh measure {:e}", p.mesh().measure()),
         Err(e) => assert!(e.to_string().contains("mesh"), "{e}"),
     }
 }

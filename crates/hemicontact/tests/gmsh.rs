@@ -514,10 +514,9 @@ fn round_trip_gives_the_same_solution() {
             .unwrap()
             .into_problem()
             .unwrap();
-        let bytes = write_msh(&generated.mesh, MshEncoding::Ascii);
+        let bytes = write_msh(generated.mesh(), MshEncoding::Ascii);
         let read = parse_msh(&bytes, "round-trip.msh").unwrap();
-        let mut from_file = generated.clone();
-        from_file.mesh = read.mesh;
+        let from_file = generated.to_builder().mesh(read.mesh).build().unwrap();
         let a = hemicontact::solver::solve(&generated, &SolverSettings::default()).unwrap();
         let b = hemicontact::solver::solve(&from_file, &SolverSettings::default()).unwrap();
         assert!(a.report.converged && b.report.converged);
@@ -574,7 +573,7 @@ fn gmsh_scenario_resolves_the_file_next_to_the_scenario() {
     let resolved = s.into_problem_with_notes();
     std::fs::remove_dir_all(&dir).unwrap();
     let (problem, notes) = resolved.unwrap();
-    assert_eq!(problem.mesh.n_nodes(), 30);
+    assert_eq!(problem.mesh().n_nodes(), 30);
     // The contact side `right` shares its lower corner with the clamped `bottom`.
     assert_eq!(notes.len(), 1, "{notes:?}");
     let solution = hemicontact::solver::solve(&problem, &SolverSettings::default()).unwrap();
@@ -671,10 +670,10 @@ fn contact_sharing_nodes_with_dirichlet_gives_a_note() {
         "{notes:?}"
     );
     // That node is not a contact node.
-    let left = problem.mesh.part_index("left").unwrap();
+    let left = problem.mesh().part_index("left").unwrap();
     assert_eq!(
         problem.contact_nodes().len(),
-        problem.mesh.part_nodes(left).len() - 1
+        problem.mesh().part_nodes(left).len() - 1
     );
 }
 

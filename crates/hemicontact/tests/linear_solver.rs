@@ -34,7 +34,7 @@ fn scenario(memory_limit: Option<u64>) -> Scenario {
 fn memory_estimate_and_prepared_solver_agree_near_the_threshold() {
     let threshold = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
     let problem = scenario(None).into_problem().unwrap();
-    let nodes = problem.mesh.n_nodes();
+    let nodes = problem.mesh().n_nodes();
     let free = problem.dof_map().n_free();
     // The case: DOFs above the threshold, free equations below (counted by hand above).
     assert_eq!(nodes, 21 * 21 * 23);

@@ -50,7 +50,7 @@ fn rectangle_problem(n: usize) -> Problem {
 /// The stiffness matrix (upper values on the system pattern) and the reduced load vector.
 fn linear_system(p: &Problem) -> (System, Vec<f64>) {
     let mut system = System::new(p, &SolverSettings::default()).unwrap();
-    let u = vec![0.0; p.mesh.dim() * p.mesh.n_nodes()];
+    let u = vec![0.0; p.mesh().dim() * p.mesh().n_nodes()];
     let frozen = system.initial_frozen(p, &u);
     system.evaluate(p, &u, &frozen, true);
     let mut b = vec![0.0; system.pattern.n()];
@@ -63,14 +63,14 @@ fn linear_system(p: &Problem) -> (System, Vec<f64>) {
 }
 
 fn multigrid(p: &Problem, system: &System) -> Multigrid {
-    let mut mg = Multigrid::new(&p.mesh, system.dofs.equations(), &system.pattern);
+    let mut mg = Multigrid::new(p.mesh(), system.dofs.equations(), &system.pattern);
     mg.update(&system.hess).unwrap();
     mg
 }
 
 fn direct(p: &Problem, system: &System, b: &[f64]) -> Vec<f64> {
     let mut chol = Cholesky::analyze(
-        &p.mesh,
+        p.mesh(),
         system.dofs.equations(),
         &system.pattern,
         Default::default(),

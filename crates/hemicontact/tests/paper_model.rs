@@ -71,8 +71,8 @@ c_nu = {c_nu}
         "the hand solution must be in contact: ε_xx = {exx}, g = {g}"
     );
     let pressure = c_nu * (exx - g);
-    for n in 0..pr.mesh.n_nodes() {
-        let x = pr.mesh.node(n);
+    for n in 0..pr.mesh().n_nodes() {
+        let x = pr.mesh().node(n);
         let (ux, uy) = (s.u[2 * n], s.u[2 * n + 1]);
         assert!(
             (ux - exx * x[0]).abs() < 1e-10,
@@ -150,7 +150,7 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     // (the friction law's `regularization`, 1e-8) of the displacement scale of the solve.
     let scales = s.report.scales.expect("scales");
     let regularization = pr
-        .contact
+        .contact()
         .iter()
         .filter_map(|c| c.friction.as_ref()?.potential.regularization())
         .fold(0.0, f64::max);
@@ -169,8 +169,8 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
     }
     // Exact up to the numerical regularization of ‖·‖: a sticking node moves by less than
     // ρ_num.
-    for n in 0..pr.mesh.n_nodes() {
-        let y = pr.mesh.node(n)[1];
+    for n in 0..pr.mesh().n_nodes() {
+        let y = pr.mesh().node(n)[1];
         assert!((s.u[2 * n] - 0.5 * delta_star * y).abs() < rho_num);
     }
     // Above the threshold: slip by δ − δ*, friction traction = μ.
@@ -191,8 +191,8 @@ fn sheared_block_on_tresca_foundation_sticks_below_and_slips_above_the_threshold
         );
         assert!((c.force_tangential[0].abs() / c.weight - mu).abs() < 1e-8 * mu);
     }
-    for n in 0..pr.mesh.n_nodes() {
-        let y = pr.mesh.node(n)[1];
+    for n in 0..pr.mesh().n_nodes() {
+        let y = pr.mesh().node(n)[1];
         let exact = (delta - delta_star) + delta_star * y;
         assert!((s.u[2 * n] - exact).abs() < 1e-8 * delta_star);
     }
@@ -216,7 +216,7 @@ fn paper_solution_is_mirror_symmetric() {
         for i in 0..=n {
             let a = j * (n + 1) + i;
             let b = j * (n + 1) + (n - i);
-            assert!((pr.mesh.node(a)[0] + pr.mesh.node(b)[0] - 4.0).abs() < 1e-14);
+            assert!((pr.mesh().node(a)[0] + pr.mesh().node(b)[0] - 4.0).abs() < 1e-14);
             assert!((s.u[2 * a] + s.u[2 * b]).abs() < 1e-10 * scale);
             assert!((s.u[2 * a + 1] - s.u[2 * b + 1]).abs() < 1e-10 * scale);
         }
@@ -249,10 +249,10 @@ fn paper_qualitative_result() {
         // the top corner touches.
         assert!(on_side
             .iter()
-            .all(|c| pr.mesh.node(c.node as usize)[1] > 2.0));
+            .all(|c| pr.mesh().node(c.node as usize)[1] > 2.0));
         assert!(on_side
             .iter()
-            .any(|c| pr.mesh.node(c.node as usize)[1] == 4.0));
+            .any(|c| pr.mesh().node(c.node as usize)[1] == 4.0));
     }
     assert!(touching
         .iter()
@@ -316,7 +316,7 @@ fn nonconvex_friction_potential_run() {
         "potential = { kind = \"nonconvex\", a = 0.5 }",
     );
     let (pr, settings) = common::setup(&text);
-    assert!(pr.contact.iter().all(|c| matches!(
+    assert!(pr.contact().iter().all(|c| matches!(
         c.friction.as_ref().map(|f| f.potential),
         Some(FrictionPotential::Nonconvex { .. })
     )));

@@ -40,10 +40,10 @@ const POISSON: f64 = 0.3;
 
 /// Cell strains and stresses of the displacement `u`.
 fn cell_fields(problem: &Problem, u: &[f64]) -> Vec<(Sym, Sym)> {
-    let bulk = BulkAssembler::new(&problem.mesh, &problem.material);
+    let bulk = BulkAssembler::new(problem.mesh(), problem.material());
     bulk.cell_strains(u)
         .into_iter()
-        .map(|e| (e, problem.material.stress(&e)))
+        .map(|e| (e, problem.material().stress(&e)))
         .collect()
 }
 
@@ -72,7 +72,7 @@ fn assert_uniform(problem: &Problem, u: &[f64], eps: &Sym, sigma: &Sym, tol: f64
 /// Asserts that the displacement `u` equals `exact` at every node.
 #[track_caller]
 fn assert_nodal(problem: &Problem, u: &[f64], exact: impl Fn(&[f64]) -> [f64; 2], tol: f64) {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     let scale = (0..mesh.n_nodes())
         .map(|n| {
             let v = exact(mesh.node(n));
@@ -251,7 +251,7 @@ value = [0.0, -{delta}]
         assert_nodal(&pr, &solution.u, |x| [exx * x[0], eyy * x[1]], 1e-10);
         // Reactions: the top support carries ∫_top σ_yy n_y = σ_yy L, the bottom the
         // opposite, the left roller nothing (σ_xx = 0).
-        let mesh = &pr.mesh;
+        let mesh = pr.mesh();
         let sum_on = |part: &str, i: usize| -> f64 {
             mesh.part_nodes(mesh.part_index(part).unwrap())
                 .iter()
@@ -316,7 +316,7 @@ fn paper_square_satisfies_discrete_virtual_work() {
     let pr = problem(&text);
     let solution = hemicontact::solver::solve(&pr, &SolverSettings::default()).unwrap();
     assert!(solution.report.converged, "{}", solution.report.message);
-    let mesh = &pr.mesh;
+    let mesh = pr.mesh();
     let mut syy = 0.0;
     let mut sxy = 0.0;
     for (c, (_, s)) in cell_fields(&pr, &solution.u).iter().enumerate() {

@@ -80,7 +80,7 @@ fn written_stress(text: &str) -> (Vec<f64>, Vec<f64>, usize) {
     (
         cell_array(&bytes, "stress"),
         cell_array(&bytes, "von_mises"),
-        p.mesh.n_cells(),
+        p.mesh().n_cells(),
     )
 }
 

@@ -45,9 +45,9 @@ fn patch_test_3d() {
             u
         };
         let mut system = System::new(&p, &SolverSettings::default()).unwrap();
-        let mut u = vec![0.0; 3 * p.mesh.n_nodes()];
-        for n in 0..p.mesh.n_nodes() {
-            let e = exact(p.mesh.node(n));
+        let mut u = vec![0.0; 3 * p.mesh().n_nodes()];
+        for n in 0..p.mesh().n_nodes() {
+            let e = exact(p.mesh().node(n));
             for i in 0..3 {
                 if system.dofs.is_fixed(3 * n + i) {
                     u[3 * n + i] = e[i];
@@ -66,8 +66,8 @@ fn patch_test_3d() {
         )
         .unwrap();
         assert!(out.converged);
-        for n in 0..p.mesh.n_nodes() {
-            let e = exact(p.mesh.node(n));
+        for n in 0..p.mesh().n_nodes() {
+            let e = exact(p.mesh().node(n));
             for i in 0..3 {
                 assert!(
                     (u[3 * n + i] - e[i]).abs() < 1e-10,
@@ -139,8 +139,8 @@ c_nu = {c_nu}
         e[k] = det3(m) / d;
     }
     assert!(e[0] > g, "the hand solution must be in contact");
-    for n in 0..pr.mesh.n_nodes() {
-        let x = pr.mesh.node(n);
+    for n in 0..pr.mesh().n_nodes() {
+        let x = pr.mesh().node(n);
         for i in 0..3 {
             assert!(
                 (s.u[3 * n + i] - e[i] * x[i]).abs() < 1e-10,

@@ -162,8 +162,8 @@ pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
 /// As [`solve`].
 pub fn solve_from(problem: &Problem, settings: &SolverSettings, u: Vec<f64>) -> Result<Solution> {
     let start = Instant::now();
+    // A `Problem` exists only validated; the settings are checked here.
     settings.validate()?;
-    problem.validate()?;
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();

@@ -70,10 +70,10 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
     problem: &Problem,
     field: impl Fn(&[f64]) -> V,
 ) -> (Vec<f64>, usize) {
-    let mesh = &problem.mesh;
+    let mesh = problem.mesh();
     let d = mesh.dim();
     assert!(
-        problem.contact.is_empty(),
+        problem.contact().is_empty(),
         "helper is for problems without contact"
     );
     let solver = SolverSettings::default();
