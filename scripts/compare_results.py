@@ -346,6 +346,8 @@ def row(r, tolerance, judge_residuals):
         same = "yes"
     elif r.arrays:
         same = "within tol."
+    elif r.added and not r.figures_differ:
+        same = "yes + fields"  # every datum identical; summary.json has accepted new fields
     else:
         same = "data yes"  # only figures differ
     ratio = "—"
@@ -378,6 +380,7 @@ def row(r, tolerance, judge_residuals):
 
 LEGEND = (
     "identical?: yes = every file byte-identical (summary.json apart from timings); "
+    "yes + fields = the same, with summary fields new in head (--new-field); "
     "data yes = only figures differ; within tol. = numbers differ by at most the tolerance; "
     "NO = a difference beyond the tolerance, or in exit code, converged flag, files or text. "
     "max rel diff: max |base - head| / max(|base|, |head|) per array, largest over the set's "

@@ -128,6 +128,80 @@ impl ConstraintSettings {
     }
 }
 
+/// The augmented-Lagrangian state of the exact constraints besides the multipliers
+/// themselves (which join the frozen quantities of the outer loop): the penalties r_i of the
+/// contact points and r_T of ideal locking, their continuation over the first outer
+/// iterations, and the update of the locking multipliers.
+#[derive(Clone, Debug)]
+pub struct AugmentedLagrangian {
+    settings: ConstraintSettings,
+    /// Full penalty r_i per contact point (Pa/m).
+    full_contact: Vec<f64>,
+    /// Full penalty r_T of ideal locking (0 without).
+    full_locking: f64,
+    /// Penalty r_i per contact point at the current stage (Pa/m).
+    contact: Vec<f64>,
+    /// Penalty r_T at the current stage (Pa per unit of Q²).
+    locking: f64,
+}
+
+impl AugmentedLagrangian {
+    /// The penalties of `problem` for the settings `settings` and the contact points of
+    /// weights `weight` (see [`contact_penalties`], [`locking_penalty`]), at their full
+    /// values until [`AugmentedLagrangian::set_stage`] is called.
+    pub fn new(problem: &Problem, settings: &ConstraintSettings, weight: &[f64]) -> Self {
+        let contact = contact_penalties(problem, settings.contact_penalty, weight);
+        let locking = problem.material.locking.ideal().map_or(0.0, |set| {
+            locking_penalty(problem, settings.locking_penalty, &set)
+        });
+        AugmentedLagrangian {
+            settings: settings.clone(),
+            full_contact: contact.clone(),
+            full_locking: locking,
+            contact,
+            locking,
+        }
+    }
+
+    /// Sets the penalties of outer iteration `k`: the full ones scaled by
+    /// `factor(k, γ)/γ` ([`ConstraintSettings::factor`], continuation).
+    pub fn set_stage(&mut self, k: usize) {
+        let s = &self.settings;
+        let contact = s.factor(k, s.contact_penalty) / s.contact_penalty;
+        let locking = s.factor(k, s.locking_penalty) / s.locking_penalty;
+        for (r, full) in self.contact.iter_mut().zip(&self.full_contact) {
+            *r = contact * full;
+        }
+        self.locking = locking * self.full_locking;
+    }
+
+    /// The penalty r_i of every contact point at the current stage (Pa/m).
+    pub fn contact(&self) -> &[f64] {
+        &self.contact
+    }
+
+    /// The penalty r_T of ideal locking at the current stage (0 without).
+    pub fn locking(&self) -> f64 {
+        self.locking
+    }
+
+    /// The number of continuation stages of `problem` (see [`stages`]).
+    pub fn stages(&self, problem: &Problem) -> usize {
+        stages(problem, &self.settings)
+    }
+
+    /// The updated cell multipliers `λ_T ← (λ_T + r_T Q(ε_T(u)))_+` of the set `set`.
+    pub fn update_locking(
+        &self,
+        mesh: &Mesh,
+        set: &LockingSet,
+        u: &[f64],
+        current: &[f64],
+    ) -> Vec<f64> {
+        update_locking(mesh, set, self.locking, u, current)
+    }
+}
+
 /// Whether the problem has exact constraints (and so multipliers to iterate on).
 pub fn has_exact_constraints(problem: &Problem) -> bool {
     problem.material.locking.ideal().is_some()

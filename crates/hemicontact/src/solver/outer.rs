@@ -233,10 +233,12 @@ pub fn run(
         force_scale: f64::NAN,
     };
     let mut stop = StopReason::IterationCap;
-    let stages = constraints::stages(problem, &settings.constraints)
+    let stages = system
+        .constraints
+        .stages(problem)
         .max(system::regularization_stages(problem));
     for k in 0..settings.outer.max_iterations.max(1) {
-        system.set_penalty_stage(&settings.constraints, k);
+        system.constraints.set_stage(k);
         system.set_regularization_stage(k);
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
@@ -383,7 +385,7 @@ pub fn fixed_point_residual(
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     for i in 0..n {
-        let r = system.contact_penalty[i] * u_scale;
+        let r = system.constraints.contact()[i] * u_scale;
         let dt = ((g.traction[i][0] - z.traction[i][0]).powi(2)
             + (g.traction[i][1] - z.traction[i][1]).powi(2))
         .sqrt();
@@ -392,7 +394,7 @@ pub fn fixed_point_residual(
             .max(dt / r);
     }
     if let Some(set) = problem.material.locking.ideal() {
-        let r = system.locking_penalty * set.size();
+        let r = system.constraints.locking() * set.size();
         for (a, b) in g.locking.iter().zip(&z.locking) {
             fp = fp.max((a - b).abs() / r);
         }

@@ -3,6 +3,7 @@
 //! iteration. [`System::evaluate`] computes the convexified energy `E_k` with its
 //! gradient and generalized Hessian for given frozen contact quantities.
 
+use super::constraints::AugmentedLagrangian;
 use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
@@ -33,14 +34,9 @@ pub struct System {
     /// dimensionless variables, see [`super::scaling`]); each law uses the larger of this
     /// and its own value ([`System::set_regularization_stage`]). 0: the laws' own values.
     pub regularization_floor: f64,
-    /// Augmented-Lagrangian penalty r_i per contact point (Pa/m), see
-    /// [`super::constraints`].
-    pub contact_penalty: Vec<f64>,
-    /// Augmented-Lagrangian penalty r_T of ideal locking (0 without).
-    pub locking_penalty: f64,
-    /// The full penalties (contact points, locking) that `contact_penalty` and
-    /// `locking_penalty` are scaled from during continuation.
-    full_penalty: (Vec<f64>, f64),
+    /// The penalties of the exact constraints and their continuation
+    /// ([`super::constraints::AugmentedLagrangian`]).
+    pub constraints: AugmentedLagrangian,
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
     /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
@@ -146,12 +142,7 @@ impl System {
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
         let contact = problem.contact_nodes();
-        let gamma = &settings.constraints;
-        let contact_penalty =
-            super::constraints::contact_penalties(problem, gamma.contact_penalty, &contact.weight);
-        let locking_penalty = problem.material.locking.ideal().map_or(0.0, |set| {
-            super::constraints::locking_penalty(problem, gamma.locking_penalty, &set)
-        });
+        let constraints = AugmentedLagrangian::new(problem, &settings.constraints, &contact.weight);
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
         let options = PrepareOptions {
@@ -186,9 +177,7 @@ impl System {
             contact,
             contact_slots,
             regularization_floor: 0.0,
-            full_penalty: (contact_penalty.clone(), locking_penalty),
-            contact_penalty,
-            locking_penalty,
+            constraints,
             f_ext,
             force_floor,
             grad: vec![0.0; n],
@@ -213,7 +202,7 @@ impl System {
             nodes: &self.contact,
             boundaries: &problem.contact,
             regularization_floor: self.regularization_floor,
-            penalty: &self.contact_penalty,
+            penalty: self.constraints.contact(),
         }
     }
 
@@ -221,20 +210,9 @@ impl System {
     fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
         problem.material.locking.ideal().map(|set| IdealLocking {
             set,
-            r: self.locking_penalty,
+            r: self.constraints.locking(),
             multipliers: &frozen.locking,
         })
-    }
-
-    /// Sets the augmented-Lagrangian penalties of outer iteration `k` (continuation, see
-    /// [`super::constraints`]).
-    pub fn set_penalty_stage(&mut self, settings: &super::ConstraintSettings, k: usize) {
-        let contact = settings.factor(k, settings.contact_penalty) / settings.contact_penalty;
-        let locking = settings.factor(k, settings.locking_penalty) / settings.locking_penalty;
-        for (r, full) in self.contact_penalty.iter_mut().zip(&self.full_penalty.0) {
-            *r = contact * full;
-        }
-        self.locking_penalty = locking * self.full_penalty.1;
     }
 
     /// Sets the friction regularization of outer iteration `k`: continuation from
@@ -264,13 +242,9 @@ impl System {
     pub fn freeze(&self, problem: &Problem, u: &[f64], current: &Frozen) -> Frozen {
         let mut next = self.contact_assembler(problem).freeze(u, current);
         if let Some(set) = problem.material.locking.ideal() {
-            next.locking = super::constraints::update_locking(
-                &problem.mesh,
-                &set,
-                self.locking_penalty,
-                u,
-                &current.locking,
-            );
+            next.locking =
+                self.constraints
+                    .update_locking(&problem.mesh, &set, u, &current.locking);
         }
         next
     }
@@ -319,7 +293,7 @@ impl System {
             nodes: &self.contact,
             boundaries: &problem.contact,
             regularization_floor: self.regularization_floor,
-            penalty: &self.contact_penalty,
+            penalty: self.constraints.contact(),
         };
         let hc = if hessian {
             Some((self.hess.as_mut_slice(), self.contact_slots.as_slice()))
