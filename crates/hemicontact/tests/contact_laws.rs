@@ -32,7 +32,7 @@
 //!   sensitive).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::assembly::contact::{contact_slots, ContactAssembler, Frozen};
+use hemicontact::assembly::contact::{contact_slots, ContactAssembler, FrictionData};
 use hemicontact::assembly::SystemPattern;
 use hemicontact::contact::friction::regularized_norm;
 use hemicontact::contact::nodes::tangent_basis;
@@ -41,6 +41,7 @@ use hemicontact::contact::{
     NormTreatment, NormalCompliance, NormalLaw,
 };
 use hemicontact::scenario::Scenario;
+use hemicontact::solver::{Frozen, Multipliers};
 
 mod common;
 
@@ -532,7 +533,7 @@ const RHO_NUM: f64 = 1e-3;
 /// Energy and gradient (all DOFs) of the contact terms.
 fn energy_grad(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64]) -> (f64, Vec<f64>) {
     let mut g = vec![0.0; u.len()];
-    let e = asm.assemble(u, frozen, &mut g, None);
+    let e = asm.assemble(u, &frozen.contact(), &mut g, None);
     (e, g)
 }
 
@@ -548,15 +549,18 @@ fn off_kink(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64], margin: f64)
     (0..asm.nodes.len()).all(|i| {
         let cb = &asm.boundaries[asm.nodes.boundary[i] as usize];
         let r = asm.penalty[i];
-        let (_, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+        let (_, gap) = cb
+            .normal
+            .effective(cb.gap, frozen.multipliers.pressure[i], r);
         let (u_nu, xi) = asm.nodes.kinematics(asm.dim, u, i);
-        let tau = frozen.traction[i];
+        let tau = frozen.multipliers.traction[i];
         let nz = (0..m)
             .map(|a| (tau[a] + r * xi[a]).powi(2))
             .sum::<f64>()
             .sqrt();
         let exact = cb.friction.as_ref().is_some_and(|f| f.is_exact());
-        (u_nu - gap).abs() > margin && (!exact || (nz - frozen.bound[i]).abs() > r * margin)
+        (u_nu - gap).abs() > margin
+            && (!exact || (nz - frozen.friction.bound[i]).abs() > r * margin)
     })
 }
 
@@ -584,7 +588,7 @@ fn check_assembler(
         }
         done += 1;
         for i in 0..n {
-            let s = asm.state(&u, i, frozen);
+            let s = asm.state(&u, i, &frozen.contact());
             if s.pressure > 0.0 {
                 pen += 1;
             } else {
@@ -702,9 +706,12 @@ c_nu = 20000.0
 "#;
 
 fn random_frozen(rng: &mut Rng, n: usize, m: usize, nonnegative: bool) -> Frozen {
-    let mut f = Frozen::zero(n);
+    let mut f = Frozen {
+        friction: FrictionData::zero(n),
+        multipliers: Multipliers::zero(n, 0),
+    };
     for i in 0..n {
-        f.bound[i] = if i % 5 == 3 {
+        f.friction.bound[i] = if i % 5 == 3 {
             0.0
         } else if nonnegative {
             rng.uniform(0.1, 2.0)
@@ -712,10 +719,10 @@ fn random_frozen(rng: &mut Rng, n: usize, m: usize, nonnegative: bool) -> Frozen
             -rng.uniform(1.0, 10.0)
         };
         for a in 0..m {
-            f.linear[i][a] = rng.uniform(-1.0, 1.0);
-            f.traction[i][a] = rng.uniform(-1.0, 1.0);
+            f.friction.linear[i][a] = rng.uniform(-1.0, 1.0);
+            f.multipliers.traction[i][a] = rng.uniform(-1.0, 1.0);
         }
-        f.pressure[i] = rng.uniform(0.0, 1.0);
+        f.multipliers.pressure[i] = rng.uniform(0.0, 1.0);
     }
     f
 }
@@ -750,7 +757,7 @@ fn assembled_contact_terms_2d_match_finite_differences() {
     let hessian = |u: &[f64]| -> Vec<f64> {
         let mut values = vec![0.0; pattern.nnz()];
         let mut g = vec![0.0; u.len()];
-        asm.assemble(u, &frozen, &mut g, Some((&mut values, &slots)));
+        asm.assemble(u, &frozen.contact(), &mut g, Some((&mut values, &slots)));
         let mut dense = vec![f64::NAN; ndof * ndof];
         for r in 0..ndof {
             for c in 0..ndof {
@@ -926,7 +933,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
     let hessian = |u: &[f64]| -> Vec<f64> {
         let mut values = vec![0.0; 6 * np];
         let mut g = vec![0.0; u.len()];
-        asm.assemble(u, &frozen, &mut g, Some((&mut values, &slots)));
+        asm.assemble(u, &frozen.contact(), &mut g, Some((&mut values, &slots)));
         let mut dense = vec![0.0; ndof * ndof];
         for i in 0..np {
             let v = nodes.node[i] as usize;

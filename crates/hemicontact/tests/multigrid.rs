@@ -51,7 +51,7 @@ fn rectangle_problem(n: usize) -> Problem {
 fn linear_system(p: &Problem) -> (System, Vec<f64>) {
     let mut system = System::new(p, &SolverSettings::default()).unwrap();
     let u = vec![0.0; p.mesh().dim() * p.mesh().n_nodes()];
-    let frozen = system.initial_frozen(p, &u);
+    let frozen = hemicontact::solver::Frozen::initial(&system, p, &u);
     system.evaluate(p, &u, &frozen, true);
     let mut b = vec![0.0; system.pattern.n()];
     let grad = system.grad.clone();

@@ -54,7 +54,7 @@ fn patch_test_3d() {
                 }
             }
         }
-        let frozen = system.initial_frozen(&p, &u);
+        let frozen = hemicontact::solver::Frozen::initial(&system, &p, &u);
         let out = minimize(
             &mut system,
             &p,

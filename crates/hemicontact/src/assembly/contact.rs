@@ -3,7 +3,7 @@
 //! `w_i [ P(u_ν,i) + F_i^k j_cvx(u_τ,i) − b_i^k · u_τ,i ]`,
 //!
 //! with the *frozen* friction bound `F_i^k` and linear term `b_i^k = F_i^k ∇h(u_τ,i^k)` (the
-//! difference-of-convex step) taken from the previous outer iterate (see [`Frozen`]).
+//! difference-of-convex step) taken from the previous outer iterate (see [`ContactData`]).
 //! `j_cvx` is the (regularized) convex part of the friction potential. The term is convex in
 //! u whenever `F_i^k ≥ 0`.
 //!
@@ -24,34 +24,40 @@ use super::pattern::{SystemPattern, FIXED_SLOT};
 pub use crate::contact::friction::project_ball;
 use crate::contact::{ContactBoundary, ContactNodes, TangentialData};
 
-/// The quantities frozen for one convex subproblem: the friction data of the
-/// convexification and the multipliers of the exact constraints.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Frozen {
+/// The per-point data of the contact terms held fixed over one convex problem: the friction
+/// data of the convexification and the contact multipliers of the exact constraints. The
+/// solver owns these vectors ([`crate::solver::Frozen`]); the assembler only reads them.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactData<'a> {
     /// Friction bound F_i^k ≥ 0 per point (Pa, or N/m in 2D).
-    pub bound: Vec<f64>,
+    pub bound: &'a [f64],
     /// Linear term `b_i^k = F_i^k ∇h(u_τ,i^k)` per point, tangential coordinates.
-    pub linear: Vec<[f64; 2]>,
+    pub linear: &'a [[f64; 2]],
     /// Signorini multiplier λ_i ≥ 0 (the contact pressure, Pa) per point; unused (zero) at
     /// normal-compliance points.
-    pub pressure: Vec<f64>,
+    pub pressure: &'a [f64],
     /// Exact-friction multiplier τ_i = −σ_τ per point (Pa, tangential coordinates);
     /// unused (zero) where friction is regularized.
-    pub traction: Vec<[f64; 2]>,
-    /// Ideal-locking multiplier λ_T ≥ 0 per cell (Pa); empty without ideal locking.
-    pub locking: Vec<f64>,
+    pub traction: &'a [[f64; 2]],
 }
 
-impl Frozen {
-    /// No friction and zero multipliers at any of `n` points, no locking multipliers (the
-    /// first outer iteration of a Coulomb problem from an unloaded contact zone).
+/// The friction data of the convexification (the difference-of-convex step) at one outer
+/// iterate, per contact point.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FrictionData {
+    /// Friction bound F_i^k ≥ 0 (Pa, or N/m in 2D).
+    pub bound: Vec<f64>,
+    /// Linear term `b_i^k = F_i^k ∇h(u_τ,i^k)`, tangential coordinates.
+    pub linear: Vec<[f64; 2]>,
+}
+
+impl FrictionData {
+    /// No friction at any of `n` points (the first outer iteration of a Coulomb problem
+    /// from an unloaded contact zone).
     pub fn zero(n: usize) -> Self {
-        Frozen {
+        FrictionData {
             bound: vec![0.0; n],
             linear: vec![[0.0; 2]; n],
-            pressure: vec![0.0; n],
-            traction: vec![[0.0; 2]; n],
-            locking: Vec::new(),
         }
     }
 }
@@ -92,7 +98,7 @@ impl<'a> ContactAssembler<'a> {
     /// state. At a Signorini point the pressure is the updated multiplier
     /// `(λ_i + r_i (u_ν − g))_+` of the frozen multiplier λ_i in `frozen`.
     #[inline]
-    pub fn state(&self, u: &[f64], i: usize, frozen: &Frozen) -> PointState {
+    pub fn state(&self, u: &[f64], i: usize, frozen: &ContactData<'_>) -> PointState {
         let cb = &self.boundaries[self.nodes.boundary[i] as usize];
         let (u_nu, u_tau) = self.nodes.kinematics(self.dim, u, i);
         let slip = (u_tau[0] * u_tau[0] + u_tau[1] * u_tau[1]).sqrt();
@@ -113,51 +119,33 @@ impl<'a> ContactAssembler<'a> {
         }
     }
 
-    /// The frozen quantities at displacement `u` (the convexification step)
-    /// and the multiplier updates of the exact constraints, from the current ones in
-    /// `current`: `λ_i ← (λ_i + r_i(u_ν − g))_+`, `τ_i ← proj_{B_F}(τ_i + r_i u_τ)` with the
-    /// frozen bound F of `current` (so that τ_i is the friction traction of the subproblem
-    /// just solved). Cell multipliers are copied; [`crate::solver::constraints`] updates them.
-    /// At Signorini points, a Coulomb bound uses the current multiplier as the pressure.
-    pub fn freeze(&self, u: &[f64], current: &Frozen) -> Frozen {
+    /// The friction data of the convexification at displacement `u`: the bound
+    /// `F_i = F(‖u_τ,i‖, p_i)` and the linear term `b_i = F_i ∇h(u_τ,i)`, with the contact
+    /// multipliers of `current`. At a Signorini point a Coulomb bound takes the pressure from
+    /// the current multiplier λ_i, not from its update `(λ_i + r_i(u_ν − g))_+`: the two
+    /// agree at the fixed point, but the update amplifies the error of an inexact solve by
+    /// the large penalty r, which would put a floor under the fixed-point residual.
+    pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> FrictionData {
         let n = self.nodes.len();
-        let m = self.dim - 1;
-        let mut frozen = Frozen::zero(n);
-        frozen.locking.clone_from(&current.locking);
+        let mut data = FrictionData::zero(n);
         for i in 0..n {
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
-            let s = self.state(u, i, current);
-            if cb.normal.is_exact() {
-                frozen.pressure[i] = s.pressure;
-            }
             let Some(fr) = &cb.friction else { continue };
-            if let Some(tau) = fr.updated_traction(
-                &s.u_tau,
-                m,
-                &current.traction[i],
-                self.penalty[i],
-                current.bound[i],
-            ) {
-                frozen.traction[i] = tau;
-            }
-            // At a Signorini point a Coulomb bound takes the pressure from the current
-            // multiplier, not from the update `(λ + r(u_ν − g))_+`: the two agree at the
-            // fixed point, but the update amplifies the error of an inexact solve by the
-            // large penalty r, which would put a floor under the fixed-point residual.
+            let s = self.state(u, i, current);
             let bound = if cb.normal.is_exact() {
                 fr.bound_value(s.slip, current.pressure[i])
             } else {
                 s.bound
             };
-            frozen.bound[i] = bound;
+            data.bound[i] = bound;
             let hs = fr.potential.h_slope(s.slip);
             if hs != 0.0 && s.slip > 0.0 {
                 for a in 0..2 {
-                    frozen.linear[i][a] = bound * hs * s.u_tau[a] / s.slip;
+                    data.linear[i][a] = bound * hs * s.u_tau[a] / s.slip;
                 }
             }
         }
-        frozen
+        data
     }
 
     /// Contact energy at `u`; adds its gradient to `grad` (all DOFs, DOF order) and, if
@@ -166,7 +154,7 @@ impl<'a> ContactAssembler<'a> {
     pub fn assemble(
         &self,
         u: &[f64],
-        frozen: &Frozen,
+        frozen: &ContactData<'_>,
         grad: &mut [f64],
         hess: Option<(&mut [f64], &[u32])>,
     ) -> f64 {
@@ -199,7 +187,7 @@ impl<'a> ContactAssembler<'a> {
     /// The contact term of point `i` at `u`: its energy, its gradient with respect to the
     /// node's displacement (the force the body exerts on the foundation, N) and its
     /// (generalized) Hessian node block.
-    pub fn point(&self, u: &[f64], frozen: &Frozen, i: usize) -> PointTerm {
+    pub fn point(&self, u: &[f64], frozen: &ContactData<'_>, i: usize) -> PointTerm {
         let d = self.dim;
         let m = d - 1;
         let cb = &self.boundaries[self.nodes.boundary[i] as usize];

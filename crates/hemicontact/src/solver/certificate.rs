@@ -51,8 +51,8 @@
 //! the largest nodal external force or contact force, at least the force unit of the
 //! prescribed displacements ([`super::System::force_floor`]).
 
-use super::constraints::KktCertificate;
-use crate::assembly::contact::{ContactAssembler, Frozen};
+use super::multipliers::KktCertificate;
+use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
 use serde::Serialize;
 
@@ -252,8 +252,8 @@ pub struct Inputs<'a> {
     pub fixed: &'a dyn Fn(usize) -> bool,
     /// Relative equilibrium residual of the last convex problem.
     pub equilibrium: f64,
-    /// The frozen quantities of the last convex problem.
-    pub frozen: &'a Frozen,
+    /// The contact data of the last convex problem.
+    pub frozen: ContactData<'a>,
     /// Force floor of the force scale ([`super::System::force_floor`]).
     pub force_floor: f64,
     /// Certificate tolerance.
@@ -297,8 +297,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
             .unwrap_or_default()
     };
-    let mut max_pressure = 0.0f64;
-    let mut min_pressure = f64::INFINITY;
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     let mut scale = f_ext
@@ -306,11 +304,11 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
         .fold(0.0, f64::max);
     for i in 0..ca.nodes.len() {
-        let s = ca.state(u, i, frozen);
+        let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
-        let model = ca.point(u, frozen, i).gradient;
+        let model = ca.point(u, &frozen, i).gradient;
         let mut force = [0.0; 3];
         for k in 0..d {
             force[k] = if fixed(d * v + k) {
@@ -325,7 +323,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         // equilibrium force for all its points: attribute to this point what remains after
         // the model forces of the node's other points.
         for j in shared(i) {
-            let g = ca.point(u, frozen, j).gradient;
+            let g = ca.point(u, &frozen, j).gradient;
             for k in 0..d {
                 if !fixed(d * v + k) {
                     force[k] += g[k];
@@ -397,16 +395,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             }
         }
         scale = scale.max(w * s.pressure).max(w * s.bound);
-        if cb.normal.is_exact() {
-            exact_any = true;
-            kkt.n_constraints.1 += 1;
-            max_pressure = max_pressure.max(s.pressure);
-            min_pressure = min_pressure.min(s.pressure);
-            kkt.contact_violation = kkt
-                .contact_violation
-                .max((s.u_nu - cb.gap).max(0.0) / u_scale);
-        }
-        exact_any |= cb.friction.as_ref().is_some_and(|f| f.is_exact());
+        exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
             boundary: ca.nodes.boundary[i] as usize,
@@ -428,18 +417,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         });
     }
     let scale = scale.max(force_floor).max(f64::MIN_POSITIVE);
-    if max_pressure > 0.0 {
-        kkt.contact_min_multiplier = min_pressure / max_pressure;
-        for (r, cb) in results
-            .iter()
-            .map(|r| (r, &ca.boundaries[r.boundary]))
-            .filter(|(_, cb)| cb.normal.is_exact())
-        {
-            kkt.contact_complementarity = kkt
-                .contact_complementarity
-                .max(r.pressure * (cb.gap - r.u_nu).abs() / (max_pressure * u_scale));
-        }
-    }
     let mut cert = Certificate {
         kkt: exact_any.then_some(kkt),
         tolerance,

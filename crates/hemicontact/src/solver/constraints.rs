@@ -46,15 +46,12 @@
 //! that a step would push deep into the stiff penalty.
 //!
 //! # Certificate
-//! At convergence the KKT conditions are checked ([`KktCertificate`]): violation
+//! At convergence the KKT conditions are checked ([`super::multipliers::KktCertificate`]): violation
 //! `max Q(ε_T)_+` relative to the size of B, `max (u_ν − g)_+` relative to the largest
 //! displacement, signs of the multipliers, complementarity, and (in
 //! [`super::certificate`]) equilibrium and the friction law with the multipliers as forces.
 
-use crate::assembly::contact::Frozen;
-use crate::assembly::element;
 use crate::material::LockingSet;
-use crate::mesh::Mesh;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 
@@ -128,10 +125,9 @@ impl ConstraintSettings {
     }
 }
 
-/// The augmented-Lagrangian state of the exact constraints besides the multipliers
-/// themselves (which join the frozen quantities of the outer loop): the penalties r_i of the
-/// contact points and r_T of ideal locking, their continuation over the first outer
-/// iterations, and the update of the locking multipliers.
+/// The penalties of the exact constraints: r_i of the contact points and r_T of ideal
+/// locking, and their continuation over the first outer iterations. The multipliers, their
+/// update and their KKT residuals are in [`super::multipliers`].
 #[derive(Clone, Debug)]
 pub struct AugmentedLagrangian {
     settings: ConstraintSettings,
@@ -189,17 +185,6 @@ impl AugmentedLagrangian {
     pub fn stages(&self, problem: &Problem) -> usize {
         stages(problem, &self.settings)
     }
-
-    /// The updated cell multipliers `λ_T ← (λ_T + r_T Q(ε_T(u)))_+` of the set `set`.
-    pub fn update_locking(
-        &self,
-        mesh: &Mesh,
-        set: &LockingSet,
-        u: &[f64],
-        current: &[f64],
-    ) -> Vec<f64> {
-        update_locking(mesh, set, self.locking, u, current)
-    }
 }
 
 /// Whether the problem has exact constraints (and so multipliers to iterate on).
@@ -239,102 +224,6 @@ pub fn contact_penalties(problem: &Problem, gamma: f64, weight: &[f64]) -> Vec<f
             gamma * s / h.max(f64::MIN_POSITIVE)
         })
         .collect()
-}
-
-/// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+`.
-pub fn update_locking(
-    mesh: &Mesh,
-    set: &LockingSet,
-    r: f64,
-    u: &[f64],
-    current: &[f64],
-) -> Vec<f64> {
-    (0..mesh.n_cells())
-        .map(|c| {
-            let (_, eps) = element::cell_strain(mesh, u, c);
-            (current[c] + r * set.q(&eps)).max(0.0)
-        })
-        .collect()
-}
-
-/// KKT residuals of the exact constraints at a solution (all dimensionless).
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct KktCertificate {
-    /// Ideal locking: `max_T Q(ε_T)_+ / q` with q = θ, κ² or r (the size of B).
-    pub locking_violation: f64,
-    /// Smallest locking multiplier divided by the largest (≥ 0: signs correct).
-    pub locking_min_multiplier: f64,
-    /// `max_T λ_T |Q(ε_T)| / (max λ · q)`.
-    pub locking_complementarity: f64,
-    /// Cells where the locking constraint is active (λ_T > 0).
-    pub n_locked: usize,
-    /// Signorini: `max_i (u_ν − g)_+ / max|u|`.
-    pub contact_violation: f64,
-    /// Smallest Signorini multiplier (pressure) divided by the largest.
-    pub contact_min_multiplier: f64,
-    /// `max_i λ_i |g − u_ν,i| / (max λ · max|u|)`.
-    pub contact_complementarity: f64,
-    /// Exact friction: largest slip of a sticking point relative to max|u| (zero to
-    /// round-off when stick is exact).
-    pub stick_slip: f64,
-    /// Number of constraints of each kind checked: (cells, Signorini points, exact-friction
-    /// points).
-    pub n_constraints: (usize, usize, usize),
-}
-
-impl KktCertificate {
-    /// The largest violation or complementarity residual (the number to compare with the
-    /// 1e-8 target).
-    pub fn worst(&self) -> f64 {
-        [
-            self.locking_violation,
-            self.locking_complementarity,
-            self.contact_violation,
-            self.contact_complementarity,
-            self.stick_slip,
-        ]
-        .into_iter()
-        .fold(0.0, f64::max)
-    }
-}
-
-/// Evaluates the locking part of the KKT certificate for the multipliers `lambda` (the
-/// updated ones) at `u`.
-pub fn locking_kkt(
-    mesh: &Mesh,
-    set: &LockingSet,
-    u: &[f64],
-    lambda: &[f64],
-    kkt: &mut KktCertificate,
-) {
-    let q_ref = set.size();
-    let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
-    let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
-    kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
-    kkt.n_locked = lambda.iter().filter(|&&l| l > 0.0).count();
-    kkt.n_constraints.0 = mesh.n_cells();
-    for (c, &l) in lambda.iter().enumerate() {
-        let (_, eps) = element::cell_strain(mesh, u, c);
-        let q = set.q(&eps);
-        kkt.locking_violation = kkt.locking_violation.max(q.max(0.0) / q_ref);
-        if lmax > 0.0 {
-            kkt.locking_complementarity = kkt
-                .locking_complementarity
-                .max(l * q.abs() / (lmax * q_ref));
-        }
-    }
-}
-
-/// The initial frozen vector's multipliers: zero (the first convex problem is the penalty
-/// problem with penalty r).
-pub fn zero_multipliers(frozen: &mut Frozen, n_cells: usize, ideal: bool) {
-    frozen.pressure.iter_mut().for_each(|p| *p = 0.0);
-    frozen.traction.iter_mut().for_each(|t| *t = [0.0; 2]);
-    frozen.locking = if ideal {
-        vec![0.0; n_cells]
-    } else {
-        Vec::new()
-    };
 }
 
 /// The continuation of `problem` with the penalty settings `c`: the number of stages before

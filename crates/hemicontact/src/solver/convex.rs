@@ -3,11 +3,11 @@
 //! system's linear solver for the Newton directions and the runaway check of free rigid
 //! motions ([`crate::fem::rigid`]) on every accepted iterate.
 
+use super::frozen::Frozen;
 use super::newton::{ConvexEnergy, NewtonSettings};
 use super::report::Timings;
 use super::system::LinearInfo;
 use super::System;
-use crate::assembly::contact::Frozen;
 use crate::error::Result;
 use crate::fem::dofs::FIXED;
 use crate::problem::Problem;

@@ -10,7 +10,6 @@
 //!   the relaxation factor ω (down to 1/8); the report records it.
 
 use super::outer::{Acceleration, OuterSettings};
-use crate::assembly::contact::Frozen;
 use serde::{Serialize, Serializer};
 
 /// How the frozen quantities of the next outer iteration were formed (or why there is no
@@ -87,46 +86,6 @@ impl std::fmt::Display for Mixing {
 impl Serialize for Mixing {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         s.collect_str(self)
-    }
-}
-
-/// Flattens frozen quantities into the fixed-point vector
-/// `z = [F (n), b (2n), λ_contact (n), τ (2n), λ_locking (cells or 0)]`.
-pub fn flatten(f: &Frozen) -> Vec<f64> {
-    let n = f.bound.len();
-    let mut z = Vec::with_capacity(6 * n + f.locking.len());
-    z.extend_from_slice(&f.bound);
-    for b in &f.linear {
-        z.extend_from_slice(b);
-    }
-    z.extend_from_slice(&f.pressure);
-    for t in &f.traction {
-        z.extend_from_slice(t);
-    }
-    z.extend_from_slice(&f.locking);
-    z
-}
-
-/// Inverse of [`flatten`] for `n` contact points and `n_cells` locking multipliers,
-/// projecting bounds and multipliers onto their admissible sets (`F ≥ 0`, `λ ≥ 0`): a mixed
-/// iterate then still defines convex subproblems.
-pub fn unflatten(z: &[f64], n: usize, n_cells: usize) -> Frozen {
-    let bound = z[..n].iter().map(|&x| x.max(0.0)).collect();
-    let linear = (0..n).map(|i| [z[n + 2 * i], z[n + 2 * i + 1]]).collect();
-    let pressure = z[3 * n..4 * n].iter().map(|&x| x.max(0.0)).collect();
-    let traction = (0..n)
-        .map(|i| [z[4 * n + 2 * i], z[4 * n + 2 * i + 1]])
-        .collect();
-    let locking = z[6 * n..6 * n + n_cells]
-        .iter()
-        .map(|&x| x.max(0.0))
-        .collect();
-    Frozen {
-        bound,
-        linear,
-        pressure,
-        traction,
-        locking,
     }
 }
 

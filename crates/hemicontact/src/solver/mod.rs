@@ -9,9 +9,12 @@
 
 pub mod certificate;
 pub mod constraints;
+pub mod continuation;
 pub mod convex;
+pub mod frozen;
 pub mod line_search;
 pub mod mixing;
+pub mod multipliers;
 pub mod newton;
 pub mod outer;
 pub mod report;
@@ -21,14 +24,15 @@ pub mod uniqueness;
 
 pub use crate::linalg::LinearSolver;
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
-pub use constraints::{ConstraintSettings, KktCertificate};
+pub use constraints::ConstraintSettings;
+pub use frozen::Frozen;
 pub use mixing::Mixing;
+pub use multipliers::{KktCertificate, Multipliers};
 pub use newton::NewtonSettings;
 pub use outer::{needs_outer_loop, Acceleration, OuterSettings, StopReason};
 pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
 pub use system::System;
 
-use crate::assembly::contact::Frozen;
 use crate::error::Result;
 use crate::linalg::Ordering;
 use crate::problem::Problem;
@@ -217,7 +221,7 @@ fn solve_dimensionless(
     let energy = system.evaluate(problem, &u, &frozen, false);
     let reactions = system.reactions();
     // The multipliers consistent with the last convex problem (its forces).
-    let updated = system.freeze(problem, &u, &frozen);
+    let updated = frozen.image(&system, problem, &u).multipliers;
     let ca = system.contact_assembler(problem);
     let equilibrium = last.residual / last.force_scale;
     let (contact, mut certificate) = certificate::evaluate(
@@ -228,14 +232,14 @@ fn solve_dimensionless(
             f_ext: &system.f_ext,
             fixed: &|k| system.dofs.is_fixed(k),
             equilibrium,
-            frozen: &frozen,
+            frozen: frozen.contact(),
             force_floor: system.force_floor,
             tolerance: settings.certificate_tolerance,
         },
     );
-    if let Some(set) = problem.material.locking.ideal() {
+    if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
-        constraints::locking_kkt(&problem.mesh, &set, &u, &updated.locking, kkt);
+        updated.kkt(&ca, problem, &u, kkt);
     }
     // A run counts as converged only with a passing certificate.
     if let Some(worst) = certificate.failures().first().filter(|_| report.converged) {

@@ -21,17 +21,17 @@
 //!
 //! The loop stops ([`StopReason`]) when the relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E`
 //! falls below `tolerance` (default 1e-10) *and* so does the relative fixed-point residual
-//! ([`fixed_point_residual`]; a mixed iterate can stall — `u` stops changing while the
+//! ([`Frozen::residual`]; a mixed iterate can stall — `u` stops changing while the
 //! frozen quantities are still inconsistent with it — so the change of u alone is not a
 //! proof of convergence), after every continuation stage; or when a convex solve at the
 //! final tolerance fails, a numerical breakdown occurs, or `max_iterations` is reached.
 
 use super::convex;
-use super::mixing::{flatten, unflatten, Mixer, Mixing};
+use super::frozen::Frozen;
+use super::mixing::{Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
 use super::report::{OuterStep, SolveReport};
-use super::{constraints, system, SolverSettings, System};
-use crate::assembly::contact::Frozen;
+use super::{constraints, SolverSettings, System};
 use crate::error::Result;
 use crate::norms::energy_norm;
 use crate::problem::Problem;
@@ -220,8 +220,8 @@ pub fn run(
         problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
-    let mut frozen = system.initial_frozen(problem, u);
-    let mut z = flatten(&frozen);
+    let mut frozen = Frozen::initial(system, problem, u);
+    let mut z = frozen.flatten();
     let mut mixer = Mixer::new(&settings.outer);
     let mut u_prev = u.to_vec();
     let mut change = f64::INFINITY;
@@ -233,13 +233,9 @@ pub fn run(
         force_scale: f64::NAN,
     };
     let mut stop = StopReason::IterationCap;
-    let stages = system
-        .constraints
-        .stages(problem)
-        .max(system::regularization_stages(problem));
+    let stages = system.continuation.stages();
     for k in 0..settings.outer.max_iterations.max(1) {
-        system.constraints.set_stage(k);
-        system.set_regularization_stage(k);
+        system.continuation.set_stage(k);
         let tol = if !outer_loop || !settings.outer.inexact {
             final_tol
         } else {
@@ -290,9 +286,9 @@ pub fn run(
             energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
         };
         u_prev.copy_from_slice(u);
-        let next = system.freeze(problem, u, &frozen);
-        let g = flatten(&next);
-        let fp_rel = fixed_point_residual(problem, system, &frozen, &next, u);
+        let next = frozen.image(system, problem, u);
+        let g = next.flatten();
+        let fp_rel = frozen.residual(&next, system, problem, u);
         let mut step = OuterStep {
             change,
             fixed_point_residual: fp_rel,
@@ -334,7 +330,7 @@ pub fn run(
             let (mixed, how) = mixer.next(&z, &g);
             step.mixing = how;
             z = mixed;
-            frozen = unflatten(&z, n_points, n_locking);
+            frozen = Frozen::unflatten(&z, n_points, n_locking);
         }
         report.outer.push(step);
     }
@@ -344,62 +340,6 @@ pub fn run(
         last,
         oscillations: mixer.oscillations,
     })
-}
-
-/// The relative fixed-point residual of the outer loop between the frozen quantities `z`
-/// of the last convex problem and their image `g = G(z)` at its solution `u`: the larger of
-///
-/// - `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the friction data of the convexification, and
-/// - the multiplier changes divided by their penalty — `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i`
-///   relative to `max|u|`, `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). This is the
-///   standard primal stopping test of the augmented Lagrangian method: for an active
-///   constraint `Δλ/r` *is* the constraint violation, for a sticking point `Δτ/r` the slip.
-///   (Measured in force units instead, the multiplier change has a floor of r times the
-///   Newton tolerance, far above the tolerance for the large penalties used.)
-pub fn fixed_point_residual(
-    problem: &Problem,
-    system: &System,
-    z: &Frozen,
-    g: &Frozen,
-    u: &[f64],
-) -> f64 {
-    let n = z.bound.len();
-    let (mut diff, mut norm) = (0.0, 0.0);
-    for i in 0..n {
-        diff += (g.bound[i] - z.bound[i]).powi(2);
-        norm += g.bound[i].powi(2);
-        for a in 0..2 {
-            diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
-            norm += g.linear[i][a].powi(2);
-        }
-    }
-    let mut fp = if diff == 0.0 {
-        0.0
-    } else {
-        (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
-    };
-    let d = problem.mesh.dim();
-    let u_scale = u
-        .chunks(d)
-        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    for i in 0..n {
-        let r = system.constraints.contact()[i] * u_scale;
-        let dt = ((g.traction[i][0] - z.traction[i][0]).powi(2)
-            + (g.traction[i][1] - z.traction[i][1]).powi(2))
-        .sqrt();
-        fp = fp
-            .max((g.pressure[i] - z.pressure[i]).abs() / r)
-            .max(dt / r);
-    }
-    if let Some(set) = problem.material.locking.ideal() {
-        let r = system.constraints.locking() * set.size();
-        for (a, b) in g.locking.iter().zip(&z.locking) {
-            fp = fp.max((a - b).abs() / r);
-        }
-    }
-    fp
 }
 
 impl StopReason {

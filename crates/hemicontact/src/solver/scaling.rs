@@ -210,10 +210,10 @@ impl Scales {
                 ..*c
             };
         }
-        let z = &mut s.frozen;
-        z.bound.iter_mut().for_each(|x| *x *= t);
+        let (fr, z) = (&mut s.frozen.friction, &mut s.frozen.multipliers);
+        fr.bound.iter_mut().for_each(|x| *x *= t);
         z.pressure.iter_mut().for_each(|x| *x *= t);
-        z.linear.iter_mut().for_each(|x| *x = x.map(|y| y * t));
+        fr.linear.iter_mut().for_each(|x| *x = x.map(|y| y * t));
         z.traction.iter_mut().for_each(|x| *x = x.map(|y| y * t));
         z.locking
             .iter_mut()

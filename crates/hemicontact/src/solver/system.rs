@@ -3,8 +3,9 @@
 //! iteration. [`System::evaluate`] computes the convexified energy `E_k` with its
 //! gradient and generalized Hessian for given frozen contact quantities.
 
-use super::constraints::AugmentedLagrangian;
-use crate::assembly::contact::{contact_slots, ContactAssembler, Frozen};
+use super::continuation::Continuation;
+use super::frozen::Frozen;
+use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
@@ -29,14 +30,9 @@ pub struct System {
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
     pub contact_slots: Vec<u32>,
-    /// Continuation floor of the numerical regularization ρ_num of a smoothed norm in the
-    /// friction potential, in units of the displacement scale (the solver works in
-    /// dimensionless variables, see [`super::scaling`]); each law uses the larger of this
-    /// and its own value ([`System::set_regularization_stage`]). 0: the laws' own values.
-    pub regularization_floor: f64,
-    /// The penalties of the exact constraints and their continuation
-    /// ([`super::constraints::AugmentedLagrangian`]).
-    pub constraints: AugmentedLagrangian,
+    /// The continuation stage of the outer loop: penalties of the exact constraints and
+    /// floor of the friction regularization.
+    pub continuation: Continuation,
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
     /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
@@ -76,36 +72,6 @@ pub fn resolved_linear_solver(problem: &Problem, kind: super::LinearSolver) -> s
     kind.resolve(problem.mesh.dim(), problem.dof_map().n_free())
 }
 
-/// Friction regularization (relative to the displacement scale) at which the continuation
-/// of [`System::set_regularization_stage`] starts.
-pub const REGULARIZATION_START: f64 = 1e-2;
-
-/// Factor by which the friction regularization shrinks per outer iteration. Measured on a
-/// pressed and sheared block with Coulomb friction (16 × 8 cells, 12 sticking and 5
-/// slipping points, target 1e-8): 77 Newton steps with 0.1, 228 with 0.01, 346 without
-/// continuation.
-pub const REGULARIZATION_STEP: f64 = 0.1;
-
-/// Number of outer iterations the regularization continuation of `problem` needs to reach
-/// the targets of its friction laws: the largest over the contact parts whose norm is
-/// smoothed (0 without one).
-pub fn regularization_stages(problem: &Problem) -> usize {
-    problem
-        .contact
-        .iter()
-        .filter_map(|c| c.friction.as_ref()?.potential.regularization())
-        .map(|target| {
-            if target >= REGULARIZATION_START {
-                0
-            } else {
-                ((REGULARIZATION_START / target).ln() / REGULARIZATION_STEP.recip().ln()).ceil()
-                    as usize
-            }
-        })
-        .max()
-        .unwrap_or(0)
-}
-
 pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
 
 /// How a Newton system was solved.
@@ -142,7 +108,7 @@ impl System {
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
         let contact = problem.contact_nodes();
-        let constraints = AugmentedLagrangian::new(problem, &settings.constraints, &contact.weight);
+        let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
         let options = PrepareOptions {
@@ -176,8 +142,7 @@ impl System {
             linear_solver,
             contact,
             contact_slots,
-            regularization_floor: 0.0,
-            constraints,
+            continuation,
             f_ext,
             force_floor,
             grad: vec![0.0; n],
@@ -201,8 +166,8 @@ impl System {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
             boundaries: &problem.contact,
-            regularization_floor: self.regularization_floor,
-            penalty: self.constraints.contact(),
+            regularization_floor: self.continuation.regularization_floor,
+            penalty: self.continuation.penalties.contact(),
         }
     }
 
@@ -210,43 +175,9 @@ impl System {
     fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
         problem.material.locking.ideal().map(|set| IdealLocking {
             set,
-            r: self.constraints.locking(),
-            multipliers: &frozen.locking,
+            r: self.continuation.penalties.locking(),
+            multipliers: &frozen.multipliers.locking,
         })
-    }
-
-    /// Sets the friction regularization of outer iteration `k`: continuation from
-    /// [`REGULARIZATION_START`] down by [`REGULARIZATION_STEP`] per outer iteration to the
-    /// target value of each law, which all reach by iteration [`regularization_stages`]. A sticking point of the
-    /// regularized norm `√(r² + ρ²)` has curvature 1/ρ only within |r| ≲ ρ; approached from
-    /// slips many times ρ, Newton sees almost no curvature and overshoots, so a small ρ
-    /// is reached from a large one, each convex problem warm-started from the last.
-    pub fn set_regularization_stage(&mut self, k: usize) {
-        self.regularization_floor =
-            REGULARIZATION_START * REGULARIZATION_STEP.powi(k.min(300) as i32);
-    }
-
-    /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
-    /// all multipliers zero (so the first problem is the penalty problem).
-    pub fn initial_frozen(&self, problem: &Problem, u: &[f64]) -> Frozen {
-        let mut zero = Frozen::zero(self.contact.len());
-        let ideal = problem.material.locking.ideal().is_some();
-        super::constraints::zero_multipliers(&mut zero, problem.mesh.n_cells(), ideal);
-        let mut frozen = self.contact_assembler(problem).freeze(u, &zero);
-        super::constraints::zero_multipliers(&mut frozen, problem.mesh.n_cells(), ideal);
-        frozen
-    }
-
-    /// The map G of the outer fixed point: frozen friction data at `u` and the multiplier
-    /// updates from `current` (see [`super::constraints`]).
-    pub fn freeze(&self, problem: &Problem, u: &[f64], current: &Frozen) -> Frozen {
-        let mut next = self.contact_assembler(problem).freeze(u, current);
-        if let Some(set) = problem.material.locking.ideal() {
-            next.locking =
-                self.constraints
-                    .update_locking(&problem.mesh, &set, u, &current.locking);
-        }
-        next
     }
 
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
@@ -292,15 +223,15 @@ impl System {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
             boundaries: &problem.contact,
-            regularization_floor: self.regularization_floor,
-            penalty: self.constraints.contact(),
+            regularization_floor: self.continuation.regularization_floor,
+            penalty: self.continuation.penalties.contact(),
         };
         let hc = if hessian {
             Some((self.hess.as_mut_slice(), self.contact_slots.as_slice()))
         } else {
             None
         };
-        let e_contact = contact.assemble(u, frozen, &mut self.grad, hc);
+        let e_contact = contact.assemble(u, &frozen.contact(), &mut self.grad, hc);
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.

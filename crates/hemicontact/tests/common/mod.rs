@@ -88,7 +88,7 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
             }
         }
     }
-    let frozen = system.initial_frozen(problem, &u);
+    let frozen = hemicontact::solver::Frozen::initial(&system, problem, &u);
     let settings = &solver.newton;
     let outcome = convex::minimize(
         &mut system,

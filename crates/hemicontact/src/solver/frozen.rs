@@ -1,0 +1,134 @@
+//! The iterate of the outer loop: everything held fixed over one convex problem, the
+//! friction data of the convexification ([`FrictionData`]) and the multipliers of the
+//! exact constraints ([`Multipliers`]). [`Frozen::image`] is the map G of the outer
+//! fixed point `z ↦ G(z)`; [`Frozen::flatten`] gives the vector the mixing
+//! ([`super::mixing`]) works on.
+
+use super::multipliers::Multipliers;
+use super::System;
+use crate::assembly::contact::{ContactData, FrictionData};
+use crate::problem::Problem;
+
+/// The quantities frozen for one convex problem.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Frozen {
+    /// Friction bound and linear term of the convexification, per contact point.
+    pub friction: FrictionData,
+    /// Multipliers of the exact constraints.
+    pub multipliers: Multipliers,
+}
+
+impl Frozen {
+    /// The per-point data the contact assembler reads.
+    pub fn contact(&self) -> ContactData<'_> {
+        ContactData {
+            bound: &self.friction.bound,
+            linear: &self.friction.linear,
+            pressure: &self.multipliers.pressure,
+            traction: &self.multipliers.traction,
+        }
+    }
+
+    /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
+    /// all multipliers zero (so the first problem is the penalty problem).
+    pub fn initial(system: &System, problem: &Problem, u: &[f64]) -> Frozen {
+        let n = system.contact.len();
+        let n_cells =
+            problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
+        let zero = Frozen {
+            friction: FrictionData::zero(n),
+            multipliers: Multipliers::zero(n, n_cells),
+        };
+        Frozen {
+            friction: system
+                .contact_assembler(problem)
+                .convexify(u, &zero.contact()),
+            multipliers: zero.multipliers,
+        }
+    }
+
+    /// The image `G(z)` of these quantities at the solution `u` of their convex problem:
+    /// the friction data at `u` and the multiplier updates
+    /// ([`Multipliers::updated`]).
+    pub fn image(&self, system: &System, problem: &Problem, u: &[f64]) -> Frozen {
+        let ca = system.contact_assembler(problem);
+        let data = self.contact();
+        Frozen {
+            friction: ca.convexify(u, &data),
+            multipliers: self.multipliers.updated(
+                &ca,
+                &data,
+                &system.continuation.penalties,
+                problem,
+                u,
+            ),
+        }
+    }
+
+    /// The relative fixed-point residual between these quantities `z` and their image
+    /// `g = G(z)` at `u`: the larger of `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the
+    /// friction data and the multiplier change as a primal residual
+    /// ([`Multipliers::change`]).
+    pub fn residual(&self, image: &Frozen, system: &System, problem: &Problem, u: &[f64]) -> f64 {
+        let (z, g) = (&self.friction, &image.friction);
+        let (mut diff, mut norm) = (0.0, 0.0);
+        for i in 0..z.bound.len() {
+            diff += (g.bound[i] - z.bound[i]).powi(2);
+            norm += g.bound[i].powi(2);
+            for a in 0..2 {
+                diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
+                norm += g.linear[i][a].powi(2);
+            }
+        }
+        let fp = if diff == 0.0 {
+            0.0
+        } else {
+            (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
+        };
+        fp.max(self.multipliers.change(
+            &image.multipliers,
+            &system.continuation.penalties,
+            problem,
+            u,
+        ))
+    }
+
+    /// The fixed-point vector
+    /// `z = [F (n), b (2n), λ_contact (n), τ (2n), λ_locking (cells or 0)]`.
+    pub fn flatten(&self) -> Vec<f64> {
+        let (f, m) = (&self.friction, &self.multipliers);
+        let n = f.bound.len();
+        let mut z = Vec::with_capacity(6 * n + m.locking.len());
+        z.extend_from_slice(&f.bound);
+        for b in &f.linear {
+            z.extend_from_slice(b);
+        }
+        z.extend_from_slice(&m.pressure);
+        for t in &m.traction {
+            z.extend_from_slice(t);
+        }
+        z.extend_from_slice(&m.locking);
+        z
+    }
+
+    /// Inverse of [`Frozen::flatten`] for `n` contact points and `n_cells` locking
+    /// multipliers, projecting bounds and multipliers onto their admissible sets (`F ≥ 0`,
+    /// `λ ≥ 0`): a mixed iterate then still defines convex subproblems.
+    pub fn unflatten(z: &[f64], n: usize, n_cells: usize) -> Frozen {
+        let pair = |o: usize, i: usize| [z[o + 2 * i], z[o + 2 * i + 1]];
+        Frozen {
+            friction: FrictionData {
+                bound: z[..n].iter().map(|&x| x.max(0.0)).collect(),
+                linear: (0..n).map(|i| pair(n, i)).collect(),
+            },
+            multipliers: Multipliers {
+                pressure: z[3 * n..4 * n].iter().map(|&x| x.max(0.0)).collect(),
+                traction: (0..n).map(|i| pair(4 * n, i)).collect(),
+                locking: z[6 * n..6 * n + n_cells]
+                    .iter()
+                    .map(|&x| x.max(0.0))
+                    .collect(),
+            },
+        }
+    }
+}

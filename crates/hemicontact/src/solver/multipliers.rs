@@ -1,0 +1,243 @@
+//! The multipliers of the exact constraints (see [`super::constraints`] for the method):
+//! the contact pressure λ_i and the friction traction τ_i per contact point, and the locking
+//! stress magnitude λ_T per cell. This module owns their update (one proximal step of the
+//! dual problem per outer iteration), the size of an update as a primal residual, and the
+//! KKT residuals of the certificate. The penalties the updates use, and their continuation,
+//! are [`AugmentedLagrangian`]'s.
+
+use super::constraints::AugmentedLagrangian;
+use crate::assembly::contact::{ContactAssembler, ContactData};
+use crate::assembly::element;
+use crate::material::LockingSet;
+use crate::mesh::Mesh;
+use crate::problem::Problem;
+use serde::Serialize;
+
+/// The multipliers of the exact constraints at one outer iterate.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Multipliers {
+    /// Signorini multiplier λ_i ≥ 0 per contact point: the contact pressure (Pa); zero at
+    /// normal-compliance points.
+    pub pressure: Vec<f64>,
+    /// Exact-friction multiplier τ_i = −σ_τ per contact point (Pa, tangential coordinates):
+    /// the friction traction; zero where friction is regularized.
+    pub traction: Vec<[f64; 2]>,
+    /// Ideal-locking multiplier λ_T ≥ 0 per cell (Pa); empty without ideal locking.
+    pub locking: Vec<f64>,
+}
+
+impl Multipliers {
+    /// All multipliers zero, for `n_points` contact points and `n_cells` locking
+    /// multipliers (0 without ideal locking): the first convex problem is then the penalty
+    /// problem with the penalties r.
+    pub fn zero(n_points: usize, n_cells: usize) -> Self {
+        Multipliers {
+            pressure: vec![0.0; n_points],
+            traction: vec![[0.0; 2]; n_points],
+            locking: vec![0.0; n_cells],
+        }
+    }
+
+    /// The updated multipliers at the solution `u` of the convex problem of these
+    /// multipliers with the contact data `data` (whose multiplier slices are `self`'s):
+    ///
+    /// - `λ_i ← (λ_i + r_i(u_ν − g))_+` at Signorini points,
+    /// - `τ_i ← proj_{B_F}(τ_i + r_i u_τ)` at exact-friction points, with the frozen bound F
+    ///   of `data` (so that τ_i is the friction traction of the problem just solved),
+    /// - `λ_T ← (λ_T + r_T Q(ε_T(u)))_+` per cell with ideal locking,
+    ///
+    /// with the penalties of `penalties` at their current stage.
+    pub fn updated(
+        &self,
+        ca: &ContactAssembler<'_>,
+        data: &ContactData<'_>,
+        penalties: &AugmentedLagrangian,
+        problem: &Problem,
+        u: &[f64],
+    ) -> Multipliers {
+        let n = ca.nodes.len();
+        let m = ca.dim - 1;
+        let mut next = Multipliers::zero(n, 0);
+        for i in 0..n {
+            let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
+            let s = ca.state(u, i, data);
+            if cb.normal.is_exact() {
+                next.pressure[i] = s.pressure;
+            }
+            let Some(fr) = &cb.friction else { continue };
+            if let Some(tau) =
+                fr.updated_traction(&s.u_tau, m, &self.traction[i], ca.penalty[i], data.bound[i])
+            {
+                next.traction[i] = tau;
+            }
+        }
+        next.locking = match problem.material.locking.ideal() {
+            Some(set) => update_locking(&problem.mesh, &set, penalties.locking(), u, &self.locking),
+            None => self.locking.clone(),
+        };
+        next
+    }
+
+    /// The size of the update `self → next` as a primal residual, relative: the changes
+    /// divided by their penalty, `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i` relative to `max|u|`,
+    /// `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). For an active constraint `Δλ/r`
+    /// *is* the constraint violation, for a sticking point `Δτ/r` the slip: the standard
+    /// primal stopping test of the augmented Lagrangian method. (Measured in force units
+    /// instead, the change has a floor of r times the Newton tolerance, far above the
+    /// tolerance for the large penalties used.)
+    pub fn change(
+        &self,
+        next: &Multipliers,
+        penalties: &AugmentedLagrangian,
+        problem: &Problem,
+        u: &[f64],
+    ) -> f64 {
+        let u_scale = max_node_norm(u, problem.mesh.dim());
+        let mut fp = 0.0f64;
+        for i in 0..self.pressure.len() {
+            let r = penalties.contact()[i] * u_scale;
+            let dt = ((next.traction[i][0] - self.traction[i][0]).powi(2)
+                + (next.traction[i][1] - self.traction[i][1]).powi(2))
+            .sqrt();
+            fp = fp
+                .max((next.pressure[i] - self.pressure[i]).abs() / r)
+                .max(dt / r);
+        }
+        if let Some(set) = problem.material.locking.ideal() {
+            let r = penalties.locking() * set.size();
+            for (a, b) in next.locking.iter().zip(&self.locking) {
+                fp = fp.max((a - b).abs() / r);
+            }
+        }
+        fp
+    }
+
+    /// The KKT residuals of Signorini contact and ideal locking for these multipliers (the
+    /// updated ones, consistent with the forces of the last convex problem) at `u`, written
+    /// into `kkt`: violation, sign of the multipliers and complementarity. The stick/slip
+    /// residual of exact friction is the certificate's, which classifies the points.
+    pub fn kkt(
+        &self,
+        ca: &ContactAssembler<'_>,
+        problem: &Problem,
+        u: &[f64],
+        kkt: &mut KktCertificate,
+    ) {
+        let u_scale = max_node_norm(u, ca.dim);
+        let exact = |i: usize| {
+            ca.boundaries[ca.nodes.boundary[i] as usize]
+                .normal
+                .is_exact()
+        };
+        let (mut max_pressure, mut min_pressure) = (0.0f64, f64::INFINITY);
+        for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
+            let gap = ca.boundaries[ca.nodes.boundary[i] as usize].gap;
+            let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
+            let p = self.pressure[i];
+            kkt.n_constraints.1 += 1;
+            max_pressure = max_pressure.max(p);
+            min_pressure = min_pressure.min(p);
+            kkt.contact_violation = kkt.contact_violation.max((u_nu - gap).max(0.0) / u_scale);
+        }
+        if max_pressure > 0.0 {
+            kkt.contact_min_multiplier = min_pressure / max_pressure;
+            for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
+                let gap = ca.boundaries[ca.nodes.boundary[i] as usize].gap;
+                let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
+                kkt.contact_complementarity = kkt
+                    .contact_complementarity
+                    .max(self.pressure[i] * (gap - u_nu).abs() / (max_pressure * u_scale));
+            }
+        }
+        if let Some(set) = problem.material.locking.ideal() {
+            locking_kkt(&problem.mesh, &set, u, &self.locking, kkt);
+        }
+    }
+}
+
+/// `max_v |u_v|` over the nodes, at least the smallest positive number (m).
+fn max_node_norm(u: &[f64], d: usize) -> f64 {
+    u.chunks(d)
+        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+` of the locking set `set`
+/// with penalty `r`.
+pub fn update_locking(
+    mesh: &Mesh,
+    set: &LockingSet,
+    r: f64,
+    u: &[f64],
+    current: &[f64],
+) -> Vec<f64> {
+    (0..mesh.n_cells())
+        .map(|c| {
+            let (_, eps) = element::cell_strain(mesh, u, c);
+            (current[c] + r * set.q(&eps)).max(0.0)
+        })
+        .collect()
+}
+
+/// KKT residuals of the exact constraints at a solution (all dimensionless).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct KktCertificate {
+    /// Ideal locking: `max_T Q(ε_T)_+ / q` with q = θ, κ² or r (the size of B).
+    pub locking_violation: f64,
+    /// Smallest locking multiplier divided by the largest (≥ 0: signs correct).
+    pub locking_min_multiplier: f64,
+    /// `max_T λ_T |Q(ε_T)| / (max λ · q)`.
+    pub locking_complementarity: f64,
+    /// Cells where the locking constraint is active (λ_T > 0).
+    pub n_locked: usize,
+    /// Signorini: `max_i (u_ν − g)_+ / max|u|`.
+    pub contact_violation: f64,
+    /// Smallest Signorini multiplier (pressure) divided by the largest.
+    pub contact_min_multiplier: f64,
+    /// `max_i λ_i |g − u_ν,i| / (max λ · max|u|)`.
+    pub contact_complementarity: f64,
+    /// Exact friction: largest slip of a sticking point relative to max|u| (zero to
+    /// round-off when stick is exact).
+    pub stick_slip: f64,
+    /// Number of constraints of each kind checked: (cells, Signorini points, exact-friction
+    /// points).
+    pub n_constraints: (usize, usize, usize),
+}
+
+impl KktCertificate {
+    /// The largest violation or complementarity residual (the number to compare with the
+    /// 1e-8 target).
+    pub fn worst(&self) -> f64 {
+        [
+            self.locking_violation,
+            self.locking_complementarity,
+            self.contact_violation,
+            self.contact_complementarity,
+            self.stick_slip,
+        ]
+        .into_iter()
+        .fold(0.0, f64::max)
+    }
+}
+
+/// The locking part of the KKT certificate for the multipliers `lambda` (the updated
+/// ones) at `u`.
+fn locking_kkt(mesh: &Mesh, set: &LockingSet, u: &[f64], lambda: &[f64], kkt: &mut KktCertificate) {
+    let q_ref = set.size();
+    let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
+    let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
+    kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
+    kkt.n_locked = lambda.iter().filter(|&&l| l > 0.0).count();
+    kkt.n_constraints.0 = mesh.n_cells();
+    for (c, &l) in lambda.iter().enumerate() {
+        let (_, eps) = element::cell_strain(mesh, u, c);
+        let q = set.q(&eps);
+        kkt.locking_violation = kkt.locking_violation.max(q.max(0.0) / q_ref);
+        if lmax > 0.0 {
+            kkt.locking_complementarity = kkt
+                .locking_complementarity
+                .max(l * q.abs() / (lmax * q_ref));
+        }
+    }
+}
