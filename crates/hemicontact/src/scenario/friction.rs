@@ -59,10 +59,10 @@ impl Scenario {
         let law = match kind {
             PotentialKind::Norm => PotentialLaw::Norm {},
             PotentialKind::Nonconvex => PotentialLaw::Nonconvex {
-                a: self.positive(&f("a"), fs.a, "a parameter 0 < a")?,
+                a: self.required(&f("a"), fs.a, "a parameter a")?,
             },
             PotentialKind::Regularized => PotentialLaw::Regularized {
-                rho: self.positive(&f("rho"), fs.rho, "a regularization length ρ (m)")?,
+                rho: self.required(&f("rho"), fs.rho, "a regularization length ρ (m)")?,
             },
         };
         Ok((law, f("")))
@@ -99,16 +99,7 @@ impl Scenario {
             (None, Some(global)) => global,
             (None, None) => DEFAULT_REGULARIZATION,
         };
-        let treatment = NormTreatment::Smoothed { regularization };
-        treatment.validate().map_err(|msg| {
-            let field = if fs.regularization.is_some() {
-                field.clone()
-            } else {
-                "solver.outer.friction_regularization".to_string()
-            };
-            self.err(&field, regularization, &msg)
-        })?;
-        Ok(treatment)
+        Ok(NormTreatment::Smoothed { regularization })
     }
 
     /// The friction law of the table `fs` of contact entry `k`.
@@ -122,25 +113,12 @@ impl Scenario {
             PotentialLaw::Norm {} => FrictionPotential::Norm {
                 treatment: self.norm_treatment(k, fs)?,
             },
-            PotentialLaw::Nonconvex { a } => {
-                let field = format!("{prefix}a");
-                if !(a.is_finite() && a > 0.0 && a < 1.0) {
-                    return Err(self.err(&field, a, "a parameter with 0 < a < 1"));
-                }
-                FrictionPotential::Nonconvex {
-                    a,
-                    unit: 1.0,
-                    treatment: self.norm_treatment(k, fs)?,
-                }
-            }
+            PotentialLaw::Nonconvex { a } => FrictionPotential::Nonconvex {
+                a,
+                unit: 1.0,
+                treatment: self.norm_treatment(k, fs)?,
+            },
             PotentialLaw::Regularized { rho } => {
-                if !(rho.is_finite() && rho > 0.0) {
-                    return Err(self.err(
-                        &format!("{prefix}rho"),
-                        rho,
-                        "a regularization length ρ (m) > 0",
-                    ));
-                }
                 if fs.exact {
                     return Err(self.err(
                         &f("exact"),
@@ -160,6 +138,16 @@ impl Scenario {
                 FrictionPotential::Regularized { rho }
             }
         };
+        // The ranges are the law's to check; the error names the field of the file.
+        potential.validate().map_err(|e| {
+            e.in_file(&self.source, |field| match field {
+                "regularization" if fs.regularization.is_none() => {
+                    "solver.outer.friction_regularization".to_string()
+                }
+                "regularization" => f("regularization"),
+                other => format!("{prefix}{other}"),
+            })
+        })?;
         Ok(Friction {
             bound: fs.bound,
             mu: fs.mu.clone(),
