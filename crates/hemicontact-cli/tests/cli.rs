@@ -459,7 +459,7 @@ fn free_rigid_motions_are_refused_unless_contact_carries_them() {
 }
 
 /// A solve that does not converge says so with exit code 3 and still writes its last
-/// iterate, marked `converged = false` (SPEC §6). A relative residual tolerance of 1e-300
+/// iterate, marked `converged = false`. A relative residual tolerance of 1e-300
 /// cannot be met in floating point, and two Newton steps are allowed.
 #[test]
 fn non_convergence_exits_with_code_3_and_still_writes() {

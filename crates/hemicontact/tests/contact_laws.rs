@@ -2,8 +2,8 @@
 //!
 //! What is verified, and why it must hold independently of the implementation:
 //!
-//! - **Normal compliance** `P(s) = (c_ν/2)(s − g)_+²` (SPEC §4) has derivative
-//!   `p = c_ν (s − g)_+` (SPEC §1) and second derivative `c_ν H(s − g)`: checked by central
+//! - **Normal compliance** `P(s) = (c_ν/2)(s − g)_+²` has derivative
+//!   `p = c_ν (s − g)_+` and second derivative `c_ν H(s − g)`: checked by central
 //!   differences away from the kink `s = g`, and against hand values.
 //! - **Friction coefficient μ(r).** Constant; the paper's exponential law (41)
 //!   `μ(r) = (a − b)e^{−βr} + b` with a = 0.4, b = 0.1, β = 100, so μ(0) = a, μ(∞) = b and
@@ -19,7 +19,7 @@
 //! - **`regularized_norm`** `φ(ξ) = √(‖ξ‖² + ρ²) − ρ`: value in closed form, gradient and
 //!   Hessian by central differences, for m = 1 and 2 tangential components.
 //! - **`ContactAssembler::assemble`** returns the contact energy
-//!   `Σ_i w_i [P(u_ν,i) + F_i φ(ξ_i) − b_i·ξ_i]` (SPEC §4) and adds its gradient and node-block
+//!   `Σ_i w_i [P(u_ν,i) + F_i φ(ξ_i) − b_i·ξ_i]` and adds its gradient and node-block
 //!   Hessian: the gradient must be the central difference of the returned energy in every
 //!   DOF, the Hessian the central difference of the gradient (the energy is C² away from
 //!   `u_ν = g` thanks to the numerical regularization ρ_num, and the samples keep

@@ -18,7 +18,7 @@
 //! - **Order 1 in the mesh size.** P1 elements approximate `ε(u)` by piecewise constants,
 //!   so for a smooth solution `‖u − u_h‖_E = C h + o(h)` with `C > 0` (ε(u) is not constant
 //!   here). The observed order `log₂(e_n / e_2n)` must be within ±0.1 of 1, and the errors
-//!   must decrease monotonically. `‖v‖_E² = ∫ W(ε(v))` (SPEC §5) is computed exactly: the
+//!   must decrease monotonically. `‖v‖_E² = ∫ W(ε(v))` is computed exactly: the
 //!   integrand is quadratic on each triangle and the edge-midpoint rule is exact for
 //!   quadratics.
 //! - **Galerkin optimality (Pythagoras).** With exact loads, `a(u − u_h, v_h) = 0` for every

@@ -21,7 +21,7 @@
 //!   `ε/‖ε‖`), which is also the limit of the tangent evaluated just outside; a step inward
 //!   (`∂Q : v < 0`) stays in B where the stress is identically 0.
 //! - **Closed forms.** Limited compressibility: `σ = C_κ (|tr ε| − θ)_+ sgn(tr ε) I`
-//!   (SPEC §2). Hencky with `G_∞ = G` has `Φ(s) = G s`, so
+//!   (the limited-compressibility locking law). Hencky with `G_∞ = G` has `Φ(s) = G s`, so
 //!   `W = ½K(tr ε)² + G‖ε^D‖² = ½(K − 2G/d)(tr ε)² + G‖ε‖²`: Hooke's law with
 //!   `λ = K − 2G/d`. The Hencky operator is strongly monotone and Lipschitz with the
 //!   constants it advertises; these inequalities are checked on random pairs of strains

@@ -7,7 +7,7 @@
 //!   to `lx · ly`; every cell has area `lx ly / (2 nx ny)`; the sides are parts `bottom`,
 //!   `right`, `top`, `left` with `nx`, `ny`, `nx`, `ny` facets whose lengths sum to the side
 //!   length and whose normals are the outward unit normals.
-//! - **Cut patterns are nested under refinement** (SPEC §5), and the symmetric pattern is
+//! - **Cut patterns are nested under refinement**, and the symmetric pattern is
 //!   mirror-symmetric about the vertical centre line.
 //! - **Invalid meshes are rejected with an `Error::Mesh` naming the culprit.** An inverted
 //!   (clockwise) triangle, a degenerate (zero-area) triangle, a boundary facet that belongs
@@ -74,7 +74,7 @@ fn generated_rectangles_tile_the_domain() {
     }
 }
 
-/// SPEC §5 asks for cut patterns nested under refinement, so that coarse P1 fields are
+/// Cut patterns must be nested under refinement, so that coarse P1 fields are
 /// exactly representable on finer meshes: every triangle of the `2n × 2n` mesh must lie in
 /// one triangle of the `n × n` mesh (all its vertices have barycentric coordinates ≥ 0 in
 /// it). Mirror symmetry of the symmetric pattern is checked the same way: the image of
