@@ -48,27 +48,27 @@ fn rectangle_problem(n: usize) -> Problem {
 }
 
 /// The stiffness matrix (upper values on the system pattern) and the reduced load vector.
-fn linear_system(p: &Problem) -> (System, Vec<f64>) {
+fn linear_system(p: &Problem) -> (System, Vec<f64>, Vec<f64>) {
     let mut system = System::new(p, &SolverSettings::default()).unwrap();
     let u = vec![0.0; p.mesh().dim() * p.mesh().n_nodes()];
     let frozen = hemicontact::solver::Frozen::initial(&system, p, &u);
-    system.evaluate(p, &u, &frozen, true);
+    let mut eval = hemicontact::solver::Evaluation::new(&system);
+    system.evaluate(p, &u, &frozen, &mut eval, true);
     let mut b = vec![0.0; system.pattern.n()];
-    let grad = system.grad.clone();
-    system.reduce(&grad, &mut b);
+    system.reduce(&eval.grad, &mut b);
     for v in b.iter_mut() {
         *v = -*v;
     }
-    (system, b)
+    (system, eval.hess, b)
 }
 
-fn multigrid(p: &Problem, system: &System) -> Multigrid {
+fn multigrid(p: &Problem, system: &System, hess: &[f64]) -> Multigrid {
     let mut mg = Multigrid::new(p.mesh(), system.dofs.equations(), &system.pattern);
-    mg.update(&system.hess).unwrap();
+    mg.update(hess).unwrap();
     mg
 }
 
-fn direct(p: &Problem, system: &System, b: &[f64]) -> Vec<f64> {
+fn direct(p: &Problem, system: &System, hess: &[f64], b: &[f64]) -> Vec<f64> {
     let mut chol = Cholesky::analyze(
         p.mesh(),
         system.dofs.equations(),
@@ -77,7 +77,7 @@ fn direct(p: &Problem, system: &System, b: &[f64]) -> Vec<f64> {
         faer::Par::Seq,
     )
     .unwrap();
-    chol.factorize(&system.pattern, &system.hess).unwrap();
+    chol.factorize(&system.pattern, hess).unwrap();
     let mut x = b.to_vec();
     chol.solve_in_place(&mut x);
     x
@@ -110,8 +110,8 @@ fn vector(n: usize, seed: u64) -> Vec<f64> {
 #[test]
 fn v_cycle_is_symmetric_and_positive() {
     for p in [box_problem(8), rectangle_problem(24)] {
-        let (system, _) = linear_system(&p);
-        let mut mg = multigrid(&p, &system);
+        let (system, hess, _) = linear_system(&p);
+        let mut mg = multigrid(&p, &system, &hess);
         assert!(mg.level_sizes().len() >= 2, "{:?}", mg.level_sizes());
         let n = system.pattern.n();
         let (x, y) = (vector(n, 1), vector(n, 2));
@@ -133,12 +133,12 @@ fn v_cycle_is_symmetric_and_positive() {
 #[test]
 fn pcg_agrees_with_direct_solve() {
     for p in [box_problem(8), rectangle_problem(32)] {
-        let (system, b) = linear_system(&p);
-        let mut mg = multigrid(&p, &system);
+        let (system, hess, b) = linear_system(&p);
+        let mut mg = multigrid(&p, &system, &hess);
         let mut x = vec![0.0; b.len()];
         let out = mg.solve(&b, &mut x, 1e-11, 500).unwrap();
         assert!(out.converged, "{out:?}");
-        let e = rel_diff(&x, &direct(&p, &system, &b));
+        let e = rel_diff(&x, &direct(&p, &system, &hess, &b));
         assert!(e < 1e-8, "relative difference {e:e} ({out:?})");
     }
 }
@@ -148,8 +148,8 @@ fn iterations_bounded_under_refinement() {
     let mut counts = Vec::new();
     for n in [6, 10, 14] {
         let p = box_problem(n);
-        let (system, b) = linear_system(&p);
-        let mut mg = multigrid(&p, &system);
+        let (system, hess, b) = linear_system(&p);
+        let mut mg = multigrid(&p, &system, &hess);
         let mut x = vec![0.0; b.len()];
         let out = mg.solve(&b, &mut x, 1e-8, 500).unwrap();
         assert!(out.converged, "{out:?}");

@@ -55,16 +55,17 @@ fn patch_test_3d() {
             }
         }
         let frozen = hemicontact::solver::Frozen::initial(&system, &p, &u);
-        let out = minimize(
+        let settings = NewtonSettings::default();
+        let mut eval = hemicontact::solver::Evaluation::new(&system);
+        let mut energy = hemicontact::solver::convex::ConvexProblem::new(
             &mut system,
+            &mut eval,
             &p,
             &frozen,
-            &NewtonSettings::default(),
-            1e-12,
-            &mut u,
-            &mut NewtonRecord::default(),
-        )
-        .unwrap();
+            &settings,
+            &u,
+        );
+        let out = minimize(&mut energy, 1e-12, &mut u, &mut NewtonRecord::default()).unwrap();
         assert!(out.converged);
         for n in 0..p.mesh().n_nodes() {
             let e = exact(p.mesh().node(n));

@@ -6,7 +6,7 @@
 use super::frozen::Frozen;
 use super::newton::{ConvexEnergy, NewtonSettings};
 use super::report::Timings;
-use super::system::LinearInfo;
+use super::system::{Evaluation, LinearInfo};
 use super::System;
 use crate::error::Result;
 use crate::fem::dofs::FIXED;
@@ -15,6 +15,8 @@ use crate::problem::Problem;
 /// `E_k` on the free DOFs of `system`; see the module documentation.
 pub struct ConvexProblem<'a> {
     system: &'a mut System,
+    /// The work arrays of the evaluations.
+    eval: &'a mut Evaluation,
     problem: &'a Problem,
     frozen: &'a Frozen,
     settings: &'a NewtonSettings,
@@ -27,10 +29,12 @@ pub struct ConvexProblem<'a> {
 }
 
 impl<'a> ConvexProblem<'a> {
-    /// The convex problem of `problem` on `system` for the frozen quantities `frozen`;
-    /// `u` gives the prescribed values (its free values are replaced by each evaluation).
+    /// The convex problem of `problem` on `system` for the frozen quantities `frozen`,
+    /// evaluated into `eval`; `u` gives the prescribed values (its free values are replaced
+    /// by each evaluation).
     pub fn new(
         system: &'a mut System,
+        eval: &'a mut Evaluation,
         problem: &'a Problem,
         frozen: &'a Frozen,
         settings: &'a NewtonSettings,
@@ -40,6 +44,7 @@ impl<'a> ConvexProblem<'a> {
         ConvexProblem {
             gradient: vec![0.0; system.dofs.n_free()],
             system,
+            eval,
             problem,
             frozen,
             settings,
@@ -67,8 +72,8 @@ impl ConvexEnergy for ConvexProblem<'_> {
         self.expand(x);
         let e = self
             .system
-            .evaluate(self.problem, &self.u, self.frozen, hessian);
-        self.system.reduce(&self.system.grad, &mut self.gradient);
+            .evaluate(self.problem, &self.u, self.frozen, self.eval, hessian);
+        self.system.reduce(&self.eval.grad, &mut self.gradient);
         e
     }
 
@@ -82,7 +87,7 @@ impl ConvexEnergy for ConvexProblem<'_> {
     /// displacement-driven problems alike, including stress-free ones.
     fn force_scale(&self) -> f64 {
         let internal = self
-            .system
+            .eval
             .grad_bulk
             .iter()
             .zip(&self.system.f_ext)
@@ -103,13 +108,13 @@ impl ConvexEnergy for ConvexProblem<'_> {
         timings: &mut Timings,
     ) -> Result<LinearInfo> {
         self.system
-            .linear_solve(rhs, delta, eta, self.settings, timings)
+            .linear_solve(&self.eval.hess, rhs, delta, eta, self.settings, timings)
     }
 
     /// A body whose free rigid motions only contact carries, pulled off that contact,
     /// moves without bound: [`crate::Error::ContactLost`].
     fn accept(&mut self, x: &[f64]) -> Result<()> {
-        if self.system.rigid_shift > 0.0 {
+        if self.eval.rigid_shift > 0.0 {
             self.expand(x);
             self.system
                 .rigid
@@ -119,28 +124,24 @@ impl ConvexEnergy for ConvexProblem<'_> {
     }
 }
 
-/// Minimizes the convex problem of `problem` on `system` for `frozen` from `u` (holding
-/// the prescribed values) by [`super::newton::minimize`]; on return `u` is the last
-/// iterate. Steps and timings go to `record`.
+/// Minimizes `energy` from `u` (holding the prescribed values) by
+/// [`super::newton::minimize`] to the relative residual `tolerance`; on return `u` is the
+/// last iterate. Steps and timings go to `record`.
 ///
 /// # Errors
 /// As [`super::newton::minimize`].
 pub fn minimize(
-    system: &mut System,
-    problem: &Problem,
-    frozen: &Frozen,
-    settings: &NewtonSettings,
+    energy: &mut ConvexProblem<'_>,
     tolerance: f64,
     u: &mut [f64],
     record: &mut super::newton::NewtonRecord,
 ) -> Result<super::newton::NewtonOutcome> {
-    let mut x = vec![0.0; system.dofs.n_free()];
-    system.reduce(u, &mut x);
-    let result = {
-        let mut energy = ConvexProblem::new(system, problem, frozen, settings, u);
-        super::newton::minimize(&mut energy, &mut x, settings, tolerance, record)
-    };
-    for (dof, &eq) in system.dofs.equations().iter().enumerate() {
+    let mut x = vec![0.0; energy.system.dofs.n_free()];
+    energy.system.reduce(u, &mut x);
+    energy.u.copy_from_slice(u);
+    let settings = energy.settings;
+    let result = super::newton::minimize(energy, &mut x, settings, tolerance, record);
+    for (dof, &eq) in energy.system.dofs.equations().iter().enumerate() {
         if eq != FIXED {
             u[dof] = x[eq as usize];
         }

@@ -31,7 +31,7 @@ pub use multipliers::{KktCertificate, Multipliers};
 pub use newton::NewtonSettings;
 pub use outer::{needs_outer_loop, Acceleration, OuterSettings, StopReason};
 pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
-pub use system::System;
+pub use system::{Evaluation, System};
 
 use crate::error::Result;
 use crate::linalg::Ordering;
@@ -210,7 +210,15 @@ fn solve_dimensionless(
         }
     }
     let mut report = SolveReport::new(&system);
-    let outcome = outer::run(problem, settings, &mut system, &mut u, &mut report)?;
+    let mut eval = system::Evaluation::new(&system);
+    let outcome = outer::run(
+        problem,
+        settings,
+        &mut system,
+        &mut eval,
+        &mut u,
+        &mut report,
+    )?;
     report.converged = outcome.stop == outer::StopReason::Converged;
     report.message = outcome
         .stop
@@ -218,8 +226,8 @@ fn solve_dimensionless(
     report.stop = outcome.stop;
     let (frozen, last) = (outcome.frozen, outcome.last);
     // Final evaluation for the certificate and the reactions.
-    let energy = system.evaluate(problem, &u, &frozen, false);
-    let reactions = system.reactions();
+    let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
+    let reactions = system.reactions(&eval.grad);
     // The multipliers consistent with the last convex problem (its forces).
     let updated = frozen.image(&system, problem, &u).multipliers;
     let ca = system.contact_assembler(problem);
@@ -228,7 +236,7 @@ fn solve_dimensionless(
         &ca,
         &certificate::Inputs {
             u: &u,
-            grad_bulk: &system.grad_bulk,
+            grad_bulk: &eval.grad_bulk,
             f_ext: &system.f_ext,
             fixed: &|k| system.dofs.is_fixed(k),
             equilibrium,
@@ -273,8 +281,8 @@ fn solve_dimensionless(
     report.certificate = certificate;
     // Equilibrium along the free rigid motions carried by contact, at the answer.
     report.rigid_residual =
-        system.rigid.generalized_force(&problem.mesh, &system.grad) / last.force_scale;
-    report.rigid_shift = system.rigid_shift;
+        system.rigid.generalized_force(&problem.mesh, &eval.grad) / last.force_scale;
+    report.rigid_shift = eval.rigid_shift;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,

@@ -31,6 +31,7 @@ use super::frozen::Frozen;
 use super::mixing::{Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
 use super::report::{OuterStep, SolveReport};
+use super::system::Evaluation;
 use super::{constraints, SolverSettings, System};
 use crate::error::Result;
 use crate::norms::energy_norm;
@@ -196,7 +197,7 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
             })
 }
 
-/// Runs the outer loop on `system` from `u` (whose prescribed DOFs hold the Dirichlet
+/// Runs the outer loop on `system` (evaluating into the work arrays `eval`) from `u` (whose prescribed DOFs hold the Dirichlet
 /// values): each iteration sets the continuation stage, minimizes the convex energy of the
 /// frozen quantities by Newton, measures the change of u and the fixed-point residual,
 /// applies the stopping test, and mixes the next frozen quantities. On return `u` is the
@@ -210,6 +211,7 @@ pub fn run(
     problem: &Problem,
     settings: &SolverSettings,
     system: &mut System,
+    eval: &mut Evaluation,
     u: &mut [f64],
     report: &mut SolveReport,
 ) -> Result<OuterOutcome> {
@@ -249,15 +251,9 @@ pub fn run(
             first_step: steps_before,
             ..NewtonRecord::default()
         };
-        let result = convex::minimize(
-            system,
-            problem,
-            &frozen,
-            &settings.newton,
-            tol,
-            u,
-            &mut record,
-        );
+        let mut energy =
+            convex::ConvexProblem::new(system, eval, problem, &frozen, &settings.newton, u);
+        let result = convex::minimize(&mut energy, tol, u, &mut record);
         report.add_newton(record);
         last = match result {
             Ok(outcome) => outcome,

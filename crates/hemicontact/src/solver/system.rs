@@ -1,7 +1,8 @@
 //! The discrete system, prepared once per problem: DOF map, sparsity pattern, linear
-//! solver (see [`crate::linalg`]), contact points, external forces, and the work arrays of the Newton
-//! iteration. [`System::evaluate`] computes the convexified energy `E_k` with its
-//! gradient and generalized Hessian for given frozen contact quantities.
+//! solver (see [`crate::linalg`]), contact points, external forces, free rigid motions and
+//! the continuation stage. [`System::evaluate`] computes the convexified energy `E_k` with
+//! its gradient and generalized Hessian for given frozen contact quantities into the work
+//! arrays of an [`Evaluation`], which the outer loop owns.
 
 use super::continuation::Continuation;
 use super::frozen::Frozen;
@@ -41,13 +42,6 @@ pub struct System {
     /// rigid motion) is measured against the forces its data could cause, not against
     /// zero.
     pub force_floor: f64,
-    /// Gradient of the total energy at the last evaluation, DOF order.
-    pub grad: Vec<f64>,
-    /// Gradient of the bulk energy minus external forces at the last evaluation (the
-    /// negative of the interface forces plus residual), DOF order.
-    pub grad_bulk: Vec<f64>,
-    /// Hessian values at the last evaluation with a Hessian (upper triangle).
-    pub hess: Vec<f64>,
     /// Seconds spent on (pattern, symbolic analysis or multigrid grids and prolongations).
     pub setup_time: (f64, f64),
     /// Parallel assembly buffers.
@@ -57,9 +51,6 @@ pub struct System {
     pub rigid: RigidMotions,
     /// Diagonal slots of the free equations of the bodies with free rigid motions.
     rigid_slots: Vec<usize>,
-    /// Shift α added there to the Newton matrix (0 until the first Hessian; see
-    /// [`crate::fem::rigid::NEWTON_SHIFT`]).
-    pub rigid_shift: f64,
     /// The unit of the coordinates in units of the displacements: 1 for a problem in
     /// metres, `L/U` when it is solved in the dimensionless variables of
     /// [`super::scaling`] (set by the solver).
@@ -73,6 +64,36 @@ pub fn resolved_linear_solver(problem: &Problem, kind: super::LinearSolver) -> s
 }
 
 pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
+
+/// The derivatives of the convexified energy at the last evaluation
+/// ([`System::evaluate`]): the work arrays of the Newton iteration, allocated once per solve.
+#[derive(Clone, Debug)]
+pub struct Evaluation {
+    /// Gradient of the total energy, DOF order (N).
+    pub grad: Vec<f64>,
+    /// Gradient of the bulk energy minus the external forces (the negative of the interface
+    /// forces plus residual), DOF order (N).
+    pub grad_bulk: Vec<f64>,
+    /// Hessian values at the last evaluation with a Hessian (upper triangle, on
+    /// [`System::pattern`]; N/m).
+    pub hess: Vec<f64>,
+    /// Shift α added to the Newton matrix on the bodies with free rigid motions (0 until
+    /// the first Hessian; see [`crate::fem::rigid::NEWTON_SHIFT`]).
+    pub rigid_shift: f64,
+}
+
+impl Evaluation {
+    /// Zeroed work arrays for `system`.
+    pub fn new(system: &System) -> Self {
+        let n = system.dofs.n_dofs();
+        Evaluation {
+            grad: vec![0.0; n],
+            grad_bulk: vec![0.0; n],
+            hess: vec![0.0; system.pattern.nnz()],
+            rigid_shift: 0.0,
+        }
+    }
+}
 
 /// How a Newton system was solved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,8 +148,6 @@ impl System {
                 .fold(0.0f64, |m, x| m.max(x.abs()));
             (h.lambda + 2.0 * h.mu) * u_d * problem.diameter().powi(d as i32 - 2)
         };
-        let n = dofs.n_dofs();
-        let hess = vec![0.0; pattern.nnz()];
         let rigid = problem.rigid_motions();
         let rigid_slots = rigid
             .shifted_dofs()
@@ -145,9 +164,6 @@ impl System {
             continuation,
             f_ext,
             force_floor,
-            grad: vec![0.0; n],
-            grad_bulk: vec![0.0; n],
-            hess,
             setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
             workspace: Workspace::new(match settings.threads {
                 0 => rayon::current_num_threads(),
@@ -155,7 +171,6 @@ impl System {
             }),
             rigid,
             rigid_slots,
-            rigid_shift: 0.0,
             length_unit: 1.0,
         })
     }
@@ -181,13 +196,14 @@ impl System {
     }
 
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
-    /// frozen quantities `frozen`; the gradient goes to `self.grad` (and the bulk part minus
-    /// `f` to `self.grad_bulk`), and with `hessian` the Hessian to `self.hess`.
+    /// frozen quantities `frozen`; the gradient goes to `out.grad` (and the bulk part minus
+    /// `f` to `out.grad_bulk`), and with `hessian` the Hessian to `out.hess`.
     pub fn evaluate(
         &mut self,
         problem: &Problem,
         u: &[f64],
         frozen: &Frozen,
+        out: &mut Evaluation,
         hessian: bool,
     ) -> f64 {
         let bulk = BulkAssembler {
@@ -201,24 +217,24 @@ impl System {
             Want::Gradient
         };
         let hess = if hessian {
-            Some(self.hess.as_mut_slice())
+            Some(out.hess.as_mut_slice())
         } else {
             None
         };
         let e_bulk = bulk.assemble_parallel(
             u,
-            &mut self.grad_bulk,
+            &mut out.grad_bulk,
             want,
             &self.pattern,
             hess,
             &mut self.workspace,
         );
         let mut work = 0.0;
-        for ((g, f), x) in self.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
+        for ((g, f), x) in out.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
             *g -= f;
             work += f * x;
         }
-        self.grad.copy_from_slice(&self.grad_bulk);
+        out.grad.copy_from_slice(&out.grad_bulk);
         let contact = ContactAssembler {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
@@ -227,29 +243,29 @@ impl System {
             penalty: self.continuation.penalties.contact(),
         };
         let hc = if hessian {
-            Some((self.hess.as_mut_slice(), self.contact_slots.as_slice()))
+            Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
         } else {
             None
         };
-        let e_contact = contact.assemble(u, &frozen.contact(), &mut self.grad, hc);
+        let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
-            if self.rigid_shift == 0.0 {
+            if out.rigid_shift == 0.0 {
                 let max = self
                     .rigid_slots
                     .iter()
-                    .fold(0.0f64, |m, &k| m.max(self.hess[k]));
-                self.rigid_shift = NEWTON_SHIFT * max;
+                    .fold(0.0f64, |m, &k| m.max(out.hess[k]));
+                out.rigid_shift = NEWTON_SHIFT * max;
             }
             for &k in &self.rigid_slots {
-                self.hess[k] += self.rigid_shift;
+                out.hess[k] += out.rigid_shift;
             }
         }
         e_bulk + e_contact - work
     }
 
-    /// Solves `H x = b` for the current Hessian `self.hess` with [`System::linear_solver`],
+    /// Solves `H x = b` for the Hessian values `hess` with [`System::linear_solver`],
     /// to the relative residual `eta` where the solve is iterative (the forcing term of the
     /// inexact Newton method), reusing a factorization for at most
     /// `settings.pcg_iterations` PCG iterations (see [`crate::linalg::direct`]). The
@@ -260,6 +276,7 @@ impl System {
     /// Those of [`SpdSolver::solve`].
     pub fn linear_solve(
         &mut self,
+        hess: &[f64],
         b: &[f64],
         x: &mut [f64],
         eta: f64,
@@ -272,7 +289,7 @@ impl System {
         };
         let stats = self
             .linear_solver
-            .solve(&self.pattern, &self.hess, b, x, &request)?;
+            .solve(&self.pattern, hess, b, x, &request)?;
         timings.factorization += stats.factorization_time;
         timings.n_factorizations += usize::from(stats.refactorized);
         timings.solve += stats.solve_time;
@@ -291,16 +308,11 @@ impl System {
         }
     }
 
-    /// Reaction forces at prescribed DOFs (zero elsewhere) from the last evaluation.
-    pub fn reactions(&self) -> Vec<f64> {
+    /// Reaction forces at prescribed DOFs (zero elsewhere) from the gradient `grad` of an
+    /// evaluation.
+    pub fn reactions(&self, grad: &[f64]) -> Vec<f64> {
         (0..self.dofs.n_dofs())
-            .map(|k| {
-                if self.dofs.is_fixed(k) {
-                    self.grad[k]
-                } else {
-                    0.0
-                }
-            })
+            .map(|k| if self.dofs.is_fixed(k) { grad[k] } else { 0.0 })
             .collect()
     }
 }

@@ -90,11 +90,11 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
     }
     let frozen = hemicontact::solver::Frozen::initial(&system, problem, &u);
     let settings = &solver.newton;
+    let mut eval = hemicontact::solver::Evaluation::new(&system);
+    let mut energy =
+        convex::ConvexProblem::new(&mut system, &mut eval, problem, &frozen, settings, &u);
     let outcome = convex::minimize(
-        &mut system,
-        problem,
-        &frozen,
-        settings,
+        &mut energy,
         settings.residual_tolerance,
         &mut u,
         &mut NewtonRecord::default(),
