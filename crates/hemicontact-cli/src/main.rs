@@ -23,7 +23,7 @@ macro_rules! say {
 
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
-use hemicontact::io::results::write_results;
+use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
@@ -450,11 +450,7 @@ fn run_and_write(
         .title
         .clone()
         .unwrap_or_else(|| label.to_string());
-    let figure = deformed::figure(&problem, &solution, &title);
-    let extra = [
-        ("deformed.svg", figure.to_svg().into_bytes()),
-        ("deformed.png", figure.to_png()?),
-    ];
+    let extra = solution_figures(&problem, &solution, &title)?;
     ctx.output.with(|set| {
         Ok(write_results(
             set,

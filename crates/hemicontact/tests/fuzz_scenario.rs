@@ -1463,7 +1463,12 @@ fn check_problem(
 }
 
 fn too_large(s: &Scenario) -> bool {
-    let n = s.file.mesh.n.as_deref().unwrap_or_default();
+    let n = s
+        .file
+        .mesh
+        .as_ref()
+        .and_then(|m| m.n.as_deref())
+        .unwrap_or_default();
     let limit = match n.len() {
         2 => MAX_SQUARES,
         3 => MAX_CUBES,
@@ -1714,7 +1719,16 @@ fn bug_with_resolution_overflow() {
         "with-resolution-overflow-3d.toml",
     ] {
         let s = Scenario::from_str(&bug_input(file), "fuzz").unwrap();
-        let huge = *s.file.mesh.n.iter().flatten().max().unwrap();
+        let huge = *s
+            .file
+            .mesh
+            .as_ref()
+            .unwrap()
+            .n
+            .iter()
+            .flatten()
+            .max()
+            .unwrap();
         for k in [2, 3, 8, 1024] {
             let r = run_caught("with_resolution", || s.with_resolution(k))
                 .unwrap_or_else(|f| panic!("{file}, k = {k}: {}", f.signature()));
@@ -1727,12 +1741,14 @@ fn bug_with_resolution_overflow() {
                         scaled
                             .file
                             .mesh
+                            .as_ref()
+                            .unwrap()
                             .n
                             .iter()
                             .flatten()
                             .all(|&c| c < huge / 2 || c == u64::MAX),
                         "{file}, k = {k}: wrapped counts {:?}",
-                        scaled.file.mesh.n
+                        scaled.file.mesh.as_ref().unwrap().n
                     );
                     scaled
                         .into_problem()

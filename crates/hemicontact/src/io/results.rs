@@ -62,3 +62,29 @@ pub fn write_results(
     }
     Ok(written)
 }
+
+/// The figures `hemicontact solve` writes beside the results of a solution titled `title`:
+/// the deformed mesh with its interface forces (`deformed.svg`, `deformed.png`). Empty
+/// without the cargo feature `plot`.
+///
+/// # Errors
+/// [`crate::Error::Io`] if the PNG cannot be encoded.
+pub fn solution_figures(
+    problem: &Problem,
+    solution: &Solution,
+    title: &str,
+) -> Result<Vec<(&'static str, Vec<u8>)>> {
+    #[cfg(feature = "plot")]
+    {
+        let figure = crate::plot::deformed::figure(problem, solution, title);
+        Ok(vec![
+            ("deformed.svg", figure.to_svg().into_bytes()),
+            ("deformed.png", figure.to_png()?),
+        ])
+    }
+    #[cfg(not(feature = "plot"))]
+    {
+        let _ = (problem, solution, title);
+        Ok(Vec::new())
+    }
+}

@@ -204,31 +204,30 @@ pub fn pad_vector(dim: usize, v: &[f64]) -> Vec<f64> {
     out
 }
 
-/// The `.vtu` content of a solution: displacement, reactions and contact data at points;
-/// strain, stress, von Mises stress, tr ε and locking activity per cell.
-///
-/// `stress` is the full 3×3 tensor ([`crate::material::Material::stress_3x3`]): in 2D plane
-/// strain with `σ_zz = ∂W/∂ε_zz` (Hooke: `λ tr ε`) plus the zz part of the locking stress,
-/// in plane stress with `σ_zz = 0`; `von_mises` is `√(3/2 s:s)` of its 3D deviator s
-/// ([`crate::tensor::von_mises`]). `strain` is the strain of the model: in 2D its
-/// out-of-plane components are written as 0 (exact in plane strain; in plane stress the
-/// thickness strain ε_zz is not computed).
-///
-/// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
-/// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
-/// 1 stick, 2 slip), `contact_pressure`, `slip`,
-/// `interface_force` (the force of the foundation on the node, N), and the contact
-/// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
-/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is several
-/// contact points (on two contact boundaries, or at a corner of one), the last point's
-/// values are shown and the forces are summed.
-/// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
-/// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
-/// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
-/// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
-pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
+/// The cell data of a solution: strain and stress tensors (3 × 3, row-major; the stress
+/// includes the locking stress), von Mises stress, trace of the strain, and the locking
+/// state; see [`solution_vtu`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CellFields {
+    /// Strain ε per cell, 9 entries (dimensionless).
+    pub strain: Vec<f64>,
+    /// Stress σ per cell, 9 entries (Pa).
+    pub stress: Vec<f64>,
+    /// von Mises stress `√(3/2 σ^D : σ^D)` per cell (Pa).
+    pub von_mises: Vec<f64>,
+    /// `tr ε` per cell.
+    pub trace_strain: Vec<f64>,
+    /// 1 where the locking constraint acts, else 0.
+    pub locking_active: Vec<i32>,
+    /// Q(ε) of the locking set per cell (0 without locking).
+    pub locking_q: Vec<f64>,
+    /// Magnitude λ_T of the locking stress per cell (Pa).
+    pub locking_multiplier: Vec<f64>,
+}
+
+/// The cell data of `solution`; see [`CellFields`] and [`solution_vtu`].
+pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
     let mesh = &problem.mesh;
-    let d = mesh.dim();
     let bulk = BulkAssembler::new(mesh, &problem.material);
     let strains = bulk.cell_strains(&solution.u);
     let n_cells = strains.len();
@@ -267,6 +266,43 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         let qv = set.map_or(0.0, |set| set.q(e));
         q.push(if qv.is_finite() { qv } else { 0.0 });
     }
+    CellFields {
+        strain: eps9,
+        stress: sig9,
+        von_mises: vm,
+        trace_strain: tr,
+        locking_active: active,
+        locking_q: q,
+        locking_multiplier: multiplier,
+    }
+}
+
+/// The `.vtu` content of a solution: displacement, reactions and contact data at points;
+/// strain, stress, von Mises stress, tr ε and locking activity per cell.
+///
+/// `stress` is the full 3×3 tensor ([`crate::material::Material::stress_3x3`]): in 2D plane
+/// strain with `σ_zz = ∂W/∂ε_zz` (Hooke: `λ tr ε`) plus the zz part of the locking stress,
+/// in plane stress with `σ_zz = 0`; `von_mises` is `√(3/2 s:s)` of its 3D deviator s
+/// ([`crate::tensor::von_mises`]). `strain` is the strain of the model: in 2D its
+/// out-of-plane components are written as 0 (exact in plane strain; in plane stress the
+/// thickness strain ε_zz is not computed).
+///
+/// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
+/// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
+/// 1 stick, 2 slip), `contact_pressure`, `slip`,
+/// `interface_force` (the force of the foundation on the node, N), and the contact
+/// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
+/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is several
+/// contact points (on two contact boundaries, or at a corner of one), the last point's
+/// values are shown and the forces are summed.
+/// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
+/// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
+/// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
+/// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
+pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
+    let mesh = &problem.mesh;
+    let d = mesh.dim();
+    let cells = cell_fields(problem, solution);
     let n = mesh.n_nodes();
     let mut normal_state = vec![-1i32; n];
     let mut friction_state = vec![-1i32; n];
@@ -295,12 +331,12 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         .point_f64("friction_traction", 3, traction)
         .point_f64("slip", 1, slip)
         .point_f64("interface_force", 3, force)
-        .cell_f64("strain", 9, eps9)
-        .cell_f64("stress", 9, sig9)
-        .cell_f64("von_mises", 1, vm)
-        .cell_f64("trace_strain", 1, tr)
-        .cell_i32("locking_active", active)
-        .cell_f64("locking_q", 1, q)
-        .cell_f64("locking_multiplier", 1, multiplier);
+        .cell_f64("strain", 9, cells.strain)
+        .cell_f64("stress", 9, cells.stress)
+        .cell_f64("von_mises", 1, cells.von_mises)
+        .cell_f64("trace_strain", 1, cells.trace_strain)
+        .cell_i32("locking_active", cells.locking_active)
+        .cell_f64("locking_q", 1, cells.locking_q)
+        .cell_f64("locking_multiplier", 1, cells.locking_multiplier);
     w
 }

@@ -1,7 +1,7 @@
 //! The mesh of a scenario: `[mesh]` generated (rectangle, box) or read from a Gmsh file,
 //! refined for convergence studies, and checked against the memory available.
 
-use super::schema::MeshKind;
+use super::schema::{MeshKind, MeshSpec};
 use super::Scenario;
 use crate::error::{Error, Result};
 use crate::mesh::generate::{self, Rectangle};
@@ -16,7 +16,15 @@ impl Scenario {
     /// [`Error::Scenario`] if the mesh is read from a file (it cannot be refined), if `n` is
     /// zero or the y count would not be an integer.
     pub fn with_resolution(&self, n: usize) -> Result<Scenario> {
-        let m = &self.file.mesh;
+        if self.given_mesh.is_some() {
+            return Err(self.err(
+                "mesh",
+                "a mesh given in memory",
+                "a generated mesh (\"rectangle\" or \"box\"): a given mesh cannot be \
+                 refined; use a generated mesh for convergence studies",
+            ));
+        }
+        let m = self.mesh_spec()?;
         if m.kind == MeshKind::Gmsh {
             return Err(self.err(
                 "mesh.kind",
@@ -57,13 +65,40 @@ impl Scenario {
             scaled.push(product / nx);
         }
         let mut out = self.clone();
-        out.file.mesh.n = Some(scaled);
+        if let Some(spec) = out.file.mesh.as_mut() {
+            spec.n = Some(scaled);
+        }
         Ok(out)
     }
 
-    /// The mesh of `[mesh]`, and the notes of the Gmsh reader.
+    /// The `[mesh]` table.
+    ///
+    /// # Errors
+    /// [`Error::Scenario`] naming `mesh` if the file has none.
+    pub fn mesh_spec(&self) -> Result<&MeshSpec> {
+        self.file.mesh.as_ref().ok_or_else(|| {
+            self.err(
+                "mesh",
+                "missing",
+                "a [mesh] table: a generator (kind = \"rectangle\" or \"box\") or a Gmsh file \
+                 (kind = \"gmsh\") (required)",
+            )
+        })
+    }
+
+    /// The mesh given in memory or of `[mesh]`, and the notes of the Gmsh reader.
     pub(super) fn build_mesh(&self) -> Result<(Mesh, Vec<String>)> {
-        let m = &self.file.mesh;
+        if let Some(mesh) = &self.given_mesh {
+            if self.file.mesh.is_some() {
+                return Err(self.err(
+                    "mesh",
+                    "a [mesh] table and a mesh given in memory",
+                    "one of them: the table describes a mesh to build, the given mesh is one",
+                ));
+            }
+            return Ok((mesh.clone(), Vec::new()));
+        }
+        let m = self.mesh_spec()?;
         match m.kind {
             MeshKind::Gmsh => self.read_mesh(),
             MeshKind::Rectangle | MeshKind::Box => {
@@ -82,7 +117,7 @@ impl Scenario {
     /// Reads the Gmsh file of `[mesh]`, checking the memory needed to read it and to solve
     /// on it against [`Scenario::memory_limit`].
     pub(super) fn read_mesh(&self) -> Result<(Mesh, Vec<String>)> {
-        let m = &self.file.mesh;
+        let m = self.mesh_spec()?;
         let given = [
             ("mesh.origin", m.origin.is_some()),
             ("mesh.size", m.size.is_some()),
@@ -173,7 +208,7 @@ impl Scenario {
 
     /// Generates the rectangle or box of `[mesh]`.
     pub(super) fn generate_mesh(&self) -> Result<Mesh> {
-        let m = &self.file.mesh;
+        let m = self.mesh_spec()?;
         let dim = if m.kind == MeshKind::Box { 3 } else { 2 };
         let axes = if dim == 2 { "[lx, ly]" } else { "[lx, ly, lz]" };
         let Some(size) = &m.size else {
@@ -297,10 +332,17 @@ impl Scenario {
         if need <= limit {
             return Ok(());
         }
-        let (field, value) = match &self.file.mesh.n {
-            Some(n) if self.file.mesh.kind != MeshKind::Gmsh => ("mesh.n", format!("{n:?}")),
+        let (field, value) = match &self.file.mesh {
+            Some(m) if m.kind != MeshKind::Gmsh && m.n.is_some() => (
+                "mesh.n",
+                format!("{:?}", m.n.as_deref().unwrap_or_default()),
+            ),
             _ => (
-                "mesh.file",
+                if self.file.mesh.is_some() {
+                    "mesh.file"
+                } else {
+                    "mesh"
+                },
                 format!("{} nodes, {} cells", mesh.n_nodes(), mesh.n_cells()),
             ),
         };

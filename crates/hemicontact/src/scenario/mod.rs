@@ -38,6 +38,9 @@ pub struct Scenario {
     /// scenario file's folder for [`Scenario::from_file`], `None` (the working folder) for
     /// text parsed with [`Scenario::from_str`].
     pub dir: Option<PathBuf>,
+    /// A mesh given in memory (built from arrays, e.g. by the Python package) instead of a
+    /// `[mesh]` table; its parts are the names its boundary facets carry.
+    pub given_mesh: Option<Mesh>,
 }
 
 impl Scenario {
@@ -101,6 +104,7 @@ impl Scenario {
             file,
             memory_limit: crate::resources::available_memory(),
             dir: None,
+            given_mesh: None,
         })
     }
 

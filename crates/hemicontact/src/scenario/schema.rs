@@ -95,8 +95,10 @@ pub struct ScenarioFile {
     /// Optional title, copied to the summary.
     #[serde(default)]
     pub title: Option<String>,
-    /// Geometry and mesh.
-    pub mesh: MeshSpec,
+    /// Geometry and mesh (`[mesh]`): required, unless a mesh is given in memory
+    /// ([`super::Scenario::given_mesh`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<MeshSpec>,
     /// Bulk material.
     pub material: MaterialSpec,
     /// Locking.
