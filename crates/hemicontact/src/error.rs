@@ -96,6 +96,10 @@ pub enum Error {
     /// A numerical breakdown (NaN or infinity) during a solve.
     #[error("numerical breakdown: {0}")]
     Breakdown(String),
+    /// The caller interrupted the solve (the stop flag of
+    /// [`crate::solver::solve_interruptible`] was raised); there is no result.
+    #[error("interrupted")]
+    Interrupted,
     /// Not enough memory for a requested allocation.
     #[error("out of memory: {0}")]
     OutOfMemory(String),

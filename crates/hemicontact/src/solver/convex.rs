@@ -11,6 +11,7 @@ use super::System;
 use crate::error::Result;
 use crate::fem::dofs::FIXED;
 use crate::problem::Problem;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// `E_k` on the free DOFs of `system`; see the module documentation.
 pub struct ConvexProblem<'a> {
@@ -26,6 +27,8 @@ pub struct ConvexProblem<'a> {
     gradient: Vec<f64>,
     /// `‖f_ext‖` (N).
     external: f64,
+    /// Raised by the caller to interrupt the minimization ([`ConvexProblem::with_stop`]).
+    stop: Option<&'a AtomicBool>,
 }
 
 impl<'a> ConvexProblem<'a> {
@@ -50,7 +53,15 @@ impl<'a> ConvexProblem<'a> {
             settings,
             u: u.to_vec(),
             external,
+            stop: None,
         }
+    }
+
+    /// The same problem, interrupted with [`crate::Error::Interrupted`] at the next accepted
+    /// Newton iterate once `stop` is raised.
+    pub fn with_stop(mut self, stop: &'a AtomicBool) -> Self {
+        self.stop = Some(stop);
+        self
     }
 
     /// Writes the free values `x` into the displacement `u` (DOF order).
@@ -112,8 +123,12 @@ impl ConvexEnergy for ConvexProblem<'_> {
     }
 
     /// A body whose free rigid motions only contact carries, pulled off that contact,
-    /// moves without bound: [`crate::Error::ContactLost`].
+    /// moves without bound: [`crate::Error::ContactLost`]. A raised stop flag:
+    /// [`crate::Error::Interrupted`].
     fn accept(&mut self, x: &[f64]) -> Result<()> {
+        if self.stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
+            return Err(crate::Error::Interrupted);
+        }
         if self.eval.rigid_shift > 0.0 {
             self.expand(x);
             self.system

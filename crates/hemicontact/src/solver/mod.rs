@@ -37,6 +37,7 @@ use crate::error::Result;
 use crate::linalg::Ordering;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// Solver settings.
@@ -165,26 +166,45 @@ pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
 /// # Errors
 /// As [`solve`].
 pub fn solve_from(problem: &Problem, settings: &SolverSettings, u: Vec<f64>) -> Result<Solution> {
+    solve_interruptible(problem, settings, u, &AtomicBool::new(false))
+}
+
+/// [`solve_from`], interrupted once another thread raises `stop`: the solve then returns
+/// [`crate::Error::Interrupted`] at the next Newton iterate (within one Newton step).
+///
+/// # Errors
+/// As [`solve`], and [`crate::Error::Interrupted`].
+pub fn solve_interruptible(
+    problem: &Problem,
+    settings: &SolverSettings,
+    u: Vec<f64>,
+    stop: &AtomicBool,
+) -> Result<Solution> {
     let start = Instant::now();
     // A `Problem` exists only validated; the settings are checked here.
     settings.validate()?;
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
-    let solution =
-        match solve_dimensionless(&scaled, settings, u, scales.length / scales.displacement) {
-            Ok(s) => s,
-            // Described again in the user's coordinates.
-            Err(crate::Error::ContactLost { .. }) => {
-                return Err(crate::Error::ContactLost {
-                    motions: format!(
-                        "{} (the body moved by more than its size)",
-                        problem.rigid_motions().describe_all().join("; ")
-                    ),
-                })
-            }
-            Err(e) => return Err(e),
-        };
+    let solution = match solve_dimensionless(
+        &scaled,
+        settings,
+        u,
+        scales.length / scales.displacement,
+        stop,
+    ) {
+        Ok(s) => s,
+        // Described again in the user's coordinates.
+        Err(crate::Error::ContactLost { .. }) => {
+            return Err(crate::Error::ContactLost {
+                motions: format!(
+                    "{} (the body moved by more than its size)",
+                    problem.rigid_motions().describe_all().join("; ")
+                ),
+            })
+        }
+        Err(e) => return Err(e),
+    };
     let mut solution = scales.dimensional(solution);
     solution.report.free_rigid_motions = problem.rigid_motions().describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
@@ -199,6 +219,7 @@ fn solve_dimensionless(
     settings: &SolverSettings,
     mut u: Vec<f64>,
     length_unit: f64,
+    stop: &AtomicBool,
 ) -> Result<Solution> {
     let start = Instant::now();
     let mut system = System::new(problem, settings)?;
@@ -218,6 +239,7 @@ fn solve_dimensionless(
         &mut eval,
         &mut u,
         &mut report,
+        stop,
     )?;
     report.converged = outcome.stop == outer::StopReason::Converged;
     report.message = outcome

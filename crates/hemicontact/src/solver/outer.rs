@@ -37,6 +37,7 @@ use crate::error::Result;
 use crate::norms::energy_norm;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Acceleration of the outer fixed-point iteration; see the module documentation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -205,7 +206,8 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
 ///
 /// # Errors
 /// A Newton error before any step succeeded (the problem itself is at fault, e.g. rigid
-/// motions not blocked), and [`crate::Error::ContactLost`] at any time; later breakdowns
+/// motions not blocked), and [`crate::Error::ContactLost`] and
+/// [`crate::Error::Interrupted`] (once `interrupt` is raised) at any time; later breakdowns
 /// stop the loop with [`StopReason::Breakdown`] instead.
 pub fn run(
     problem: &Problem,
@@ -214,6 +216,7 @@ pub fn run(
     eval: &mut Evaluation,
     u: &mut [f64],
     report: &mut SolveReport,
+    interrupt: &AtomicBool,
 ) -> Result<OuterOutcome> {
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
@@ -251,8 +254,12 @@ pub fn run(
             first_step: steps_before,
             ..NewtonRecord::default()
         };
+        if interrupt.load(Ordering::Relaxed) {
+            return Err(crate::Error::Interrupted);
+        }
         let mut energy =
-            convex::ConvexProblem::new(system, eval, problem, &frozen, &settings.newton, u);
+            convex::ConvexProblem::new(system, eval, problem, &frozen, &settings.newton, u)
+                .with_stop(interrupt);
         let result = convex::minimize(&mut energy, tol, u, &mut record);
         report.add_newton(record);
         last = match result {
@@ -260,6 +267,8 @@ pub fn run(
             // The load pulls a body off the contact carrying its free rigid motions: no
             // solution to report.
             Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
+            // The caller asked to stop: no result.
+            Err(crate::Error::Interrupted) => return Err(crate::Error::Interrupted),
             // Before any step succeeded there is no iterate worth keeping: the problem
             // itself is at fault (e.g. rigid motions not blocked).
             Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
