@@ -11,7 +11,10 @@ use std::time::{Duration, Instant};
 
 fn paper(n: usize) -> (hemicontact::problem::Problem, SolverSettings) {
     let s = Scenario::from_str(&builtin::paper(n, 1e4), "paper").expect("scenario");
-    (s.into_problem().expect("problem"), s.settings().expect("settings"))
+    (
+        s.into_problem().expect("problem"),
+        s.settings().expect("settings"),
+    )
 }
 
 /// A flag raised before the solve stops it before the first Newton step.
@@ -47,5 +50,8 @@ fn flag_raised_by_another_thread_interrupts_a_running_solve() {
         (r, t.elapsed())
     });
     assert!(matches!(r, Err(Error::Interrupted)), "{r:?}");
-    assert!(took < full, "interrupted after {took:?}, a full solve takes {full:?}");
+    assert!(
+        took < full,
+        "interrupted after {took:?}, a full solve takes {full:?}"
+    );
 }

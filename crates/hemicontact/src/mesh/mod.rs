@@ -46,6 +46,7 @@
 //! a region of the order of the round-off of the whole domain's measure. (Folds with cells
 //! of both orientations, the usual tangle, are refused before, as inverted cells.)
 
+mod arrays;
 pub(crate) mod facets;
 pub mod generate;
 pub mod gmsh;

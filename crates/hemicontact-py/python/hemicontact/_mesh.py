@@ -1,0 +1,187 @@
+"""Meshes from numpy arrays and meshio meshes."""
+
+from typing import Any, Dict, Mapping, Optional
+
+import numpy as np
+
+from . import _core
+from ._core import ScenarioError
+
+#: meshio's cell type of the cells and of the boundary facets, by dimension.
+_CELL_TYPE = {2: "triangle", 3: "tetra"}
+_FACET_TYPE = {2: "line", 3: "triangle"}
+
+
+def _error(field: str, value: str, allowed: str) -> ScenarioError:
+    return ScenarioError(f"<mesh>: field `{field}` = {value}: {allowed}")
+
+
+def _index_array(a: Any, field: str, width: int) -> np.ndarray:
+    arr = np.asarray(a)
+    if arr.size == 0:
+        arr = arr.reshape(0, width)
+    if arr.ndim != 2 or arr.shape[1] != width:
+        raise _error(field, f"an array of shape {arr.shape}", f"an array of shape (k, {width})")
+    if not np.issubdtype(arr.dtype, np.integer):
+        if np.issubdtype(arr.dtype, np.floating) and np.all(np.isfinite(arr)) and np.all(arr == np.round(arr)):
+            arr = arr.astype(np.int64)
+        else:
+            raise _error(field, f"an array of dtype {arr.dtype}", "integer node indices")
+    return np.ascontiguousarray(arr, dtype="<i8")
+
+
+class Mesh:
+    """A simplicial mesh: P1 triangles (2D) or tetrahedra (3D), with named boundary parts.
+
+    Coordinates are in m. Cells must be positively oriented (counter-clockwise triangles,
+    right-handed tetrahedra); an inverted or degenerate cell is an error naming it, never
+    silently reoriented. Boundary facets that belong to no named part form the part
+    ``untagged`` (traction-free unless a scenario names it).
+    """
+
+    def __init__(self, native: "_core.Mesh") -> None:
+        self._native = native
+
+    @classmethod
+    def from_arrays(
+        cls,
+        points: Any,
+        cells: Any,
+        facets: Optional[Mapping[str, Any]] = None,
+    ) -> "Mesh":
+        """The mesh of node coordinates ``points`` (N × d, m), cells ``cells`` (M × (d + 1)
+        node indices, 0-based) and boundary parts ``facets`` (name → K × d node indices).
+
+        A 2D mesh may be given with 3 coordinate columns if the third is zero everywhere
+        (as meshio stores planar meshes); it is then dropped.
+
+        Raises :class:`ScenarioError` naming the array and what is allowed.
+        """
+        p = np.asarray(points, dtype=float)
+        if p.ndim != 2 or p.shape[1] not in (2, 3):
+            raise _error("points", f"an array of shape {p.shape}", "an array of shape (n, 2) or (n, 3)")
+        c = np.asarray(cells)
+        if c.ndim != 2 or c.shape[1] not in (3, 4):
+            raise _error(
+                "cells",
+                f"an array of shape {c.shape}",
+                "triangles (m, 3) or tetrahedra (m, 4) of node indices",
+            )
+        dim = c.shape[1] - 1
+        if p.shape[1] == 3 and dim == 2:
+            if np.any(p[:, 2] != 0.0):
+                raise _error(
+                    "points",
+                    "3 coordinates with z ≠ 0 for triangles",
+                    "a planar mesh: 2 coordinates, or z = 0 everywhere",
+                )
+            p = p[:, :2]
+        if p.shape[1] != dim:
+            raise _error(
+                "points",
+                f"{p.shape[1]} coordinates for cells of {dim + 1} nodes",
+                f"{dim} coordinates per node",
+            )
+        if not np.all(np.isfinite(p)):
+            bad = int(np.argwhere(~np.isfinite(p))[0][0])
+            raise _error(f"points[{bad}]", str(p[bad].tolist()), "finite coordinates")
+        c = _index_array(c, "cells", dim + 1)
+        parts = []
+        for name, f in (facets or {}).items():
+            if not isinstance(name, str):
+                raise _error("facets", f"a part named {name!r}", "part names as str")
+            parts.append((name, _index_array(f, f"facets[{name!r}]", dim).tobytes()))
+        native = _core.Mesh.from_buffers(
+            dim, np.ascontiguousarray(p, dtype="<f8").tobytes(), c.tobytes(), parts
+        )
+        return cls(native)
+
+    @classmethod
+    def from_meshio(cls, m: Any) -> "Mesh":
+        """The mesh of a meshio mesh ``m``: its triangles (2D) or tetrahedra (3D) are the
+        cells, and its lines (2D) or triangles (3D) in a named set — a Gmsh physical group
+        (``cell_sets``, or ``gmsh:physical`` tags named by ``field_data``) — are the
+        boundary parts, named like the groups. So a pygmsh or gmsh mesh goes straight in.
+        """
+        blocks = list(m.cells)
+        types = {b.type for b in blocks}
+        dim = 3 if "tetra" in types else 2
+        if _CELL_TYPE[dim] not in types:
+            raise _error(
+                "cells",
+                f"cell types {sorted(types)}",
+                "triangles (2D) or tetrahedra (3D): only P1 simplices are supported",
+            )
+        cell_blocks = [b.data for b in blocks if b.type == _CELL_TYPE[dim]]
+        cells = np.concatenate(cell_blocks, axis=0)
+        facet_type = _FACET_TYPE[dim]
+        parts: Dict[str, list] = {}
+        sets = getattr(m, "cell_sets", None) or {}
+        named = {k: v for k, v in sets.items() if not k.startswith("gmsh:")}
+        if named:
+            for name, per_block in named.items():
+                for block, idx in zip(blocks, per_block):
+                    if block.type == facet_type and idx is not None and len(idx) > 0:
+                        parts.setdefault(name, []).append(block.data[np.asarray(idx)])
+        else:
+            tags = (getattr(m, "cell_data", None) or {}).get("gmsh:physical")
+            names = {
+                int(v[0]): k
+                for k, v in (getattr(m, "field_data", None) or {}).items()
+                if len(v) > 1 and int(v[1]) == dim - 1
+            }
+            if tags is not None:
+                for block, t in zip(blocks, tags):
+                    if block.type != facet_type:
+                        continue
+                    for tag in np.unique(t):
+                        name = names.get(int(tag), str(int(tag)))
+                        parts.setdefault(name, []).append(block.data[np.asarray(t) == tag])
+        facets = {k: np.concatenate(v, axis=0) for k, v in parts.items()}
+        return cls.from_arrays(m.points, cells, facets)
+
+    @property
+    def dim(self) -> int:
+        """Spatial dimension (2 or 3)."""
+        return self._native.dim
+
+    @property
+    def points(self) -> np.ndarray:
+        """Node coordinates (N × d, m)."""
+        return np.frombuffer(self._native.points(), dtype="<f8").reshape(-1, self.dim)
+
+    @property
+    def cells(self) -> np.ndarray:
+        """Cells (M × (d + 1) node indices)."""
+        return np.frombuffer(self._native.cells(), dtype="<i8").reshape(-1, self.dim + 1)
+
+    @property
+    def facets(self) -> Dict[str, np.ndarray]:
+        """Boundary parts: name → facets (K × d node indices)."""
+        return {
+            name: np.frombuffer(b, dtype="<i8").reshape(-1, self.dim)
+            for name, b in self._native.parts()
+        }
+
+    def to_meshio(self) -> Any:
+        """The mesh as a meshio mesh (needs meshio): cells, then one facet block per
+        boundary part, with ``cell_sets`` naming the parts."""
+        import meshio
+
+        blocks = [(_CELL_TYPE[self.dim], self.cells)]
+        sets: Dict[str, list] = {}
+        parts = self.facets
+        for i, (name, f) in enumerate(parts.items()):
+            blocks.append((_FACET_TYPE[self.dim], f))
+        for i, name in enumerate(parts):
+            sets[name] = [
+                np.arange(len(b[1])) if j == i + 1 else np.array([], dtype=int)
+                for j, b in enumerate(blocks)
+            ]
+        return meshio.Mesh(self.points, blocks, cell_sets=sets)
+
+    def __repr__(self) -> str:
+        return (
+            f"Mesh(dim={self.dim}, nodes={self._native.n_nodes}, cells={self._native.n_cells}, "
+            f"parts={list(self.facets)})"
+        )

@@ -1,0 +1,154 @@
+"""Solving, and the results of a solve as numpy arrays."""
+
+import json
+import os
+import warnings
+from typing import Any, Dict, List, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _core
+from ._scenario import PathLike, Scenario, load
+
+
+def _f64(b: bytes, *shape: int) -> np.ndarray:
+    return np.frombuffer(b, dtype="<f8").reshape(shape)
+
+
+class Result:
+    """The result of a solve. Arrays are numpy arrays in SI units.
+
+    - ``points`` (N × d, m), ``cells`` (M × (d + 1)), ``displacement`` (N × d, m),
+      ``reactions`` (N × d, N; N/m in 2D: the force of each prescribed DOF);
+    - per cell: ``strain`` (M × 3 × 3), ``stress`` (M × 3 × 3, Pa, locking stress
+      included), ``von_mises`` (M, Pa), ``trace_strain`` (M), ``locking_active`` (M, 0/1),
+      ``locking_multiplier`` (M, Pa);
+    - ``contact``: a dict of arrays, one entry per contact point, one key per column of
+      ``contact.csv`` (``node``, ``boundary``, ``x``, ``y``, ``z``, ``weight``, ``u_nu``,
+      ``gap``, ``u_tau_1``, ``u_tau_2``, ``slip``, ``pressure``, ``bound``,
+      ``force_normal``, ``force_tangential_1``, ``force_tangential_2``, ``normal_state``,
+      ``friction_state``, ``normal_residual``, ``friction_residual``) and the vectors
+      ``normal`` (outward unit normal), ``force`` (interface force on the body, N) and
+      ``friction_traction`` (Pa), K × 3;
+    - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
+      ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
+      ``summary.json`` as a dict).
+    """
+
+    def __init__(self, native: "_core.Solution") -> None:
+        self._native = native
+        self.dim: int = native.dim
+        #: The result's title (the scenario's, else ``scenario``).
+        self.title: str = native.title
+        self.converged: bool = native.converged
+        self.message: str = native.message
+        self.summary: Dict[str, Any] = json.loads(native.summary_json())
+        report = self.summary["report"]
+        self.certificate: Dict[str, Any] = report["certificate"]
+        self.history: Dict[str, List[Dict[str, Any]]] = {
+            "outer": report["outer"],
+            "newton": report["newton"],
+        }
+        self.timings: Dict[str, Any] = report["timings"]
+        d = self.dim
+        self.points = _f64(native.points(), -1, d)
+        self.cells = np.frombuffer(native.cells(), dtype="<i8").reshape(-1, d + 1)
+        self.displacement = _f64(native.displacement(), -1, d)
+        self.reactions = _f64(native.reactions(), -1, d)
+        fields = {name: (k, b) for name, k, b in native.cell_fields()}
+        self.strain = _f64(fields["strain"][1], -1, 3, 3)
+        self.stress = _f64(fields["stress"][1], -1, 3, 3)
+        self.von_mises = _f64(fields["von_mises"][1], -1)
+        self.trace_strain = _f64(fields["trace_strain"][1], -1)
+        self.locking_active = _f64(fields["locking_active"][1], -1).astype(np.int64)
+        self.locking_multiplier = _f64(fields["locking_multiplier"][1], -1)
+        numeric, text = native.contact_columns()
+        contact: Dict[str, np.ndarray] = {}
+        for name, k, b in numeric:
+            a = _f64(b, -1) if k == 1 else _f64(b, -1, k)
+            contact[name] = a.astype(np.int64) if name == "node" else a
+        for name, values in text:
+            contact[name] = np.array(values, dtype=str)
+        self.contact = contact
+
+    def write(self, folder: PathLike) -> List[str]:
+        """Writes the files ``hemicontact solve`` writes — ``solution.vtu``,
+        ``contact.csv``, ``deformed.svg``/``.png`` and ``summary.json`` (as the scenario's
+        ``[output]`` asks) — into ``folder``, as one result set: the folder's previous
+        content is replaced only once every file is written. Returns the paths written."""
+        return [os.fspath(p) for p in self._native.write(os.fspath(folder))]
+
+    def to_meshio(self) -> Any:
+        """The solution as a meshio mesh (needs meshio): point data ``displacement`` and
+        ``reaction``, cell data ``strain``, ``stress`` (flattened 3 × 3), ``von_mises``,
+        ``trace_strain``, ``locking_active`` and ``locking_multiplier``."""
+        import meshio
+
+        cell_type = "triangle" if self.dim == 2 else "tetra"
+        pad = lambda a: np.hstack([a, np.zeros((len(a), 3 - self.dim))])  # noqa: E731
+        return meshio.Mesh(
+            pad(self.points),
+            [(cell_type, self.cells)],
+            point_data={"displacement": pad(self.displacement), "reaction": pad(self.reactions)},
+            cell_data={
+                "strain": [self.strain.reshape(-1, 9)],
+                "stress": [self.stress.reshape(-1, 9)],
+                "von_mises": [self.von_mises],
+                "trace_strain": [self.trace_strain],
+                "locking_active": [self.locking_active],
+                "locking_multiplier": [self.locking_multiplier],
+            },
+        )
+
+    def __repr__(self) -> str:
+        state = "converged" if self.converged else "NOT converged"
+        return f"Result({self.title!r}, {state}, nodes={len(self.points)}, contact points={len(self.contact['node'])})"
+
+
+ScenarioLike = Union[Scenario, Dict[str, Any], PathLike]
+
+
+def _scenario(s: ScenarioLike) -> Scenario:
+    if isinstance(s, Scenario):
+        return s
+    if isinstance(s, dict):
+        return Scenario.from_dict(s)
+    if isinstance(s, (str, os.PathLike)):
+        return load(s)
+    raise TypeError(f"a Scenario, a dict or a path is needed, not {type(s).__name__}")
+
+
+def solve(scenario: ScenarioLike) -> Result:
+    """Solves ``scenario`` (a :class:`Scenario`, a dict of the scenario schema, or the path
+    of a TOML file) and returns its :class:`Result`.
+
+    The GIL is released during the solve, and Ctrl-C interrupts it with
+    ``KeyboardInterrupt``. A solve that does not converge (or whose certificate fails)
+    is not an exception: it returns the last iterate with ``converged == False`` and emits a
+    ``RuntimeWarning`` with the solver's message. Invalid input raises
+    :class:`ScenarioError`."""
+    s = _scenario(scenario)
+    result = Result(_core.solve(s._native))
+    if not result.converged:
+        warnings.warn(
+            f"{result.title}: {result.message}; the result holds the last iterate "
+            "(converged == False)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return result
+
+
+def convergence(
+    scenario: ScenarioLike, levels: Sequence[int], reference: int
+) -> List[Dict[str, Any]]:
+    """The mesh-refinement study of ``scenario`` (a generated mesh): solves on each level
+    (squares along x, increasing) and on a reference mesh of ``reference`` squares, and
+    returns one dict per level — ``n``, ``h_edge`` (m), ``h_area`` (m², the element
+    measure), ``dofs``, ``error`` (relative energy-norm error against the reference),
+    ``order_edge`` and ``order_area`` (observed orders from the previous level, ``None``
+    where undefined), ``outer``, ``newton``, ``converged``, ``seconds``. The GIL is released
+    while it runs."""
+    s = _scenario(scenario)
+    study = json.loads(_core.convergence(s._native, [int(n) for n in levels], int(reference)))
+    return study["levels"]

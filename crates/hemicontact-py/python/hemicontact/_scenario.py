@@ -1,0 +1,130 @@
+"""Scenarios: TOML files, Python dicts of the same schema, and the paper's example."""
+
+import math
+import os
+from typing import Any, Dict, List, Mapping, Optional, Union
+
+from . import _core
+from ._core import ScenarioError
+from ._mesh import Mesh
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+#: Largest mesh resolution of :func:`paper_example` (squares per side).
+MAX_PAPER_N = 4096
+
+
+class Scenario:
+    """A contact problem as a scenario file describes it: mesh, material and locking,
+    supports, loads, contact parts with their laws, solver settings and outputs (see the
+    scenario reference in the repository's docs; every key of a TOML scenario is a key
+    here). A scenario is checked completely when it is solved or by :meth:`check`.
+    """
+
+    def __init__(self, native: "_core.Scenario", mesh: Optional[Mesh] = None) -> None:
+        self._native = native
+        self._mesh = mesh
+
+    @classmethod
+    def from_dict(
+        cls,
+        d: Mapping[str, Any],
+        *,
+        source: str = "<dict>",
+        base_dir: Optional[PathLike] = None,
+    ) -> "Scenario":
+        """The scenario of the dict ``d``, with the schema of a scenario file: tables are
+        dicts, arrays of tables lists of dicts, e.g.
+        ``{"mesh": {"kind": "rectangle", "size": [4.0, 4.0], "n": [16, 16]},
+        "material": {"young": 2000.0, "poisson": 0.3}, ...}``.
+
+        ``d["mesh"]`` may also be a :class:`Mesh` (a mesh built in memory). ``source``
+        names the scenario in error messages; relative file paths (``mesh.file``) are
+        resolved against ``base_dir`` (default: the working folder). Numpy arrays and
+        scalars are accepted where lists and numbers are.
+
+        Raises :class:`ScenarioError` naming the field for unknown keys, wrong types or
+        values out of range.
+        """
+        if not isinstance(d, Mapping):
+            raise ScenarioError(
+                f"{source}: field `(scenario)` = a {type(d).__name__}: a dict of tables"
+            )
+        value = dict(d)
+        mesh = value.get("mesh")
+        native_mesh = None
+        if isinstance(mesh, Mesh):
+            native_mesh = mesh._native
+            del value["mesh"]
+        else:
+            mesh = None
+        base = os.fspath(base_dir) if base_dir is not None else None
+        return cls(_core.Scenario.from_dict(value, source, native_mesh, base), mesh)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The scenario as a dict of the file's schema (every setting, defaults included);
+        ``Scenario.from_dict(s.to_dict())`` gives the same scenario. A mesh given in memory
+        is the :class:`Mesh` under ``"mesh"``."""
+        d = self._native.to_dict()
+        if self._mesh is not None:
+            d["mesh"] = self._mesh
+        return d
+
+    @property
+    def source(self) -> str:
+        """Where the scenario came from: a path, ``<dict>``, or ``<built-in paper>``."""
+        return self._native.source
+
+    @property
+    def title(self) -> Optional[str]:
+        """The scenario's title, if any."""
+        return self._native.title
+
+    def with_resolution(self, n: int) -> "Scenario":
+        """The same scenario with ``n`` squares along x (generated meshes only), for
+        refinement studies."""
+        return Scenario(self._native.with_resolution(_count(n, "n", self.source)), self._mesh)
+
+    def check(self) -> List[str]:
+        """Resolves and validates everything (mesh, laws, supports, loads, settings)
+        without solving; returns the notes (warnings that do not stop a run). Raises
+        :class:`ScenarioError` on invalid input."""
+        return self._native.check()
+
+    def mesh(self) -> Mesh:
+        """The mesh the scenario solves on (generated, read from a file, or given)."""
+        return self._mesh if self._mesh is not None else Mesh(self._native.mesh())
+
+    def __repr__(self) -> str:
+        title = f", title={self.title!r}" if self.title else ""
+        return f"Scenario(source={self.source!r}{title})"
+
+
+def _count(n: Any, field: str, source: str, largest: Optional[int] = None) -> int:
+    if isinstance(n, bool) or not isinstance(n, int) or n < 1 or (largest and n > largest):
+        top = f" to {largest}" if largest else ""
+        raise ScenarioError(f"{source}: field `{field}` = {n!r}: an integer from 1{top}")
+    return n
+
+
+def load(path: PathLike) -> Scenario:
+    """Reads the TOML scenario file at ``path`` (relative mesh files are resolved against
+    its folder). Raises :class:`ScenarioError` for invalid content and ``OSError`` if the
+    file cannot be read."""
+    return Scenario(_core.Scenario.from_file(os.fspath(path)))
+
+
+def paper_example(n: int = 128, c_kappa: float = 1.0e4) -> Scenario:
+    """The paper's example (Barboteu, Han, Migórski 2018) as ``hemicontact paper`` solves
+    it: the square (0, 4)² m on an ``n × n`` mesh, E = 2000 Pa, ν = 0.3, plane strain,
+    clamped at the bottom, pressed by 900 N/m on top, nearly locking with limited
+    compressibility θ = 0.16 and compliance ``c_kappa`` (Pa; 0: no locking), both vertical
+    sides in frictional normal-compliance contact with slip-weakening Coulomb friction."""
+    source = "<built-in paper>"
+    n = _count(n, "n", source, MAX_PAPER_N)
+    if isinstance(c_kappa, bool) or not isinstance(c_kappa, (int, float)):
+        raise ScenarioError(f"{source}: field `c_kappa` = {c_kappa!r}: a number ≥ 0 (Pa)")
+    c = float(c_kappa)
+    if not (math.isfinite(c) and c >= 0.0):
+        raise ScenarioError(f"{source}: field `c_kappa` = {c!r}: a finite number ≥ 0 (Pa)")
+    return Scenario(_core.Scenario.paper(n, c))

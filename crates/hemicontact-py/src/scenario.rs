@@ -1,0 +1,134 @@
+//! Scenarios: read from TOML files, built from Python dicts through the same schema, or the
+//! paper's example; and their conversion back to dicts.
+
+use crate::convert::{to_python, to_toml};
+use crate::errors::{scenario_error, to_py};
+use crate::mesh::NativeMesh;
+use hemicontact::scenario::schema::ScenarioFile;
+use hemicontact::scenario::{builtin, Scenario};
+use hemicontact::Error;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+
+/// A scenario of the library (parsed, not yet resolved into a problem).
+#[pyclass(module = "hemicontact._core", name = "Scenario", frozen)]
+pub struct NativeScenario {
+    /// The library's scenario.
+    pub inner: Scenario,
+}
+
+#[pymethods]
+impl NativeScenario {
+    /// Reads the TOML scenario file at `path`.
+    #[staticmethod]
+    fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
+        let inner = py.detach(|| Scenario::from_file(&path)).map_err(to_py)?;
+        Ok(NativeScenario { inner })
+    }
+
+    /// The scenario of the Python dict `value` (the schema of a scenario file), named
+    /// `source` in messages, with an optional mesh given in memory instead of `[mesh]` and
+    /// the folder `dir` against which relative paths (`mesh.file`) are resolved.
+    #[staticmethod]
+    #[pyo3(signature = (value, source, mesh=None, dir=None))]
+    fn from_dict(
+        value: &Bound<'_, PyAny>,
+        source: &str,
+        mesh: Option<&NativeMesh>,
+        dir: Option<PathBuf>,
+    ) -> PyResult<Self> {
+        let table = to_toml(value, "", source)?;
+        if !table.is_table() {
+            return Err(scenario_error(
+                source,
+                "(scenario)",
+                "not a dict",
+                "a dict of tables",
+            ));
+        }
+        let file: ScenarioFile = serde_path_to_error::deserialize(table).map_err(|e| {
+            let path = e.path().to_string();
+            // One line, like the file's messages (toml appends the table on a new line).
+            let inner = e.inner().to_string();
+            let inner = inner.split_whitespace().collect::<Vec<_>>().join(" ");
+            to_py(Error::Parse {
+                file: source.to_string(),
+                message: if path == "." {
+                    inner
+                } else {
+                    format!("field `{path}`: {inner}")
+                },
+            })
+        })?;
+        Ok(NativeScenario {
+            inner: Scenario {
+                source: source.to_string(),
+                file,
+                memory_limit: hemicontact::resources::available_memory(),
+                dir,
+                given_mesh: mesh.map(|m| m.mesh.clone()),
+            },
+        })
+    }
+
+    /// The paper's example with `n × n` squares and locking compliance `c_kappa` (Pa), as
+    /// `hemicontact paper` solves it.
+    #[staticmethod]
+    fn paper(n: usize, c_kappa: f64) -> PyResult<Self> {
+        let text = builtin::paper(n, c_kappa);
+        let inner = Scenario::from_str(&text, "<built-in paper>").map_err(to_py)?;
+        Ok(NativeScenario { inner })
+    }
+
+    /// The scenario as a dict of the file's schema (without a mesh given in memory).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let value = toml::Value::try_from(&self.inner.file)
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+        to_python(py, &value)
+    }
+
+    /// Where the scenario came from (a path, or a name such as `<built-in paper>`).
+    #[getter]
+    fn source(&self) -> String {
+        self.inner.source.clone()
+    }
+
+    /// The scenario's title, if any.
+    #[getter]
+    fn title(&self) -> Option<String> {
+        self.inner.file.title.clone()
+    }
+
+    /// Whether the scenario carries a mesh given in memory.
+    #[getter]
+    fn has_given_mesh(&self) -> bool {
+        self.inner.given_mesh.is_some()
+    }
+
+    /// The same scenario with `n` squares along x (generated meshes only).
+    fn with_resolution(&self, n: usize) -> PyResult<Self> {
+        let inner = self.inner.with_resolution(n).map_err(to_py)?;
+        Ok(NativeScenario { inner })
+    }
+
+    /// Resolves and validates the scenario (mesh, laws, supports, settings); returns the
+    /// notes it raises.
+    fn check(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        let scenario = &self.inner;
+        py.detach(|| {
+            scenario.settings()?;
+            scenario.into_problem_with_notes()
+        })
+        .map(|(_, notes)| notes)
+        .map_err(to_py)
+    }
+
+    /// The mesh the scenario solves on (generated, read or given).
+    fn mesh(&self, py: Python<'_>) -> PyResult<NativeMesh> {
+        let scenario = &self.inner;
+        let problem = py.detach(|| scenario.into_problem()).map_err(to_py)?;
+        Ok(NativeMesh {
+            mesh: problem.mesh().clone(),
+        })
+    }
+}

@@ -1,0 +1,75 @@
+"""Meshes from numpy arrays and meshio: the same mesh gives the same solution, the parts
+keep their names, and invalid arrays are refused with the array named."""
+
+import numpy as np
+import pytest
+
+import hemicontact as hc
+
+from test_scenarios import SMALL
+
+
+def test_a_mesh_from_arrays_equals_the_generated_mesh():
+    s = hc.Scenario.from_dict(SMALL)
+    generated = s.mesh()
+    m = hc.Mesh.from_arrays(generated.points, generated.cells, generated.facets)
+    assert np.array_equal(m.points, generated.points) and np.array_equal(m.cells, generated.cells)
+    d = s.to_dict()
+    d["mesh"] = m
+    a, b = hc.solve(s), hc.solve(d)
+    assert np.array_equal(a.displacement, b.displacement)
+
+
+def test_unnamed_boundary_facets_form_the_part_untagged():
+    g = hc.Scenario.from_dict(SMALL).mesh()
+    m = hc.Mesh.from_arrays(g.points, g.cells, {"left": g.facets["left"]})
+    assert list(m.facets) == ["left", "untagged"]
+    total = sum(len(f) for f in g.facets.values())
+    assert len(m.facets["untagged"]) == total - len(g.facets["left"])
+
+
+def test_a_planar_mesh_with_a_zero_z_column_is_accepted():
+    g = hc.Scenario.from_dict(SMALL).mesh()
+    p3 = np.hstack([g.points, np.zeros((len(g.points), 1))])
+    assert np.array_equal(hc.Mesh.from_arrays(p3, g.cells).points, g.points)
+
+
+def test_meshio_round_trip_keeps_points_cells_and_parts():
+    g = hc.Scenario.from_dict(SMALL).mesh()
+    back = hc.Mesh.from_meshio(g.to_meshio())
+    assert np.array_equal(back.points, g.points) and np.array_equal(back.cells, g.cells)
+    assert {k: v.tolist() for k, v in back.facets.items()} == {k: v.tolist() for k, v in g.facets.items()}
+
+
+def test_meshio_file_round_trip_of_a_result(tmp_path):
+    import meshio
+
+    r = hc.solve(SMALL)
+    path = tmp_path / "r.vtu"
+    meshio.write(path, r.to_meshio())
+    m = meshio.read(path)
+    assert np.array_equal(m.point_data["displacement"][:, :2], r.displacement)
+    assert np.allclose(m.cell_data["von_mises"][0], r.von_mises, rtol=0, atol=0)
+
+
+def test_a_clockwise_triangle_is_refused_not_reoriented():
+    points = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
+    with pytest.raises(hc.ScenarioError, match="cell 0"):
+        hc.Mesh.from_arrays(points, [[0, 2, 1]])
+
+
+@pytest.mark.parametrize(
+    "points, cells, facets, named",
+    [
+        ([[0.0, 0.0], [1.0, 0.0]], [[0, 1]], None, "cells"),
+        ([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, 5]], None, "out of range"),
+        ([[0.0, 0.0], [1.0, 0.0], [0.0, np.nan]], [[0, 1, 2]], None, "points[2]"),
+        ([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, -2]], None, "cells"),
+        ([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0, 1, 2]], {"base": [[0, 1, 2]]}, "facets['base']"),
+        ([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]], [[0.5, 1, 2]], None, "cells"),
+    ],
+)
+def test_invalid_arrays_are_refused_naming_them(points, cells, facets, named):
+    with pytest.raises(hc.ScenarioError) as e:
+        hc.Mesh.from_arrays(points, cells, facets)
+    assert named in str(e.value), str(e.value)
