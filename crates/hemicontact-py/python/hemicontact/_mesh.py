@@ -171,7 +171,7 @@ class Mesh:
         blocks = [(_CELL_TYPE[self.dim], self.cells)]
         sets: Dict[str, list] = {}
         parts = self.facets
-        for i, (name, f) in enumerate(parts.items()):
+        for f in parts.values():
             blocks.append((_FACET_TYPE[self.dim], f))
         for i, name in enumerate(parts):
             sets[name] = [

@@ -1,0 +1,61 @@
+#!/usr/bin/env python3
+"""What the Python path costs over the command line, on the same solve.
+
+Solves a scenario (default: scenarios/paper.toml, the paper's example at n = 128) and
+writes its results, alternately with the command-line program (`hemicontact solve FILE
+--out DIR`, wall time of the process) and through the Python package in this interpreter
+(`hemicontact.solve(hemicontact.load(FILE)).write(DIR)`, wall time of the call), for
+`--rounds` rounds, and prints the medians and their ratio. Also prints the median of the
+solver's own time (`timings.total`) of the Python solves, and how long the conversion of the
+result into numpy arrays takes (the Python-only part).
+
+Usage: python scripts/bench-python.py [--scenario FILE] [--rounds 7] [--cli PATH]
+(needs the package installed, e.g. `bash scripts/test-python.sh` or `pip install
+./crates/hemicontact-py`, and a release build of the command line).
+"""
+
+import argparse
+import os
+import pathlib
+import statistics
+import subprocess
+import tempfile
+import time
+
+import hemicontact as hc
+
+REPO = pathlib.Path(__file__).resolve().parents[1]
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scenario", default=str(REPO / "scenarios" / "paper.toml"))
+    ap.add_argument("--rounds", type=int, default=7)
+    ap.add_argument("--cli", default=os.environ.get("HEMICONTACT_BIN", str(REPO / "target" / "release" / "hemicontact")))
+    args = ap.parse_args()
+    cli, py, solver, convert = [], [], [], []
+    with tempfile.TemporaryDirectory() as tmp:
+        for k in range(args.rounds):
+            t = time.perf_counter()
+            subprocess.run([args.cli, "solve", args.scenario, "--out", f"{tmp}/cli{k}"],
+                           check=True, capture_output=True)
+            cli.append(time.perf_counter() - t)
+            t = time.perf_counter()
+            r = hc.solve(hc.load(args.scenario))
+            r.write(f"{tmp}/py{k}")
+            py.append(time.perf_counter() - t)
+            solver.append(r.timings["total"])
+            t = time.perf_counter()
+            hc.Result(r._native)
+            convert.append(time.perf_counter() - t)
+    m = statistics.median
+    print(f"scenario {args.scenario}, {args.rounds} rounds, medians:")
+    print(f"  command line (solve + write, process)   {m(cli):.3f} s")
+    print(f"  Python (solve + write, in-process)      {m(py):.3f} s")
+    print(f"  ratio Python / command line             {m(py) / m(cli):.3f}")
+    print(f"  solver's own time (timings.total)       {m(solver):.3f} s")
+    print(f"  result into numpy arrays (Python only)  {m(convert) * 1e3:.1f} ms")
+
+
+if __name__ == "__main__":
+    main()
