@@ -264,8 +264,15 @@ pub struct Inputs<'a> {
 /// `frozen` holds the quantities of the last convex problem (its multipliers give the
 /// pressure at Signorini points and the stick/slip classification of exact friction:
 /// stick where `‖τ + r u_τ‖ ≤ F`, i.e. the projection defining the friction force is
-/// inactive).
-pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResult>, Certificate) {
+/// inactive). The friction coefficients at `u` are evaluated once for all points
+/// ([`ContactAssembler::friction_coefficients`]).
+///
+/// # Errors
+/// [`crate::Error::Law`] if a user-defined friction law fails.
+pub fn evaluate(
+    ca: &ContactAssembler<'_>,
+    inp: &Inputs<'_>,
+) -> crate::Result<(Vec<ContactResult>, Certificate)> {
     let Inputs {
         u,
         grad_bulk,
@@ -297,6 +304,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
             .unwrap_or_default()
     };
+    let mu = ca.friction_coefficients(u)?;
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     let mut scale = f_ext
@@ -306,6 +314,11 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     for i in 0..ca.nodes.len() {
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
+        // The friction bound F at this state (not frozen).
+        let bound = cb
+            .friction
+            .as_ref()
+            .map_or(0.0, |f| f.bound_of(mu[i], s.pressure));
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
         let model = ca.point(u, &frozen, i).gradient;
@@ -353,7 +366,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             }
             Some(fr) => {
                 let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
-                let wf = w * s.bound;
+                let wf = w * bound;
                 let slipping = if fr.is_exact() {
                     let (r, tau) = (ca.penalty[i], frozen.traction[i]);
                     let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
@@ -394,7 +407,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 friction_traction[k] -= ft[a] * t[a][k] / w;
             }
         }
-        scale = scale.max(w * s.pressure).max(w * s.bound);
+        scale = scale.max(w * s.pressure).max(w * bound);
         exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
@@ -405,7 +418,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             u_tau: s.u_tau,
             slip: s.slip,
             pressure: s.pressure,
-            bound: s.bound,
+            bound,
             force_normal: fn_,
             force_tangential: ft,
             force,
@@ -454,5 +467,5 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_stick += usize::from(r.friction_state == FrictionState::Stick);
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
-    (results, cert)
+    Ok((results, cert))
 }

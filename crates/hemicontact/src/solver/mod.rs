@@ -251,8 +251,14 @@ fn solve_dimensionless(
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
     let reactions = system.reactions(&eval.grad);
     // The multipliers consistent with the last convex problem (its forces).
-    let updated = frozen.image(&system, problem, &u).multipliers;
     let ca = system.contact_assembler(problem);
+    let updated = frozen.multipliers.updated(
+        &ca,
+        &frozen.contact(),
+        &system.continuation.penalties,
+        problem,
+        &u,
+    );
     let equilibrium = last.residual / last.force_scale;
     let (contact, mut certificate) = certificate::evaluate(
         &ca,
@@ -266,7 +272,7 @@ fn solve_dimensionless(
             force_floor: system.force_floor,
             tolerance: settings.certificate_tolerance,
         },
-    );
+    )?;
     if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
         updated.kkt(&ca, problem, &u, kkt);
