@@ -244,6 +244,9 @@ impl Certificate {
 pub struct Inputs<'a> {
     /// Displacement (DOF order).
     pub u: &'a [f64],
+    /// The friction coefficient μ_i at `u` of every contact point, evaluated once for all
+    /// points ([`ContactAssembler::friction_coefficients`]).
+    pub mu: &'a [f64],
     /// `∇W(u) − f` (DOF order): the interface force at free DOFs of contact nodes.
     pub grad_bulk: &'a [f64],
     /// External forces (DOF order).
@@ -264,17 +267,12 @@ pub struct Inputs<'a> {
 /// `frozen` holds the quantities of the last convex problem (its multipliers give the
 /// pressure at Signorini points and the stick/slip classification of exact friction:
 /// stick where `‖τ + r u_τ‖ ≤ F`, i.e. the projection defining the friction force is
-/// inactive). The friction coefficients at `u` are evaluated once for all points
-/// ([`ContactAssembler::friction_coefficients`]).
-///
-/// # Errors
-/// [`crate::Error::Law`] if a user-defined friction law fails.
-pub fn evaluate(
-    ca: &ContactAssembler<'_>,
-    inp: &Inputs<'_>,
-) -> crate::Result<(Vec<ContactResult>, Certificate)> {
+/// inactive). The friction bound at each point is `F(μ_i, p_i)` with the coefficients
+/// `mu` of the inputs.
+pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResult>, Certificate) {
     let Inputs {
         u,
+        mu,
         grad_bulk,
         f_ext,
         fixed,
@@ -304,7 +302,6 @@ pub fn evaluate(
             .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
             .unwrap_or_default()
     };
-    let mu = ca.friction_coefficients(u)?;
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     let mut scale = f_ext
@@ -467,5 +464,5 @@ pub fn evaluate(
         cert.n_stick += usize::from(r.friction_state == FrictionState::Stick);
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
-    Ok((results, cert))
+    (results, cert)
 }

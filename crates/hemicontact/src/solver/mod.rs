@@ -153,7 +153,8 @@ pub struct Solution {
 ///
 /// # Errors
 /// Invalid settings ([`SolverSettings::validate`]), a matrix that is not positive definite,
-/// a numerical breakdown, or memory exhaustion. Non-convergence is not an error: see
+/// a numerical breakdown, memory exhaustion, or a user-defined friction law that fails
+/// ([`crate::Error::Law`]). Non-convergence is not an error: see
 /// [`SolveReport::converged`].
 pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
     let u0 = problem.prescribed_displacement();
@@ -250,8 +251,10 @@ fn solve_dimensionless(
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
     let reactions = system.reactions(&eval.grad);
-    // The multipliers consistent with the last convex problem (its forces).
     let ca = system.contact_assembler(problem);
+    // The friction coefficients at the answer, one evaluation per contact part.
+    let mu = ca.friction_coefficients(&u)?;
+    // The multipliers consistent with the last convex problem (its forces).
     let updated = frozen.multipliers.updated(
         &ca,
         &frozen.contact(),
@@ -264,6 +267,7 @@ fn solve_dimensionless(
         &ca,
         &certificate::Inputs {
             u: &u,
+            mu: &mu,
             grad_bulk: &eval.grad_bulk,
             f_ext: &system.f_ext,
             fixed: &|k| system.dofs.is_fixed(k),
@@ -272,7 +276,7 @@ fn solve_dimensionless(
             force_floor: system.force_floor,
             tolerance: settings.certificate_tolerance,
         },
-    )?;
+    );
     if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
         updated.kkt(&ca, problem, &u, kkt);
