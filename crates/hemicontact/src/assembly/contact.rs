@@ -117,7 +117,9 @@ impl<'a> ContactAssembler<'a> {
 
     /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` of every point at displacement `u` (0 at
     /// frictionless points): the slips of all points, then one evaluation of each contact
-    /// part's law over the slips of that part's points ([`crate::contact::FrictionCoefficient::values`]).
+    /// part's law over the slips of that part's points
+    /// ([`crate::contact::FrictionCoefficient::values`]). Allocates two vectors of the
+    /// number of points; called once per outer iteration and once for the certificate.
     ///
     /// # Errors
     /// [`Error::Law`] if a user-defined law fails, naming the law
