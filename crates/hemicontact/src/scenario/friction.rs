@@ -106,9 +106,13 @@ impl Scenario {
     pub(super) fn build_friction(&self, k: usize, fs: &FrictionSpec) -> Result<Friction> {
         let f = |name: &str| format!("contact[{k}].friction.{name}");
         let (law, prefix) = self.potential_law(k, fs)?;
-        fs.mu
-            .validate()
-            .map_err(|msg| self.err(&f("mu"), format!("{:?}", fs.mu), &msg))?;
+        let mu = self
+            .given_friction
+            .iter()
+            .find(|(entry, _)| *entry == k)
+            .map_or_else(|| fs.mu.clone(), |(_, mu)| mu.clone());
+        mu.validate()
+            .map_err(|msg| self.err(&f("mu"), format!("{mu:?}"), &msg))?;
         let potential = match law {
             PotentialLaw::Norm {} => FrictionPotential::Norm {
                 treatment: self.norm_treatment(k, fs)?,
@@ -150,7 +154,7 @@ impl Scenario {
         })?;
         Ok(Friction {
             bound: fs.bound,
-            mu: fs.mu.clone(),
+            mu,
             potential,
         })
     }

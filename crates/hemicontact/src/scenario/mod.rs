@@ -41,6 +41,11 @@ pub struct Scenario {
     /// A mesh given in memory (built from arrays, e.g. by the Python package) instead of a
     /// `[mesh]` table; its parts are the names its boundary facets carry.
     pub given_mesh: Option<Mesh>,
+    /// Friction coefficients given in memory (user-defined laws, e.g. Python callables
+    /// through [`crate::contact::CustomCoefficient`]) by contact entry: each replaces the
+    /// `mu` of `[[contact]]` entry k, which the file still gives (any valid law) so that
+    /// the schema holds.
+    pub given_friction: Vec<(usize, crate::contact::FrictionCoefficient)>,
 }
 
 impl Scenario {
@@ -105,6 +110,7 @@ impl Scenario {
             memory_limit: crate::resources::available_memory(),
             dir: None,
             given_mesh: None,
+            given_friction: Vec::new(),
         })
     }
 
@@ -165,6 +171,15 @@ impl Scenario {
     }
 
     fn build_contact(&self, mesh: &Mesh) -> Result<Vec<ContactBoundary>> {
+        for (k, mu) in &self.given_friction {
+            if self.file.contact.get(*k).is_none_or(|c| c.friction.is_none()) {
+                return Err(self.err(
+                    &format!("contact[{k}].friction.mu"),
+                    format!("{mu:?} (given in memory)"),
+                    "a law for a [[contact]] entry that has a [contact.friction] table",
+                ));
+            }
+        }
         let mut out = Vec::new();
         for (k, c) in self.file.contact.iter().enumerate() {
             let f = |name: &str| format!("contact[{k}].{name}");
