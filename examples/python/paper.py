@@ -31,7 +31,9 @@ def _levels(text: str):
     try:
         levels = [int(v) for v in text.split(",") if v.strip()]
     except ValueError:
-        raise argparse.ArgumentTypeError(f"--levels {text!r}: comma-separated integers, e.g. 8,16,32")
+        raise argparse.ArgumentTypeError(
+            f"--levels {text!r}: comma-separated integers, e.g. 8,16,32"
+        ) from None
     if not levels or min(levels) < 1:
         raise argparse.ArgumentTypeError(f"--levels {text!r}: integers ≥ 1, e.g. 8,16,32")
     return levels
@@ -58,7 +60,7 @@ def main(argv=None) -> int:
         results.append((r, tag, label))
 
     fig, axes = plt.subplots(1, 2, figsize=(11.5, 7.0), layout="constrained")
-    for ax, (r, tag, label) in zip(axes, results):
+    for ax, (r, _, label) in zip(axes, results):
         plot.deformed(r, ax=ax, title=f"{label}, {args.n}×{args.n} mesh")
     path = os.path.join(args.out, "deformed.png")
     fig.savefig(path, dpi=120, bbox_inches="tight")

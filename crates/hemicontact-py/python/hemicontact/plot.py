@@ -52,6 +52,7 @@ STATE_LABELS: Dict[str, str] = {
     "stick": "stick",
     "slip": "slip",
 }
+_PREFIXES = [(1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa"), (1.0, "Pa")]
 _FOUNDATION_COLORS = ["#5b3a1a", "#6a3d9a", "#1b7837", "#b35806"]
 
 
@@ -389,6 +390,8 @@ def interface(result: Any, part: Optional[str] = None, ax: Any = None) -> Any:
     else:
         fig, axes = ax.figure, [ax]
     c = result.contact
+    # Tractions below 1e-9 of the body's largest stress are round-off of equilibrium.
+    floor = 1e-9 * max(float(np.abs(result.stress).max()), 1e-300)
     for a, p in zip(axes, parts):
         rows = p.index
         s = p.s
@@ -400,10 +403,19 @@ def interface(result: Any, part: Optional[str] = None, ax: Any = None) -> Any:
                dashes=(4, 3))
         a.set_xlim(s[0], s[-1] if s[-1] > s[0] else s[0] + 1.0)
         top = max(float(c["pressure"][rows].max()), float(c["bound"][rows].max()), float(ft.max()))
-        a.set_ylim(0.0, 1.08 * top if top > 0 else 1.0)
+        if top <= floor:
+            # Round-off only (every point separated): a unit range, and say so.
+            top = 1.0
+            a.text(0.5, 0.5, "no interface traction (every point separated)",
+                   transform=a.transAxes, ha="center", va="center", fontsize=9, color="0.3")
+        a.set_ylim(0.0, 1.08 * top)
+        # Tick labels in Pa, kPa, MPa or GPa (the data stay in Pa): no exponent label,
+        # which the state band would hide.
+        factor, unit = next((f, u) for f, u in _PREFIXES if top >= f or f == 1.0)
+        a.yaxis.set_major_formatter(FuncFormatter(lambda v, _, f=factor: f"{v / f:g}"))
         x0, y0 = result.points[c["node"][rows[0]]]
         a.set_xlabel(f"arc length s along {p.name} from ({x0:.3g}, {y0:.3g}) (m)")
-        a.set_ylabel("traction (Pa)")
+        a.set_ylabel(f"traction ({unit})")
         a.grid(alpha=0.3)
         # State band above the panel: one span per point, halfway to its neighbours.
         band = a.inset_axes([0.0, 1.015, 1.0, 0.06], sharex=a)
