@@ -39,7 +39,8 @@ def close_figures():
 
 
 def _colorbars(fig):
-    return [ax._colorbar for ax in fig.axes if getattr(ax, "_colorbar", None) is not None]
+    axes = [a for ax in fig.axes for a in [ax, *ax.child_axes]]
+    return [ax._colorbar for ax in axes if getattr(ax, "_colorbar", None) is not None]
 
 
 def _legend_texts(ax):

@@ -63,6 +63,12 @@ def _axes(ax: Any, figsize: Tuple[float, float]) -> Tuple[Any, Any]:
     return ax.figure, ax
 
 
+def _colorbar(fig: Any, ax: Any, mappable: Any, label: str) -> Any:
+    """A colorbar as tall as the drawn (equal-aspect) axes box, just right of it."""
+    cax = ax.inset_axes([1.03, 0.0, 0.035, 1.0])
+    return fig.colorbar(mappable, cax=cax, label=label)
+
+
 def _wrap(title: str, width: int = 44) -> str:
     return "\n".join(textwrap.wrap(title, width)) if title else ""
 
@@ -110,6 +116,12 @@ def _parts(result: Any) -> List[_Part]:
     names = list(dict.fromkeys(c["boundary"].tolist()))
     edges = _boundary_edges(result.points, result.cells)
     pts = result.points
+    # Start key: y, then x, with y compared to 1e-9 of the mesh's extent (round-off ties).
+    tol = 1e-9 * float(np.ptp(pts, axis=0).max())
+
+    def first(n: int) -> Tuple[float, float]:
+        return (round(pts[n, 1] / tol) if tol > 0 else pts[n, 1], pts[n, 0])
+
     out = []
     for name in names:
         rows = np.flatnonzero(c["boundary"] == name)
@@ -125,7 +137,7 @@ def _parts(result: Any) -> List[_Part]:
         while left:
             ends = [n for n in left if len([m for m in neighbours[n] if m in left]) <= 1]
             pool = ends or sorted(left)
-            start = min(pool, key=lambda n: (pts[n, 1], pts[n, 0]))
+            start = min(pool, key=first)
             chain = [start]
             left.discard(start)
             while True:
@@ -135,7 +147,7 @@ def _parts(result: Any) -> List[_Part]:
                 chain.append(nxt[0])
                 left.discard(nxt[0])
             chains.append(chain)
-        chains.sort(key=lambda ch: (pts[ch[0], 1], pts[ch[0], 0]))
+        chains.sort(key=lambda ch: first(ch[0]))
         order = [n for ch in chains for n in ch]
         xy = pts[order]
         s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(xy, axis=0), axis=1))])
@@ -229,12 +241,27 @@ def deformed(
         raise ValueError(f"deformed: scale = {scale!r}: a finite number ≥ 0")
     if isinstance(max_arrows, bool) or not isinstance(max_arrows, int) or max_arrows < 1:
         raise ValueError(f"deformed: max_arrows = {max_arrows!r}: an integer ≥ 1")
-    fig, ax = _axes(ax, (6.4, 6.8))
     X = result.points
     P = X + scale * result.displacement
     cells = result.cells
     c = result.contact
     handles: List[Any] = []
+    parts = _parts(result) if len(c["node"]) else []
+    gap0 = _initial_gap(result) if parts else np.zeros(0)
+
+    # Axis limits (m): body, deformed body and foundations, with an empty strip on top for
+    # the reference arrow; a new figure gets the height that fits them.
+    lo = np.minimum(X.min(axis=0), P.min(axis=0))
+    hi = np.maximum(X.max(axis=0), P.max(axis=0))
+    for part in parts:
+        q = X[c["node"][part.index]] + gap0[part.index, None] * c["normal"][part.index, :2]
+        lo, hi = np.minimum(lo, q.min(axis=0)), np.maximum(hi, q.max(axis=0))
+    size = float(max(hi - lo))
+    pad = 0.06 * size
+    xlim = (lo[0] - pad, hi[0] + pad)
+    ylim = (lo[1] - pad, hi[1] + 0.16 * size)
+    tall = (ylim[1] - ylim[0]) / (xlim[1] - xlim[0])
+    fig, ax = _axes(ax, (6.4, min(10.0, max(3.5, 4.8 * tall + 2.1))))
 
     # Cells: coloured by a field, else light; the mesh lines thinner on fine meshes.
     lw = 0.5 if len(cells) <= 2000 else 0.25 if len(cells) <= 10000 else 0.0
@@ -242,7 +269,7 @@ def deformed(
         values = getattr(result, field)
         mappable = ax.tripcolor(P[:, 0], P[:, 1], cells, facecolors=values, cmap="viridis",
                                 edgecolors="none", rasterized=True)
-        fig.colorbar(mappable, ax=ax, label=CELL_FIELDS[field], shrink=0.75)
+        _colorbar(fig, ax, mappable, CELL_FIELDS[field])
         if lw > 0:
             ax.triplot(P[:, 0], P[:, 1], cells, color="white", lw=lw * 0.6, alpha=0.35)
     else:
@@ -257,8 +284,6 @@ def deformed(
     h_def, = ax.plot(*segs_p.reshape(-1, 2).T, "-", color="0.1", lw=1.2, label="deformed")
     handles += [h_und, h_def]
 
-    parts = _parts(result) if len(c["node"]) else []
-    gap0 = _initial_gap(result) if parts else np.zeros(0)
     for k, part in enumerate(parts):
         # Foundation: the part's chain shifted by g along the node normals; the end nodes
         # added by _extend take their neighbour's normal and gap.
@@ -275,12 +300,11 @@ def deformed(
     if parts:
         state = np.where(c["normal_state"] == "separated", "separated", c["friction_state"])
         state = np.where(state == "none", "contact", state)
-        state = np.where(c["normal_state"] == "separated", "separated", state)
         pc = P[c["node"]]
         if field in POINT_FIELDS:
             sc = ax.scatter(pc[:, 0], pc[:, 1], c=c[field], s=22, cmap="plasma", zorder=4,
                             edgecolors="k", linewidths=0.3)
-            fig.colorbar(sc, ax=ax, label=POINT_FIELDS[field], shrink=0.75)
+            _colorbar(fig, ax, sc, POINT_FIELDS[field])
         else:
             for st in ("separated", "contact", "stick", "slip"):
                 on = state == st
@@ -289,16 +313,8 @@ def deformed(
                                    zorder=4, label=STATE_LABELS[st], linewidths=0)
                     handles.append(h)
 
-    # Axis limits with an empty strip on top for the reference arrow.
-    lo = np.minimum(X.min(axis=0), P.min(axis=0))
-    hi = np.maximum(X.max(axis=0), P.max(axis=0))
-    for part in parts:
-        q = X[c["node"][part.index]] + gap0[part.index, None] * c["normal"][part.index, :2]
-        lo, hi = np.minimum(lo, q.min(axis=0)), np.maximum(hi, q.max(axis=0))
-    size = float(max(hi - lo))
-    pad = 0.06 * size
-    ax.set_xlim(lo[0] - pad, hi[0] + pad)
-    ax.set_ylim(lo[1] - pad, hi[1] + 0.16 * size)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
     ax.set_aspect("equal")
 
     # Green arrows on the plain mesh, black (white-edged) ones over a coloured field.
