@@ -7,7 +7,6 @@ import math
 import pathlib
 import subprocess
 import sys
-import types
 
 import matplotlib
 
@@ -135,7 +134,8 @@ def test_bad_input_is_a_value_error_naming_the_argument(paper16):
         plot.deformed(paper16, scale=-1.0)
     with pytest.raises(ValueError, match="max_arrows = 0"):
         plot.deformed(paper16, max_arrows=0)
-    three_d = types.SimpleNamespace(dim=3, title="3D")
+    three_d = hc.solve(hc.load(REPO / "scenarios" / "paper3d.toml").with_resolution(4))
+    assert three_d.dim == 3
     for f in (plot.deformed, plot.interface):
         with pytest.raises(ValueError, match="result.dim = 3"):
             f(three_d)
