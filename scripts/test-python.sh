@@ -17,7 +17,7 @@ py="$venv/bin/python"
 "$py" -m pip install --quiet --disable-pip-version-check ./crates/hemicontact-py
 # Only numpy at import time: importing the package must not need the test extras.
 "$py" -c "import hemicontact, sys; assert 'matplotlib' not in sys.modules and 'meshio' not in sys.modules; print('hemicontact', hemicontact.__version__)"
-"$py" -m pip install --quiet --disable-pip-version-check pytest meshio matplotlib
+"$py" -m pip install --quiet --disable-pip-version-check pytest meshio matplotlib gmsh
 export HEMICONTACT_BIN="${HEMICONTACT_BIN:-$PWD/target/release/hemicontact}"
 # Run from the tests' folder so that `import hemicontact` finds the installed package, not
 # the source tree.

@@ -25,7 +25,8 @@ pub fn to_py(e: Error) -> PyErr {
         | Error::Parse { .. }
         | Error::Mesh(_)
         | Error::MeshFile { .. }
-        | Error::RigidMotion { .. } => ScenarioError::new_err(text),
+        | Error::RigidMotion { .. }
+        | Error::Law { .. } => ScenarioError::new_err(text),
         Error::Io { .. } | Error::OutputBusy { .. } => PyOSError::new_err(text),
         Error::OutOfMemory(_) => PyMemoryError::new_err(text),
         Error::Interrupted => PyKeyboardInterrupt::new_err(text),

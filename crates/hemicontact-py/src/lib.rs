@@ -7,6 +7,7 @@
 mod convert;
 mod errors;
 mod interrupt;
+mod laws;
 mod mesh;
 mod scenario;
 mod solution;

@@ -3,18 +3,43 @@
 
 use crate::convert::{to_python, to_toml};
 use crate::errors::{scenario_error, to_py};
+use crate::laws::PySlipFunction;
 use crate::mesh::NativeMesh;
+use hemicontact::contact::{CustomCoefficient, FrictionCoefficient};
 use hemicontact::scenario::schema::ScenarioFile;
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::Error;
 use pyo3::prelude::*;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// A scenario of the library (parsed, not yet resolved into a problem).
 #[pyclass(module = "hemicontact._core", name = "Scenario", frozen)]
 pub struct NativeScenario {
     /// The library's scenario.
     pub inner: Scenario,
+    /// The Python laws of the scenario (also in `inner.given_friction`), whose exceptions
+    /// are raised again in place of the library's error.
+    pub laws: Vec<Arc<PySlipFunction>>,
+}
+
+impl NativeScenario {
+    /// A scenario without Python laws.
+    fn plain(inner: Scenario) -> Self {
+        NativeScenario {
+            inner,
+            laws: Vec::new(),
+        }
+    }
+
+    /// The Python exception of the library error `e`: the exception a Python law raised,
+    /// if one did (the library's error then only reports it), else [`to_py`] of `e`.
+    pub fn error(&self, e: Error) -> PyErr {
+        self.laws
+            .iter()
+            .find_map(|law| law.take_error())
+            .unwrap_or_else(|| to_py(e))
+    }
 }
 
 #[pymethods]
@@ -23,19 +48,22 @@ impl NativeScenario {
     #[staticmethod]
     fn from_file(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         let inner = py.detach(|| Scenario::from_file(&path)).map_err(to_py)?;
-        Ok(NativeScenario { inner })
+        Ok(NativeScenario::plain(inner))
     }
 
     /// The scenario of the Python dict `value` (the schema of a scenario file), named
     /// `source` in messages, with an optional mesh given in memory instead of `[mesh]` and
-    /// the folder `dir` against which relative paths (`mesh.file`) are resolved.
+    /// the folder `dir` against which relative paths (`mesh.file`) are resolved, and the
+    /// friction coefficients `laws` written in Python: (contact entry, callable, name), each
+    /// replacing the entry's `mu`.
     #[staticmethod]
-    #[pyo3(signature = (value, source, mesh=None, dir=None))]
+    #[pyo3(signature = (value, source, mesh=None, dir=None, laws=Vec::new()))]
     fn from_dict(
         value: &Bound<'_, PyAny>,
         source: &str,
         mesh: Option<&NativeMesh>,
         dir: Option<PathBuf>,
+        laws: Vec<(usize, Py<PyAny>, String)>,
     ) -> PyResult<Self> {
         let table = to_toml(value, "", source)?;
         if !table.is_table() {
@@ -60,6 +88,17 @@ impl NativeScenario {
                 },
             })
         })?;
+        let laws: Vec<(usize, Arc<PySlipFunction>)> = laws
+            .into_iter()
+            .map(|(k, f, name)| (k, Arc::new(PySlipFunction::new(f, name))))
+            .collect();
+        let given_friction = laws
+            .iter()
+            .map(|(k, law)| {
+                let mu = CustomCoefficient::new(law.name.clone(), law.clone());
+                (*k, FrictionCoefficient::Custom(mu))
+            })
+            .collect();
         Ok(NativeScenario {
             inner: Scenario {
                 source: source.to_string(),
@@ -67,7 +106,9 @@ impl NativeScenario {
                 memory_limit: hemicontact::resources::available_memory(),
                 dir,
                 given_mesh: mesh.map(|m| m.mesh.clone()),
+                given_friction,
             },
+            laws: laws.into_iter().map(|(_, law)| law).collect(),
         })
     }
 
@@ -77,7 +118,7 @@ impl NativeScenario {
     fn paper(n: usize, c_kappa: f64) -> PyResult<Self> {
         let text = builtin::paper(n, c_kappa);
         let inner = Scenario::from_str(&text, "<built-in paper>").map_err(to_py)?;
-        Ok(NativeScenario { inner })
+        Ok(NativeScenario::plain(inner))
     }
 
     /// The scenario as a dict of the file's schema (without a mesh given in memory).
@@ -108,7 +149,10 @@ impl NativeScenario {
     /// The same scenario with `n` squares along x (generated meshes only).
     fn with_resolution(&self, n: usize) -> PyResult<Self> {
         let inner = self.inner.with_resolution(n).map_err(to_py)?;
-        Ok(NativeScenario { inner })
+        Ok(NativeScenario {
+            inner,
+            laws: self.laws.clone(),
+        })
     }
 
     /// Resolves and validates the scenario (mesh, laws, supports, settings); returns the
@@ -120,13 +164,15 @@ impl NativeScenario {
             scenario.into_problem_with_notes()
         })
         .map(|(_, notes)| notes)
-        .map_err(to_py)
+        .map_err(|e| self.error(e))
     }
 
     /// The mesh the scenario solves on (generated, read or given).
     fn mesh(&self, py: Python<'_>) -> PyResult<NativeMesh> {
         let scenario = &self.inner;
-        let problem = py.detach(|| scenario.into_problem()).map_err(to_py)?;
+        let problem = py
+            .detach(|| scenario.into_problem())
+            .map_err(|e| self.error(e))?;
         Ok(NativeMesh {
             mesh: problem.mesh().clone(),
         })

@@ -38,11 +38,11 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
             let (problem, notes) = s.into_problem_with_notes()?;
             Ok::<_, hemicontact::Error>((problem, notes, settings))
         })
-        .map_err(to_py)?;
+        .map_err(|e| scenario.error(e))?;
     let solution = interrupt::run(py, |stop| {
         solve_interruptible(&problem, &settings, problem.prescribed_displacement(), stop)
     })?
-    .map_err(to_py)?;
+    .map_err(|e| scenario.error(e))?;
     let mut summary = Summary::new(
         &problem,
         &settings,
@@ -88,7 +88,7 @@ pub fn convergence(
         .unwrap_or_else(|| "scenario".to_string());
     let study = py
         .detach(|| study::run(s, &label, &settings, &mut |_| {}))
-        .map_err(to_py)?;
+        .map_err(|e| scenario.error(e))?;
     serde_json::to_string(&study)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
 }

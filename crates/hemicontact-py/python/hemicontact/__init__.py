@@ -21,6 +21,17 @@ from ._mesh import Mesh
 from ._result import Result, convergence, solve
 from ._scenario import Scenario, load, paper_example
 
+
+
+def __getattr__(name: str):
+    # `hemicontact.plot` needs matplotlib: imported on first use, not with the package.
+    if name == "plot":
+        import importlib
+
+        return importlib.import_module(".plot", __name__)
+    raise AttributeError(f"module 'hemicontact' has no attribute {name!r}")
+
+
 __all__ = [
     "Mesh",
     "Result",

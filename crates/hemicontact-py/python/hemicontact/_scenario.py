@@ -4,7 +4,7 @@ import math
 import os
 from typing import Any, Dict, List, Mapping, Optional, Union
 
-from . import _core
+from . import _core, _laws
 from ._core import ScenarioError
 from ._mesh import Mesh
 
@@ -21,9 +21,15 @@ class Scenario:
     here). A scenario is checked completely when it is solved or by :meth:`check`.
     """
 
-    def __init__(self, native: "_core.Scenario", mesh: Optional[Mesh] = None) -> None:
+    def __init__(
+        self,
+        native: "_core.Scenario",
+        mesh: Optional[Mesh] = None,
+        laws: Optional[List[_laws.Law]] = None,
+    ) -> None:
         self._native = native
         self._mesh = mesh
+        self._laws = laws or []
 
     @classmethod
     def from_dict(
@@ -38,10 +44,23 @@ class Scenario:
         ``{"mesh": {"kind": "rectangle", "size": [4.0, 4.0], "n": [16, 16]},
         "material": {"young": 2000.0, "poisson": 0.3}, ...}``.
 
-        ``d["mesh"]`` may also be a :class:`Mesh` (a mesh built in memory). ``source``
+        ``d["mesh"]`` may also be a :class:`Mesh` (a mesh built in memory), and the ``mu``
+        of a ``[contact.friction]`` table a Python callable μ(r) (see below). ``source``
         names the scenario in error messages; relative file paths (``mesh.file``) are
         resolved against ``base_dir`` (default: the working folder). Numpy arrays and
         scalars are accepted where lists and numbers are.
+
+        **User-defined friction coefficients.** ``"mu": f`` with a callable ``f`` makes
+        μ(r) a law written in Python: the solver calls ``f`` with a numpy array of the slips
+        r (m) of all points of the contact part — once per outer iteration, once at the
+        start and once for the certificate, never per point — and expects an array of the
+        same shape (or a scalar) of finite values ≥ 0 (dimensionless for ``bound =
+        "coulomb"``, Pa for ``"tresca"``). When the scenario is checked, ``f`` is sampled
+        at r = 0 and at 121 slips from 1e-10 to 100 m (ten per decade); the uniqueness check then uses the
+        largest sampled value and secant slope as estimates of sup μ and its Lipschitz
+        constant. An exception raised by ``f`` propagates as itself (with a note naming
+        the law on Python ≥ 3.11); a NaN, negative or wrongly shaped result raises
+        :class:`ScenarioError` naming the law and the slip.
 
         Raises :class:`ScenarioError` naming the field for unknown keys, wrong types or
         values out of range.
@@ -50,7 +69,8 @@ class Scenario:
             raise ScenarioError(
                 f"{source}: field `(scenario)` = a {type(d).__name__}: a dict of tables"
             )
-        value = dict(d)
+        value, laws = _laws.extract(dict(d))
+        value = dict(value)
         mesh = value.get("mesh")
         native_mesh = None
         if isinstance(mesh, Mesh):
@@ -59,16 +79,20 @@ class Scenario:
         else:
             mesh = None
         base = os.fspath(base_dir) if base_dir is not None else None
-        return cls(_core.Scenario.from_dict(value, source, native_mesh, base), mesh)
+        native = _core.Scenario.from_dict(
+            value, source, native_mesh, base, [(k, f, name) for k, f, name in laws]
+        )
+        return cls(native, mesh, laws)
 
     def to_dict(self) -> Dict[str, Any]:
         """The scenario as a dict of the file's schema (every setting, defaults included);
         ``Scenario.from_dict(s.to_dict())`` gives the same scenario. A mesh given in memory
-        is the :class:`Mesh` under ``"mesh"``."""
+        is the :class:`Mesh` under ``"mesh"``, a friction coefficient written in Python its
+        callable under ``"mu"``."""
         d = self._native.to_dict()
         if self._mesh is not None:
             d["mesh"] = self._mesh
-        return d
+        return _laws.restore(d, self._laws)
 
     @property
     def source(self) -> str:
@@ -83,7 +107,8 @@ class Scenario:
     def with_resolution(self, n: int) -> "Scenario":
         """The same scenario with ``n`` squares along x (generated meshes only), for
         refinement studies."""
-        return Scenario(self._native.with_resolution(_count(n, "n", self.source)), self._mesh)
+        native = self._native.with_resolution(_count(n, "n", self.source))
+        return Scenario(native, self._mesh, self._laws)
 
     def check(self) -> List[str]:
         """Resolves and validates everything (mesh, laws, supports, loads, settings)

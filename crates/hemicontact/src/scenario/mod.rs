@@ -172,7 +172,12 @@ impl Scenario {
 
     fn build_contact(&self, mesh: &Mesh) -> Result<Vec<ContactBoundary>> {
         for (k, mu) in &self.given_friction {
-            if self.file.contact.get(*k).is_none_or(|c| c.friction.is_none()) {
+            if self
+                .file
+                .contact
+                .get(*k)
+                .is_none_or(|c| c.friction.is_none())
+            {
                 return Err(self.err(
                     &format!("contact[{k}].friction.mu"),
                     format!("{mu:?} (given in memory)"),
