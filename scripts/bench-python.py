@@ -7,7 +7,9 @@ writes its results, alternately with the command-line program (`hemicontact solv
 (`hemicontact.solve(hemicontact.load(FILE)).write(DIR)`, wall time of the call), for
 `--rounds` rounds, and prints the medians and their ratio. Also prints the median of the
 solver's own time (`timings.total`) of the Python solves, and how long the conversion of the
-result into numpy arrays takes (the Python-only part).
+result into numpy arrays takes (the Python-only part), and what a friction coefficient
+written in Python costs: the same scenario with the built-in exponential law replaced by the
+identical numpy function, per outer iteration and per call.
 
 Usage: python scripts/bench-python.py [--scenario FILE] [--rounds 7] [--cli PATH]
 (needs the package installed, e.g. `bash scripts/test-python.sh` or `pip install
@@ -21,6 +23,8 @@ import statistics
 import subprocess
 import tempfile
 import time
+
+import numpy as np
 
 import hemicontact as hc
 
@@ -48,6 +52,35 @@ def main() -> None:
             t = time.perf_counter()
             hc.Result(r._native)
             convert.append(time.perf_counter() - t)
+    # A Python law identical to the built-in exponential one (the scenario's mu).
+    builtin = hc.load(args.scenario)
+    d = builtin.to_dict()
+    calls = [0]
+    laws = []
+    for c in d.get("contact", []):
+        mu = c.get("friction", {}).get("mu", {})
+        if mu.get("law") == "exponential":
+            a, b, beta = mu["a"], mu["b"], mu["beta"]
+
+            def law(r, a=a, b=b, beta=beta):
+                calls[0] += 1
+                return (a - b) * np.exp(-beta * r) + b
+
+            c["friction"]["mu"] = law
+            laws.append(law)
+    custom = hc.Scenario.from_dict(d, source=args.scenario) if laws else None
+    plain, python, outer, per_call = [], [], [], []
+    if custom is not None:
+        for _ in range(args.rounds):
+            t = time.perf_counter()
+            r0 = hc.solve(builtin)
+            plain.append(time.perf_counter() - t)
+            calls[0] = 0
+            t = time.perf_counter()
+            r1 = hc.solve(custom)
+            python.append(time.perf_counter() - t)
+            outer.append(len(r1.history["outer"]))
+            per_call.append(calls[0])
     m = statistics.median
     print(f"scenario {args.scenario}, {args.rounds} rounds, medians:")
     print(f"  command line (solve + write, process)   {m(cli):.3f} s")
@@ -55,6 +88,13 @@ def main() -> None:
     print(f"  ratio Python / command line             {m(py) / m(cli):.3f}")
     print(f"  solver's own time (timings.total)       {m(solver):.3f} s")
     print(f"  result into numpy arrays (Python only)  {m(convert) * 1e3:.1f} ms")
+    if python:
+        extra = m(python) - m(plain)
+        print(f"built-in exponential law                  {m(plain):.3f} s")
+        print(f"the same law as a Python function         {m(python):.3f} s "
+              f"({m(per_call):.0f} calls, {m(outer):.0f} outer iterations)")
+        print(f"  difference per outer iteration          {extra / m(outer) * 1e3:.2f} ms")
+        print(f"  difference per call                     {extra / m(per_call) * 1e3:.3f} ms")
 
 
 if __name__ == "__main__":
