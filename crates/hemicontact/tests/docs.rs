@@ -98,7 +98,11 @@ fn key_rows(text: &str) -> Vec<Row> {
             continue;
         }
         let c = cells(line);
-        let Some(key) = c.get(1).and_then(|cell| code(cell)).filter(|k| is_key_path(k)) else {
+        let Some(key) = c
+            .get(1)
+            .and_then(|cell| code(cell))
+            .filter(|k| is_key_path(k))
+        else {
             continue;
         };
         // | key | type | unit | default | allowed |, with the empty cells outside the pipes.
@@ -160,7 +164,9 @@ fn leaves(v: &Value, prefix: &str, out: &mut BTreeSet<String>) {
             for (name, x) in t {
                 match x {
                     Value::Table(_) => leaves(x, &join(name), out),
-                    Value::Array(items) if !items.is_empty() && items.iter().all(Value::is_table) => {
+                    Value::Array(items)
+                        if !items.is_empty() && items.iter().all(Value::is_table) =>
+                    {
                         for item in items {
                             leaves(item, &format!("{}[]", join(name)), out);
                         }
@@ -223,7 +229,11 @@ fn every_toml_example_is_a_valid_scenario() {
 fn documented_keys_and_example_keys_are_the_same() {
     let text = read("docs/scenario.md");
     let rows = key_rows(&text);
-    assert!(rows.len() > 50, "the key tables of docs/scenario.md ({} rows)", rows.len());
+    assert!(
+        rows.len() > 50,
+        "the key tables of docs/scenario.md ({} rows)",
+        rows.len()
+    );
     let mut documented = BTreeSet::new();
     for r in &rows {
         assert!(
