@@ -63,19 +63,21 @@ struct Row {
 
 /// The cells of a Markdown table row, split at unescaped `|`.
 fn cells(line: &str) -> Vec<String> {
-    let mut out = vec![String::new()];
+    let mut out = Vec::new();
+    let mut cell = String::new();
     let mut chars = line.chars().peekable();
     while let Some(c) = chars.next() {
         match c {
             '\\' if chars.peek() == Some(&'|') => {
-                out.last_mut().unwrap().push('|');
+                cell.push('|');
                 chars.next();
             }
-            '|' => out.push(String::new()),
-            c => out.last_mut().unwrap().push(c),
+            '|' => out.push(std::mem::take(&mut cell).trim().to_string()),
+            c => cell.push(c),
         }
     }
-    out.into_iter().map(|c| c.trim().to_string()).collect()
+    out.push(cell.trim().to_string());
+    out
 }
 
 /// A cell holding one `code` span, without the backticks.
