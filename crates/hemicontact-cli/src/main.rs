@@ -363,6 +363,9 @@ fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
         u.c_j,
         u.alpha_j
     );
+    if let Some(estimated) = &u.estimated {
+        say!("  {estimated}");
+    }
     match (&u.note, u.trace_constant) {
         (Some(note), _) => say!("  not applicable: {note}"),
         (None, Some(g)) => say!(

@@ -93,6 +93,15 @@ pub enum Error {
         /// The free motions in words and how far the body moved.
         motions: String,
     },
+    /// A user-defined law failed during a solve: its function returned an error, or a value
+    /// that is not finite or is negative (see [`crate::contact::slip_law`]).
+    #[error("law `{law}`: {message}")]
+    Law {
+        /// The law, by its path and name, e.g. `contact[0].friction.mu (my_law)`.
+        law: String,
+        /// What went wrong, naming the slip (m) where it did.
+        message: String,
+    },
     /// A numerical breakdown (NaN or infinity) during a solve.
     #[error("numerical breakdown: {0}")]
     Breakdown(String),

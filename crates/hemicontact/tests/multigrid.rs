@@ -51,7 +51,7 @@ fn rectangle_problem(n: usize) -> Problem {
 fn linear_system(p: &Problem) -> (System, Vec<f64>, Vec<f64>) {
     let mut system = System::new(p, &SolverSettings::default()).unwrap();
     let u = vec![0.0; p.mesh().dim() * p.mesh().n_nodes()];
-    let frozen = hemicontact::solver::Frozen::initial(&system, p, &u);
+    let frozen = hemicontact::solver::Frozen::initial(&system, p, &u).expect("friction data");
     let mut eval = hemicontact::solver::Evaluation::new(&system);
     system.evaluate(p, &u, &frozen, &mut eval, true);
     let mut b = vec![0.0; system.pattern.n()];

@@ -54,7 +54,7 @@ fn patch_test_3d() {
                 }
             }
         }
-        let frozen = hemicontact::solver::Frozen::initial(&system, &p, &u);
+        let frozen = hemicontact::solver::Frozen::initial(&system, &p, &u).expect("friction data");
         let settings = NewtonSettings::default();
         let mut eval = hemicontact::solver::Evaluation::new(&system);
         let mut energy = hemicontact::solver::convex::ConvexProblem::new(

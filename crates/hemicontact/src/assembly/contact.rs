@@ -23,6 +23,7 @@
 use super::pattern::{SystemPattern, FIXED_SLOT};
 pub use crate::contact::friction::project_ball;
 use crate::contact::{ContactBoundary, ContactNodes, TangentialData};
+use crate::error::{Error, Result};
 
 /// The per-point data of the contact terms held fixed over one convex problem: the friction
 /// data of the convexification and the contact multipliers of the exact constraints. The
@@ -73,8 +74,6 @@ pub struct PointState {
     pub slip: f64,
     /// Contact pressure p(u_ν) ≥ 0.
     pub pressure: f64,
-    /// Friction bound F at this state (not frozen).
-    pub bound: f64,
 }
 
 /// Contact terms over the contact points.
@@ -94,9 +93,11 @@ pub struct ContactAssembler<'a> {
 }
 
 impl<'a> ContactAssembler<'a> {
-    /// State of point `i` at displacement `u`, with the friction bound evaluated at that
-    /// state. At a Signorini point the pressure is the updated multiplier
-    /// `(λ_i + r_i (u_ν − g))_+` of the frozen multiplier λ_i in `frozen`.
+    /// State of point `i` at displacement `u` (kinematics and pressure; the friction
+    /// coefficient is evaluated for all points at once by
+    /// [`ContactAssembler::friction_coefficients`]). At a Signorini point the pressure is
+    /// the updated multiplier `(λ_i + r_i (u_ν − g))_+` of the frozen multiplier λ_i in
+    /// `frozen`.
     #[inline]
     pub fn state(&self, u: &[f64], i: usize, frozen: &ContactData<'_>) -> PointState {
         let cb = &self.boundaries[self.nodes.boundary[i] as usize];
@@ -106,17 +107,49 @@ impl<'a> ContactAssembler<'a> {
             .normal
             .effective(cb.gap, frozen.pressure[i], self.penalty[i]);
         let pressure = law.pressure(u_nu, gap);
-        let bound = cb
-            .friction
-            .as_ref()
-            .map_or(0.0, |f| f.bound_value(slip, pressure));
         PointState {
             u_nu,
             u_tau,
             slip,
             pressure,
-            bound,
         }
+    }
+
+    /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` of every point at displacement `u` (0 at
+    /// frictionless points): the slips of all points, then one evaluation of each contact
+    /// part's law over the slips of that part's points
+    /// ([`crate::contact::FrictionCoefficient::values`]). Allocates two vectors of the
+    /// number of points; called once per outer iteration and once for the certificate.
+    ///
+    /// # Errors
+    /// [`Error::Law`] if a user-defined law fails, naming the law
+    /// (`contact[k].friction.mu (name)`) and the slip.
+    pub fn friction_coefficients(&self, u: &[f64]) -> Result<Vec<f64>> {
+        let n = self.nodes.len();
+        let slips: Vec<f64> = (0..n)
+            .map(|i| {
+                let (_, t) = self.nodes.kinematics(self.dim, u, i);
+                (t[0] * t[0] + t[1] * t[1]).sqrt()
+            })
+            .collect();
+        let mut mu = vec![0.0; n];
+        let mut start = 0;
+        // Points are ordered by boundary: each run is one contact part.
+        for run in self.nodes.boundary.chunk_by(|a, b| a == b) {
+            let range = start..start + run.len();
+            start = range.end;
+            let b = run[0] as usize;
+            let Some(fr) = &self.boundaries[b].friction else {
+                continue;
+            };
+            fr.mu
+                .values(&slips[range.clone()], &mut mu[range])
+                .map_err(|message| Error::Law {
+                    law: format!("contact[{b}].friction.mu ({})", fr.mu.name()),
+                    message,
+                })?;
+        }
+        Ok(mu)
     }
 
     /// The friction data of the convexification at displacement `u`: the bound
@@ -125,18 +158,23 @@ impl<'a> ContactAssembler<'a> {
     /// the current multiplier λ_i, not from its update `(λ_i + r_i(u_ν − g))_+`: the two
     /// agree at the fixed point, but the update amplifies the error of an inexact solve by
     /// the large penalty r, which would put a floor under the fixed-point residual.
-    pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> FrictionData {
+    ///
+    /// # Errors
+    /// As [`ContactAssembler::friction_coefficients`].
+    pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> Result<FrictionData> {
         let n = self.nodes.len();
+        let mu = self.friction_coefficients(u)?;
         let mut data = FrictionData::zero(n);
         for i in 0..n {
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
             let Some(fr) = &cb.friction else { continue };
             let s = self.state(u, i, current);
-            let bound = if cb.normal.is_exact() {
-                fr.bound_value(s.slip, current.pressure[i])
+            let pressure = if cb.normal.is_exact() {
+                current.pressure[i]
             } else {
-                s.bound
+                s.pressure
             };
+            let bound = fr.bound_of(mu[i], pressure);
             data.bound[i] = bound;
             let hs = fr.potential.h_slope(s.slip);
             if hs != 0.0 && s.slip > 0.0 {
@@ -145,7 +183,7 @@ impl<'a> ContactAssembler<'a> {
                 }
             }
         }
-        data
+        Ok(data)
     }
 
     /// Contact energy at `u`; adds its gradient to `grad` (all DOFs, DOF order) and, if

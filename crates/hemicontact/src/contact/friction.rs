@@ -33,9 +33,11 @@
 //!   `proj_{B_F}(τ + rξ)` onto the ball of radius F; the multiplier update is
 //!   `τ ← proj_{B_F}(τ + r ξ)` ([`Friction::updated_traction`]).
 
+use super::slip_law::CustomCoefficient;
 use serde::{Deserialize, Serialize};
 
-/// The slip-dependent friction coefficient μ(r), r = ‖u_τ‖ ≥ 0 (dimensionless).
+/// The slip-dependent friction coefficient μ(r), r = ‖u_τ‖ ≥ 0 (dimensionless for a
+/// Coulomb-type bound, Pa for a Tresca-type bound).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "law", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum FrictionCoefficient {
@@ -59,12 +61,18 @@ pub enum FrictionCoefficient {
         /// The points `[r, μ]`.
         points: Vec<[f64; 2]>,
     },
+    /// A user-defined function of the slip, evaluated in batches
+    /// ([`super::slip_law`]); not representable in a scenario file.
+    #[serde(skip)]
+    Custom(CustomCoefficient),
 }
 
 impl FrictionCoefficient {
-    /// μ(r).
+    /// μ(r). A custom law is called with this one slip (NaN if it fails); the solver uses
+    /// [`FrictionCoefficient::values`].
     pub fn value(&self, r: f64) -> f64 {
         match self {
+            FrictionCoefficient::Custom(law) => law.value(r),
             FrictionCoefficient::Constant { mu } => *mu,
             FrictionCoefficient::Exponential { a, b, beta } => (a - b) * (-beta * r).exp() + b,
             FrictionCoefficient::Table { points } => {
@@ -81,9 +89,52 @@ impl FrictionCoefficient {
         }
     }
 
-    /// Upper bound μ₀ = sup μ.
+    /// `out[i] = μ(slips[i])` for all slips at once: the built-in laws point by point with
+    /// [`FrictionCoefficient::value`], a custom law by one call of its function.
+    ///
+    /// # Errors
+    /// Only a custom law: its function's error, or a value not finite or negative, naming
+    /// the slip ([`CustomCoefficient::values`]).
+    pub fn values(&self, slips: &[f64], out: &mut [f64]) -> Result<(), String> {
+        match self {
+            FrictionCoefficient::Custom(law) => law.values(slips, out),
+            _ => {
+                for (mu, &r) in out.iter_mut().zip(slips) {
+                    *mu = self.value(r);
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// The law's name for messages: `constant`, `exponential`, `table` or the custom
+    /// law's name.
+    pub fn name(&self) -> &str {
+        match self {
+            FrictionCoefficient::Constant { .. } => "constant",
+            FrictionCoefficient::Exponential { .. } => "exponential",
+            FrictionCoefficient::Table { .. } => "table",
+            FrictionCoefficient::Custom(law) => &law.name,
+        }
+    }
+
+    /// Whether μ depends on the slip: a nonzero Lipschitz constant, or a custom law
+    /// (always taken as slip-dependent).
+    pub fn is_slip_dependent(&self) -> bool {
+        matches!(self, FrictionCoefficient::Custom(_)) || self.lipschitz() > 0.0
+    }
+
+    /// Whether `sup μ` and the Lipschitz constant are estimates from samples (a custom
+    /// law) rather than exact.
+    pub fn is_estimated(&self) -> bool {
+        matches!(self, FrictionCoefficient::Custom(_))
+    }
+
+    /// Upper bound μ₀ = sup μ; for a custom law an estimate from samples
+    /// ([`CustomCoefficient::sup`]).
     pub fn sup(&self) -> f64 {
         match self {
+            FrictionCoefficient::Custom(law) => law.sup(),
             FrictionCoefficient::Constant { mu } => *mu,
             FrictionCoefficient::Exponential { a, b, .. } => a.max(*b),
             FrictionCoefficient::Table { points } => {
@@ -92,9 +143,11 @@ impl FrictionCoefficient {
         }
     }
 
-    /// Lipschitz constant L_μ.
+    /// Lipschitz constant L_μ; for a custom law an estimate from samples
+    /// ([`CustomCoefficient::lipschitz`]).
     pub fn lipschitz(&self) -> f64 {
         match self {
+            FrictionCoefficient::Custom(law) => law.lipschitz(),
             FrictionCoefficient::Constant { .. } => 0.0,
             FrictionCoefficient::Exponential { a, b, beta } => (a - b).abs() * beta,
             FrictionCoefficient::Table { points } => points
@@ -107,9 +160,12 @@ impl FrictionCoefficient {
     /// The same law in dimensionless variables: slips in units of `displacement` (m) and
     /// values in units of `value` (1 for a Coulomb-type coefficient, the traction unit for a
     /// Tresca bound): `μ̂(r̂) = μ(U r̂)/value`, so β̂ = βU, table slips r/U and values
-    /// μ/value.
+    /// μ/value; a custom law gets these units, its function is untouched.
     pub fn nondimensional(&self, displacement: f64, value: f64) -> Self {
         match self {
+            FrictionCoefficient::Custom(law) => {
+                FrictionCoefficient::Custom(law.nondimensional(displacement, value))
+            }
             FrictionCoefficient::Constant { mu } => {
                 FrictionCoefficient::Constant { mu: mu / value }
             }
@@ -127,13 +183,15 @@ impl FrictionCoefficient {
         }
     }
 
-    /// Checks the parameters; returns what is wrong.
+    /// Checks the parameters; returns what is wrong. A custom law is sampled
+    /// ([`CustomCoefficient::validate`]).
     ///
     /// # Errors
-    /// A message naming the parameter and what is allowed.
+    /// A message naming the parameter (or the custom law and the slip) and what is allowed.
     pub fn validate(&self) -> Result<(), String> {
         let ok = |x: f64| x.is_finite() && x >= 0.0;
         match self {
+            FrictionCoefficient::Custom(law) => law.validate(),
             FrictionCoefficient::Constant { mu } if !ok(*mu) => {
                 Err(format!("mu = {mu}: a finite coefficient ≥ 0"))
             }
@@ -495,10 +553,17 @@ impl Friction {
         self.potential.validate()
     }
 
-    /// The friction bound `F` at slip `r = ‖u_τ‖` and contact pressure `p`.
+    /// The friction bound `F` at slip `r = ‖u_τ‖` and contact pressure `p` (one evaluation
+    /// of μ; the solver evaluates μ in batches and uses [`Friction::bound_of`]).
     #[inline]
     pub fn bound_value(&self, r: f64, pressure: f64) -> f64 {
-        let mu = self.mu.value(r);
+        self.bound_of(self.mu.value(r), pressure)
+    }
+
+    /// The friction bound `F` for the coefficient `mu = μ(r)` and contact pressure `p`:
+    /// `μ` (Tresca) or `μ p` (Coulomb).
+    #[inline]
+    pub fn bound_of(&self, mu: f64, pressure: f64) -> f64 {
         match self.bound {
             FrictionBound::Tresca => mu,
             FrictionBound::Coulomb => mu * pressure,

@@ -1,5 +1,6 @@
-//! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`]) and the contact
-//! nodes with their lumped weights, normals and tangents ([`nodes`]).
+//! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`], with user-defined
+//! friction coefficients in [`slip_law`]) and the contact nodes with their lumped weights,
+//! normals and tangents ([`nodes`]).
 //!
 //! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
 //! normal displacement and `g ≥ 0` the initial gap to the foundation, so `u_ν − g > 0` is a
@@ -10,6 +11,7 @@
 pub mod friction;
 pub mod nodes;
 pub mod normal;
+pub mod slip_law;
 
 pub use friction::{
     Friction, FrictionBound, FrictionCoefficient, FrictionPotential, NormTreatment, TangentialData,
@@ -17,6 +19,7 @@ pub use friction::{
 };
 pub use nodes::ContactNodes;
 pub use normal::{NormalCompliance, NormalLaw};
+pub use slip_law::{CustomCoefficient, SlipFunction};
 
 /// One contact boundary: a part of the mesh facing a rigid foundation, with its laws.
 #[derive(Clone, Debug, PartialEq)]

@@ -244,6 +244,9 @@ impl Certificate {
 pub struct Inputs<'a> {
     /// Displacement (DOF order).
     pub u: &'a [f64],
+    /// The friction coefficient μ_i at `u` of every contact point, evaluated once for all
+    /// points ([`ContactAssembler::friction_coefficients`]).
+    pub mu: &'a [f64],
     /// `∇W(u) − f` (DOF order): the interface force at free DOFs of contact nodes.
     pub grad_bulk: &'a [f64],
     /// External forces (DOF order).
@@ -264,10 +267,12 @@ pub struct Inputs<'a> {
 /// `frozen` holds the quantities of the last convex problem (its multipliers give the
 /// pressure at Signorini points and the stick/slip classification of exact friction:
 /// stick where `‖τ + r u_τ‖ ≤ F`, i.e. the projection defining the friction force is
-/// inactive).
+/// inactive). The friction bound at each point is `F(μ_i, p_i)` with the coefficients
+/// `mu` of the inputs.
 pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResult>, Certificate) {
     let Inputs {
         u,
+        mu,
         grad_bulk,
         f_ext,
         fixed,
@@ -306,6 +311,11 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     for i in 0..ca.nodes.len() {
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
+        // The friction bound F at this state (not frozen).
+        let bound = cb
+            .friction
+            .as_ref()
+            .map_or(0.0, |f| f.bound_of(mu[i], s.pressure));
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
         let model = ca.point(u, &frozen, i).gradient;
@@ -353,7 +363,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             }
             Some(fr) => {
                 let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
-                let wf = w * s.bound;
+                let wf = w * bound;
                 let slipping = if fr.is_exact() {
                     let (r, tau) = (ca.penalty[i], frozen.traction[i]);
                     let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
@@ -394,7 +404,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 friction_traction[k] -= ft[a] * t[a][k] / w;
             }
         }
-        scale = scale.max(w * s.pressure).max(w * s.bound);
+        scale = scale.max(w * s.pressure).max(w * bound);
         exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
@@ -405,7 +415,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             u_tau: s.u_tau,
             slip: s.slip,
             pressure: s.pressure,
-            bound: s.bound,
+            bound,
             force_normal: fn_,
             force_tangential: ft,
             force,

@@ -7,6 +7,7 @@
 use super::multipliers::Multipliers;
 use super::System;
 use crate::assembly::contact::{ContactData, FrictionData};
+use crate::error::Result;
 use crate::problem::Problem;
 
 /// The quantities frozen for one convex problem.
@@ -31,7 +32,11 @@ impl Frozen {
 
     /// The frozen quantities of the first convex problem, at `u`: friction data from `u`,
     /// all multipliers zero (so the first problem is the penalty problem).
-    pub fn initial(system: &System, problem: &Problem, u: &[f64]) -> Frozen {
+    ///
+    /// # Errors
+    /// [`crate::Error::Law`] if a user-defined friction law fails
+    /// ([`crate::assembly::contact::ContactAssembler::friction_coefficients`]).
+    pub fn initial(system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let n = system.contact.len();
         let n_cells =
             problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
@@ -39,22 +44,25 @@ impl Frozen {
             friction: FrictionData::zero(n),
             multipliers: Multipliers::zero(n, n_cells),
         };
-        Frozen {
+        Ok(Frozen {
             friction: system
                 .contact_assembler(problem)
-                .convexify(u, &zero.contact()),
+                .convexify(u, &zero.contact())?,
             multipliers: zero.multipliers,
-        }
+        })
     }
 
     /// The image `G(z)` of these quantities at the solution `u` of their convex problem:
     /// the friction data at `u` and the multiplier updates
     /// ([`Multipliers::updated`]).
-    pub fn image(&self, system: &System, problem: &Problem, u: &[f64]) -> Frozen {
+    ///
+    /// # Errors
+    /// As [`Frozen::initial`].
+    pub fn image(&self, system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let ca = system.contact_assembler(problem);
         let data = self.contact();
-        Frozen {
-            friction: ca.convexify(u, &data),
+        Ok(Frozen {
+            friction: ca.convexify(u, &data)?,
             multipliers: self.multipliers.updated(
                 &ca,
                 &data,
@@ -62,7 +70,7 @@ impl Frozen {
                 problem,
                 u,
             ),
-        }
+        })
     }
 
     /// The relative fixed-point residual between these quantities `z` and their image

@@ -153,7 +153,8 @@ pub struct Solution {
 ///
 /// # Errors
 /// Invalid settings ([`SolverSettings::validate`]), a matrix that is not positive definite,
-/// a numerical breakdown, or memory exhaustion. Non-convergence is not an error: see
+/// a numerical breakdown, memory exhaustion, or a user-defined friction law that fails
+/// ([`crate::Error::Law`]). Non-convergence is not an error: see
 /// [`SolveReport::converged`].
 pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
     let u0 = problem.prescribed_displacement();
@@ -250,14 +251,23 @@ fn solve_dimensionless(
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
     let reactions = system.reactions(&eval.grad);
-    // The multipliers consistent with the last convex problem (its forces).
-    let updated = frozen.image(&system, problem, &u).multipliers;
     let ca = system.contact_assembler(problem);
+    // The friction coefficients at the answer, one evaluation per contact part.
+    let mu = ca.friction_coefficients(&u)?;
+    // The multipliers consistent with the last convex problem (its forces).
+    let updated = frozen.multipliers.updated(
+        &ca,
+        &frozen.contact(),
+        &system.continuation.penalties,
+        problem,
+        &u,
+    );
     let equilibrium = last.residual / last.force_scale;
     let (contact, mut certificate) = certificate::evaluate(
         &ca,
         &certificate::Inputs {
             u: &u,
+            mu: &mu,
             grad_bulk: &eval.grad_bulk,
             f_ext: &system.f_ext,
             fixed: &|k| system.dofs.is_fixed(k),

@@ -193,7 +193,7 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
             .filter_map(|c| c.friction.as_ref())
             .any(|f| {
                 f.bound == crate::contact::FrictionBound::Coulomb
-                    || f.mu.lipschitz() > 0.0
+                    || f.mu.is_slip_dependent()
                     || f.potential.alpha_j() > 0.0
             })
 }
@@ -207,8 +207,9 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
 /// # Errors
 /// A Newton error before any step succeeded (the problem itself is at fault, e.g. rigid
 /// motions not blocked), and [`crate::Error::ContactLost`] and
-/// [`crate::Error::Interrupted`] (once `interrupt` is raised) at any time; later breakdowns
-/// stop the loop with [`StopReason::Breakdown`] instead.
+/// [`crate::Error::Interrupted`] (once `interrupt` is raised) and [`crate::Error::Law`] (a
+/// user-defined friction law failed) at any time; later breakdowns stop the loop with
+/// [`StopReason::Breakdown`] instead.
 pub fn run(
     problem: &Problem,
     settings: &SolverSettings,
@@ -225,7 +226,7 @@ pub fn run(
         problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
-    let mut frozen = Frozen::initial(system, problem, u);
+    let mut frozen = Frozen::initial(system, problem, u)?;
     let mut z = frozen.flatten();
     let mut mixer = Mixer::new(&settings.outer);
     let mut u_prev = u.to_vec();
@@ -291,7 +292,8 @@ pub fn run(
             energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
         };
         u_prev.copy_from_slice(u);
-        let next = frozen.image(system, problem, u);
+        // A user-defined friction law that fails ends the solve with its error.
+        let next = frozen.image(system, problem, u)?;
         let g = next.flatten();
         let fp_rel = frozen.residual(&next, system, problem, u);
         let mut step = OuterStep {

@@ -15,6 +15,9 @@
 //!   iteration on `K_ε⁻¹ M_C` with the Rayleigh quotient, reusing the symbolic Cholesky
 //!   analysis of the problem's pattern.
 //!
+//! For a user-defined friction coefficient ([`crate::contact::slip_law`]) μ₀ and L_μ are
+//! estimates from samples of the law, and the outcome says so ([`Uniqueness::estimated`]).
+//!
 //! The theorem covers Tresca-type friction bounds `F = μ(‖u_τ‖)`; for Coulomb-type bounds
 //! `F = μ p(u_ν)` the check reports that it does not apply.
 
@@ -42,6 +45,11 @@ pub struct Uniqueness {
     pub mu0: f64,
     /// Largest L_μ.
     pub l_mu: f64,
+    /// Set when μ₀ and L_μ include estimates from samples of user-defined friction laws
+    /// (named in the text), which may miss a larger value between the samples; absent
+    /// otherwise (and then not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimated: Option<String>,
     /// Largest c_j.
     pub c_j: f64,
     /// Largest α_j.
@@ -166,6 +174,19 @@ fn constants(problem: &Problem) -> Uniqueness {
     let coulomb = frictions.iter().any(|f| f.bound == FrictionBound::Coulomb);
     let (mut mu0, mut l_mu, mut c_j, mut alpha_j, mut factor) =
         (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut custom: Vec<&str> = frictions
+        .iter()
+        .filter(|f| f.mu.is_estimated())
+        .map(|f| f.mu.name())
+        .collect();
+    custom.dedup();
+    let estimated = (!custom.is_empty()).then(|| {
+        format!(
+            "μ₀ and L_μ are estimates from samples of the user-defined law(s) {} at r = 0 and \
+             1e-10 … 100 m, ten per decade (the largest sampled value and secant slope)",
+            custom.join(", ")
+        )
+    });
     for f in &frictions {
         let (a, b, c, e) = (
             f.mu.sup(),
@@ -195,6 +216,7 @@ fn constants(problem: &Problem) -> Uniqueness {
         m_a,
         mu0,
         l_mu,
+        estimated,
         c_j,
         alpha_j,
         trace_constant: None,

@@ -88,7 +88,7 @@ pub fn solve_with_prescribed_field<V: AsRef<[f64]>>(
             }
         }
     }
-    let frozen = hemicontact::solver::Frozen::initial(&system, problem, &u);
+    let frozen = hemicontact::solver::Frozen::initial(&system, problem, &u).expect("friction data");
     let settings = &solver.newton;
     let mut eval = hemicontact::solver::Evaluation::new(&system);
     let mut energy =
