@@ -35,7 +35,14 @@ use std::process::ExitCode;
 
 /// Finite element solver for contact of elastic locking materials with nonmonotone friction.
 #[derive(Parser, Debug)]
-#[command(name = "hemicontact", version, about)]
+#[command(
+    name = "hemicontact",
+    version,
+    about,
+    after_help = "Documentation: docs/ in the repository (running.md: commands and exit codes; \
+                  scenario.md: every scenario key; model.md: the laws; method.md: the solver \
+                  and its certificate; outputs.md: the result files)."
+)]
 struct Cli {
     /// Skip the check of the estimated memory of a solve against the available memory.
     #[arg(long, global = true)]
