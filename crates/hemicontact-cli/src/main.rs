@@ -58,7 +58,8 @@ enum Command {
         /// Scenario file (TOML).
         file: PathBuf,
     },
-    /// Solve a scenario and write solution.vtu and summary.json.
+    /// Solve a scenario and write solution.vtu, contact.csv, the deformed-mesh figures and
+    /// summary.json.
     Solve {
         /// Scenario file (TOML).
         file: PathBuf,
@@ -88,7 +89,7 @@ enum Command {
         #[arg(long, default_value_t = 512)]
         reference: usize,
     },
-    /// Convergence study of a scenario on a generated rectangle: solve on each level and
+    /// Convergence study of a scenario on a generated mesh (rectangle or box): solve on each level and
     /// measure the relative energy-norm error against a reference solution.
     Convergence {
         /// Scenario file (TOML).

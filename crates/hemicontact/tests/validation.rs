@@ -257,10 +257,39 @@ fn solver_settings_validate_themselves() {
         Err(Error::Invalid { field, .. }) => assert_eq!(field, "newton.pcg_tolerance"),
         other => panic!("expected an invalid tolerance, got {:?}", other.map(|_| ())),
     }
+    // Unbounded loop counts: a line search of usize::MAX halvings, a PCG reuse budget of
+    // usize::MAX iterations.
+    let mut backtracks = SolverSettings::default();
+    backtracks.newton.max_backtracks = usize::MAX;
+    match solve(&problem, &backtracks) {
+        Err(Error::Invalid { field, .. }) => assert_eq!(field, "newton.max_backtracks"),
+        other => panic!("expected invalid backtracks, got {:?}", other.map(|_| ())),
+    }
+    let mut reuse = SolverSettings::default();
+    reuse.newton.pcg_iterations = 10_001;
+    match solve(&problem, &reuse) {
+        Err(Error::Invalid { field, .. }) => assert_eq!(field, "newton.pcg_iterations"),
+        other => panic!(
+            "expected invalid PCG iterations, got {:?}",
+            other.map(|_| ())
+        ),
+    }
     let text = format!("{BASE}[solver.outer]\ndepth = 51\n");
     let scenario = Scenario::from_str(&text, "case.toml").unwrap();
     match scenario.settings() {
         Err(Error::Scenario { field, .. }) => assert_eq!(field, "solver.outer.depth"),
         other => panic!("expected a scenario error, got {:?}", other.map(|_| ())),
     }
+}
+
+/// A threshold of another locking set than the chosen one would be ignored: it is refused,
+/// naming it (a `kappa` with `set = "ball"` is a typo for `radius`, not a default).
+#[test]
+fn threshold_of_another_locking_set_is_refused() {
+    let text = format!(
+        "{BASE}[locking]\nset = \"ball\"\nradius = 0.1\nkappa = 0.2\ntreatment = \"penalty\"\nc_kappa = 100.0\n"
+    );
+    assert_eq!(scenario_field(&text), "locking.kappa");
+    let text = format!("{BASE}[locking]\nset = \"none\"\ntheta = 0.16\n");
+    assert_eq!(scenario_field(&text), "locking.theta");
 }

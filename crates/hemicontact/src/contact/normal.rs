@@ -4,7 +4,7 @@
 /// Normal compliance with stiffness `c_nu` (Pa/m, i.e. pressure per penetration).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NormalCompliance {
-    /// Stiffness c_ν ≥ 0 of the asperities.
+    /// Stiffness c_ν > 0 of the asperities (Pa/m).
     pub c_nu: f64,
 }
 

@@ -37,7 +37,10 @@ pub struct Summary {
     pub sizes: Sizes,
     /// Lamé constants (λ, G) of the elasticity law (Pa).
     pub lame: [f64; 2],
-    /// Total potential energy at the solution (J).
+    /// Energy of the last convex problem at the solution (J; J/m in 2D): the total
+    /// potential energy when the problem is a single convex problem (no slip-dependent or
+    /// Coulomb friction, no exact constraints), else its convexified energy with the frozen
+    /// friction data and multipliers of the last outer iteration.
     pub energy: f64,
     /// Energy norm `‖u‖_E` of the paper's example (√J).
     pub energy_norm: f64,

@@ -98,6 +98,35 @@ impl Scenario {
             }
         }
         let l = &self.file.locking;
+        // A threshold of another set would be silently ignored: refuse it.
+        let thresholds = [
+            (
+                "locking.theta",
+                l.theta,
+                LockingSetKind::LimitedCompressibility,
+            ),
+            ("locking.kappa", l.kappa, LockingSetKind::Prager),
+            ("locking.radius", l.radius, LockingSetKind::Ball),
+        ];
+        for (field, value, owner) in thresholds {
+            if let (Some(v), true) = (value, l.set != owner) {
+                let name = |k: LockingSetKind| match k {
+                    LockingSetKind::None => "none",
+                    LockingSetKind::LimitedCompressibility => "limited-compressibility",
+                    LockingSetKind::Prager => "prager",
+                    LockingSetKind::Ball => "ball",
+                };
+                return Err(self.err(
+                    field,
+                    v,
+                    &format!(
+                        "only with set = \"{}\" (this [locking] has set = \"{}\")",
+                        name(owner),
+                        name(l.set)
+                    ),
+                ));
+            }
+        }
         let set = match l.set {
             LockingSetKind::None => None,
             LockingSetKind::LimitedCompressibility => Some(LockingSet::LimitedCompressibility {

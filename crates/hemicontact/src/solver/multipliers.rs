@@ -206,8 +206,8 @@ pub struct KktCertificate {
 }
 
 impl KktCertificate {
-    /// The largest violation or complementarity residual (the number to compare with the
-    /// 1e-8 target).
+    /// The largest violation or complementarity residual (the number the certificate
+    /// compares with its tolerance, `certificate_tolerance`).
     pub fn worst(&self) -> f64 {
         [
             self.locking_violation,

@@ -61,7 +61,8 @@ impl NewtonSettings {
     ///
     /// # Errors
     /// [`Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
-    /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1).
+    /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1, `max_backtracks` ≤
+    /// [`MAX_BACKTRACKS`], `pcg_iterations` ≤ [`MAX_PCG_ITERATIONS`]).
     pub fn validate(&self) -> Result<()> {
         use crate::error::require;
         let tol = self.residual_tolerance;
@@ -88,9 +89,34 @@ impl NewtonSettings {
             "max_iterations",
             0,
             "a positive integer",
+        )?;
+        require(
+            self.max_backtracks <= MAX_BACKTRACKS,
+            "max_backtracks",
+            self.max_backtracks,
+            &format!(
+                "an integer from 0 (the full step only) to {MAX_BACKTRACKS} (trial steps \
+                 beyond the full step)"
+            ),
+        )?;
+        require(
+            self.pcg_iterations <= MAX_PCG_ITERATIONS,
+            "pcg_iterations",
+            self.pcg_iterations,
+            &format!(
+                "an integer from 0 (every changed Hessian is refactorized) to \
+                 {MAX_PCG_ITERATIONS}"
+            ),
         )
     }
 }
+
+/// Largest [`NewtonSettings::max_backtracks`]: 200 trial steps shrink the step far below
+/// any representable change of a displacement.
+pub const MAX_BACKTRACKS: usize = 200;
+
+/// Largest [`NewtonSettings::pcg_iterations`] before a refactorization.
+pub const MAX_PCG_ITERATIONS: usize = 10_000;
 
 /// A convex energy `Π(x)` of n free unknowns, with what Newton's method needs of it.
 pub trait ConvexEnergy {
