@@ -73,3 +73,34 @@ def test_invalid_arrays_are_refused_naming_them(points, cells, facets, named):
     with pytest.raises(hc.ScenarioError) as e:
         hc.Mesh.from_arrays(points, cells, facets)
     assert named in str(e.value), str(e.value)
+
+
+def test_a_gmsh_file_through_meshio_equals_the_library_reader():
+    import meshio
+
+    from conftest import SCENARIOS
+
+    m = meshio.read(SCENARIOS / "meshes" / "half-disc.msh")
+    # Gmsh meshed this surface clockwise: the whole entity is reoriented, with a warning.
+    with pytest.warns(RuntimeWarning, match="geometric entity"):
+        mesh = hc.Mesh.from_meshio(m)
+    s = hc.load(SCENARIOS / "half-disc.toml")
+    g = s.mesh()
+    assert np.array_equal(mesh.points, g.points) and np.array_equal(mesh.cells, g.cells)
+    assert {k: v.tolist() for k, v in mesh.facets.items()} == {k: v.tolist() for k, v in g.facets.items()}
+    d = s.to_dict()
+    d["mesh"] = mesh
+    assert np.array_equal(hc.solve(d).displacement, hc.solve(s).displacement)
+
+
+def test_an_entity_of_both_orientations_is_refused_naming_a_cell():
+    import meshio
+
+    from conftest import SCENARIOS
+
+    m = meshio.read(SCENARIOS / "meshes" / "half-disc.msh")
+    for block in m.cells:
+        if block.type == "triangle":
+            block.data[0] = block.data[0][[1, 0, 2]]  # one cell against the others
+    with pytest.raises(hc.ScenarioError, match="inverted"):
+        hc.Mesh.from_meshio(m)

@@ -30,6 +30,34 @@ def _index_array(a: Any, field: str, width: int) -> np.ndarray:
     return np.ascontiguousarray(arr, dtype="<i8")
 
 
+def _signed_measures(points: np.ndarray, cells: np.ndarray, dim: int) -> np.ndarray:
+    p = points[cells]
+    e = p[:, 1:, :] - p[:, :1, :]
+    return np.linalg.det(e)
+
+
+def _orient_entities(points: np.ndarray, cells: np.ndarray, tags: np.ndarray, dim: int) -> None:
+    """Gmsh orients the cells of a geometric entity by the entity's orientation: a surface
+    meshed with its normal along −z gives clockwise triangles throughout. Such an entity —
+    every cell negatively oriented — is reoriented in place, with a warning naming it, as
+    the library's Gmsh reader does; an entity with cells of both orientations (a tangled
+    mesh) is left as it is, for the mesh check to refuse naming its cells."""
+    import warnings
+
+    measure = _signed_measures(points, cells, dim)
+    for tag in np.unique(tags):
+        mine = tags == tag
+        if np.all(measure[mine] < 0):
+            # The last two vertices swapped, as the library's Gmsh reader does.
+            cells[mine] = cells[mine][:, list(range(dim - 1)) + [dim, dim - 1]]
+            warnings.warn(
+                f"Mesh.from_meshio: the {int(mine.sum())} cells of geometric entity {int(tag)} are "
+                "all negatively oriented (the entity's orientation in Gmsh); they were reoriented",
+                RuntimeWarning,
+                stacklevel=3,
+            )
+
+
 class Mesh:
     """A simplicial mesh: P1 triangles (2D) or tetrahedra (3D), with named boundary parts.
 
@@ -102,6 +130,11 @@ class Mesh:
         cells, and its lines (2D) or triangles (3D) in a named set — a Gmsh physical group
         (``cell_sets``, or ``gmsh:physical`` tags named by ``field_data``) — are the
         boundary parts, named like the groups. So a pygmsh or gmsh mesh goes straight in.
+
+        A geometric entity (``gmsh:geometrical``) whose cells are all negatively oriented —
+        a Gmsh surface meshed with its normal along −z — is reoriented, with a
+        ``RuntimeWarning`` naming it (the command line's Gmsh reader does the same, with a
+        note); cells of both orientations in one entity are an error naming them.
         """
         blocks = list(m.cells)
         types = {b.type for b in blocks}
@@ -112,7 +145,16 @@ class Mesh:
                 f"cell types {sorted(types)}",
                 "triangles (2D) or tetrahedra (3D): only P1 simplices are supported",
             )
-        cell_blocks = [b.data for b in blocks if b.type == _CELL_TYPE[dim]]
+        points = np.asarray(m.points, dtype=float)
+        entities = (getattr(m, "cell_data", None) or {}).get("gmsh:geometrical")
+        cell_blocks = []
+        for i, b in enumerate(blocks):
+            if b.type != _CELL_TYPE[dim]:
+                continue
+            data = np.array(b.data, dtype=np.int64)
+            tags = np.asarray(entities[i]) if entities is not None else np.zeros(len(data), int)
+            _orient_entities(points[:, :dim], data, tags, dim)
+            cell_blocks.append(data)
         cells = np.concatenate(cell_blocks, axis=0)
         facet_type = _FACET_TYPE[dim]
         parts: Dict[str, list] = {}
@@ -138,7 +180,7 @@ class Mesh:
                         name = names.get(int(tag), str(int(tag)))
                         parts.setdefault(name, []).append(block.data[np.asarray(t) == tag])
         facets = {k: np.concatenate(v, axis=0) for k, v in parts.items()}
-        return cls.from_arrays(m.points, cells, facets)
+        return cls.from_arrays(points, cells, facets)
 
     @property
     def dim(self) -> int:
