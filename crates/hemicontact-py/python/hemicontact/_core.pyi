@@ -3,7 +3,7 @@ little-endian bytes (float64 or int64, row-major); the package's Python classes 
 numpy arrays."""
 
 from os import PathLike
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 __version__: str
 
@@ -35,6 +35,7 @@ class Scenario:
         source: str,
         mesh: Optional[Mesh] = None,
         dir: Optional[Union[str, "PathLike[str]"]] = None,
+        laws: Sequence[Tuple[int, Callable[..., Any], str]] = ...,
     ) -> "Scenario": ...
     @staticmethod
     def paper(n: int, c_kappa: float) -> "Scenario": ...
