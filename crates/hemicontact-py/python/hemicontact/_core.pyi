@@ -3,14 +3,16 @@ little-endian bytes (float64 or int64, row-major); the package's Python classes 
 numpy arrays."""
 
 from os import PathLike
-from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, final
 
+__all__: List[str]
 __version__: str
 
 class ScenarioError(ValueError):
     """Invalid input: the message names the source, the field, the value and what is
     allowed."""
 
+@final
 class Mesh:
     @staticmethod
     def from_buffers(
@@ -26,6 +28,7 @@ class Mesh:
     def cells(self) -> bytes: ...
     def parts(self) -> List[Tuple[str, bytes]]: ...
 
+@final
 class Scenario:
     @staticmethod
     def from_file(path: Union[str, "PathLike[str]"]) -> "Scenario": ...
@@ -50,6 +53,7 @@ class Scenario:
     def check(self) -> List[str]: ...
     def mesh(self) -> Mesh: ...
 
+@final
 class Solution:
     @property
     def converged(self) -> bool: ...
