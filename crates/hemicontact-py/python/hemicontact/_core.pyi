@@ -5,7 +5,7 @@ numpy arrays."""
 from os import PathLike
 from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, final
 
-__all__: List[str]
+__all__ = ["__version__", "ScenarioError", "Scenario", "Mesh", "Solution", "solve", "convergence"]
 __version__: str
 
 class ScenarioError(ValueError):
