@@ -1719,16 +1719,15 @@ fn bug_with_resolution_overflow() {
         "with-resolution-overflow-3d.toml",
     ] {
         let s = Scenario::from_str(&bug_input(file), "fuzz").unwrap();
-        let huge = *s
-            .file
-            .mesh
-            .as_ref()
-            .unwrap()
-            .n
-            .iter()
-            .flatten()
-            .max()
-            .unwrap();
+        // The subdivision counts of a generated mesh.
+        let counts = |s: &Scenario| -> Vec<u64> {
+            s.file
+                .mesh
+                .as_ref()
+                .and_then(|m| m.n.clone())
+                .unwrap_or_default()
+        };
+        let huge = *counts(&s).iter().max().unwrap();
         for k in [2, 3, 8, 1024] {
             let r = run_caught("with_resolution", || s.with_resolution(k))
                 .unwrap_or_else(|f| panic!("{file}, k = {k}: {}", f.signature()));
@@ -1738,17 +1737,11 @@ fn bug_with_resolution_overflow() {
                 Ok(scaled) => {
                     // k · huge does not fit: anything but a saturated count has wrapped.
                     assert!(
-                        scaled
-                            .file
-                            .mesh
-                            .as_ref()
-                            .unwrap()
-                            .n
+                        counts(&scaled)
                             .iter()
-                            .flatten()
                             .all(|&c| c < huge / 2 || c == u64::MAX),
                         "{file}, k = {k}: wrapped counts {:?}",
-                        scaled.file.mesh.as_ref().unwrap().n
+                        counts(&scaled)
                     );
                     scaled
                         .into_problem()
