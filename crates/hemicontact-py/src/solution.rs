@@ -67,7 +67,7 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
 /// The convergence study of the scenario (a generated mesh) on the levels `levels`
 /// (squares along x) against a reference solution with `reference` squares along x, with
 /// nested iteration; the study as JSON (see the library's `study::Study`). The GIL is
-/// released while it runs.
+/// released while it runs, and Ctrl-C interrupts it.
 #[pyfunction]
 pub fn convergence(
     py: Python<'_>,
@@ -86,9 +86,10 @@ pub fn convergence(
         .title
         .clone()
         .unwrap_or_else(|| "scenario".to_string());
-    let study = py
-        .detach(|| study::run(s, &label, &settings, &mut |_| {}))
-        .map_err(|e| scenario.error(e))?;
+    let study = interrupt::run(py, |stop| {
+        study::run_interruptible(s, &label, &settings, &mut |_| {}, stop)
+    })?
+    .map_err(|e| scenario.error(e))?;
     serde_json::to_string(&study)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
 }

@@ -90,6 +90,32 @@ print("usable", r.converged)
 """
 
 
+CTRL_C_STUDY = r"""
+import os, signal, threading, time
+import hemicontact as hc
+s = hc.paper_example(n=8)
+threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+t = time.perf_counter()
+try:
+    hc.convergence(s, [8, 16, 32, 64], 512)
+    print("NOT INTERRUPTED")
+except KeyboardInterrupt:
+    print("interrupted after", round(time.perf_counter() - t, 2), "s")
+print("usable", hc.solve(hc.paper_example(n=8)).converged)
+"""
+
+
+def test_ctrl_c_interrupts_a_convergence_study():
+    out = subprocess.run([sys.executable, "-c", CTRL_C_STUDY], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()
+    assert lines[0].startswith("interrupted after"), out.stdout
+    # The 512 × 512 reference alone takes several seconds; the study stops within one
+    # Newton step of the signal once the reference's system is set up.
+    assert float(lines[0].split()[2]) < 5.0, out.stdout
+    assert lines[1] == "usable True", out.stdout
+
+
 def test_ctrl_c_interrupts_a_solve_and_leaves_the_interpreter_usable():
     out = subprocess.run([sys.executable, "-c", CTRL_C], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr

@@ -18,8 +18,9 @@ use crate::fem::transfer::interpolate;
 use crate::norms::energy_norm;
 use crate::problem::Problem;
 use crate::scenario::Scenario;
-use crate::solver::{solve_from, Solution};
+use crate::solver::{solve_interruptible, Solution};
 use serde::Serialize;
+use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 /// One level of a study.
@@ -128,6 +129,22 @@ pub fn run(
     settings: &StudySettings,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Study> {
+    run_interruptible(scenario, label, settings, progress, &AtomicBool::new(false))
+}
+
+/// [`run`], interrupted once another thread raises `stop`: the solve under way returns
+/// [`Error::Interrupted`] within one Newton step (see
+/// [`crate::solver::solve_interruptible`]), and so does the study.
+///
+/// # Errors
+/// As [`run`], and [`Error::Interrupted`].
+pub fn run_interruptible(
+    scenario: &Scenario,
+    label: &str,
+    settings: &StudySettings,
+    progress: &mut dyn FnMut(Progress),
+    stop: &AtomicBool,
+) -> Result<Study> {
     if settings.levels.is_empty() {
         return Err(Error::Scenario {
             file: scenario.source.clone(),
@@ -156,7 +173,12 @@ pub fn run(
         .with_resolution(settings.reference)?
         .into_problem()?;
     let t = Instant::now();
-    let ref_sol = crate::solver::solve(&reference, &solver)?;
+    let ref_sol = solve_interruptible(
+        &reference,
+        &solver,
+        reference.prescribed_displacement(),
+        stop,
+    )?;
     let reference_seconds = t.elapsed().as_secs_f64();
     progress(Progress::Solved {
         seconds: reference_seconds,
@@ -192,7 +214,7 @@ pub fn run(
             _ => problem.prescribed_displacement(),
         };
         let t = Instant::now();
-        let sol = solve_from(&problem, &solver, start)?;
+        let sol = solve_interruptible(&problem, &solver, start, stop)?;
         let seconds = t.elapsed().as_secs_f64();
         progress(Progress::Solved { seconds });
         let on_ref = interpolate(&problem.mesh, &sol.u, &reference.mesh);

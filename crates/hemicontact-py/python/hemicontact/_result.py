@@ -148,7 +148,7 @@ def convergence(
     measure), ``dofs``, ``error`` (relative energy-norm error against the reference),
     ``order_edge`` and ``order_area`` (observed orders from the previous level, ``None``
     where undefined), ``outer``, ``newton``, ``converged``, ``seconds``. The GIL is released
-    while it runs."""
+    while it runs, and Ctrl-C interrupts it with ``KeyboardInterrupt``."""
     s = _scenario(scenario)
     study = json.loads(_core.convergence(s._native, [int(n) for n in levels], int(reference)))
     return study["levels"]
