@@ -312,11 +312,14 @@ fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
                 f.bound, f.mu, f.potential
             ),
         };
-        let normal = match c.normal {
+        let normal = match &c.normal {
             hemicontact::contact::NormalLaw::Compliance(n) => {
                 format!("normal compliance c_ν = {:e}", n.c_nu)
             }
             hemicontact::contact::NormalLaw::Signorini => "Signorini (rigid)".to_string(),
+            hemicontact::contact::NormalLaw::Custom(law) => {
+                format!("user-defined normal compliance {:?}", law.name)
+            }
         };
         say!(
             "contact[{k}] part `{}`: gap {} m, {normal}, {friction}",

@@ -46,6 +46,10 @@ pub struct Scenario {
     /// `mu` of `[[contact]]` entry k, which the file still gives (any valid law) so that
     /// the schema holds.
     pub given_friction: Vec<(usize, crate::contact::FrictionCoefficient)>,
+    /// Normal laws given in memory (user-defined compliance laws, e.g. Python callables
+    /// through [`crate::contact::CustomCompliance`]) by contact entry: each replaces the
+    /// normal law (`law`, `c_nu`) of `[[contact]]` entry k.
+    pub given_normal: Vec<(usize, NormalLaw)>,
 }
 
 impl Scenario {
@@ -111,6 +115,7 @@ impl Scenario {
             dir: None,
             given_mesh: None,
             given_friction: Vec::new(),
+            given_normal: Vec::new(),
         })
     }
 
@@ -185,28 +190,43 @@ impl Scenario {
                 ));
             }
         }
+        if let Some((k, law)) = self
+            .given_normal
+            .iter()
+            .find(|(k, _)| *k >= self.file.contact.len())
+        {
+            return Err(self.err(
+                &format!("contact[{k}].normal"),
+                format!("{law:?} (given in memory)"),
+                "a law for an existing [[contact]] entry",
+            ));
+        }
         let mut out = Vec::new();
         for (k, c) in self.file.contact.iter().enumerate() {
             let f = |name: &str| format!("contact[{k}].{name}");
             let part = self.part(mesh, &f("part"), &c.part)?;
-            let normal = match c.law {
-                NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
-                    c_nu: self.required(
-                        &f("c_nu"),
-                        c.c_nu,
-                        "a normal compliance stiffness c_ν (Pa/m)",
-                    )?,
-                }),
-                NormalLawKind::Signorini => {
-                    if let Some(c_nu) = c.c_nu {
-                        return Err(self.err(
+            let given = self.given_normal.iter().find(|(entry, _)| *entry == k);
+            let normal = match given {
+                Some((_, law)) => law.clone(),
+                None => match c.law {
+                    NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
+                        c_nu: self.required(
                             &f("c_nu"),
-                            c_nu,
-                            "no stiffness with law = \"signorini\" (a rigid foundation)",
-                        ));
+                            c.c_nu,
+                            "a normal compliance stiffness c_ν (Pa/m)",
+                        )?,
+                    }),
+                    NormalLawKind::Signorini => {
+                        if let Some(c_nu) = c.c_nu {
+                            return Err(self.err(
+                                &f("c_nu"),
+                                c_nu,
+                                "no stiffness with law = \"signorini\" (a rigid foundation)",
+                            ));
+                        }
+                        NormalLaw::Signorini
                     }
-                    NormalLaw::Signorini
-                }
+                },
             };
             let friction = match &c.friction {
                 None => None,

@@ -250,8 +250,13 @@ fn solve_dimensionless(
     let (frozen, last) = (outcome.frozen, outcome.last);
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
+    if let Some(e) = eval.law_error.take() {
+        return Err(e);
+    }
     let reactions = system.reactions(&eval.grad);
-    let ca = system.contact_assembler(problem);
+    let mut ca = system.contact_assembler(problem);
+    // User-defined compliance laws: their responses at the answer, from the evaluation.
+    ca.responses = &eval.normal;
     // The friction coefficients at the answer, one evaluation per contact part.
     let mu = ca.friction_coefficients(&u)?;
     // The multipliers consistent with the last convex problem (its forces).

@@ -263,6 +263,10 @@ pub fn run(
                 .with_stop(interrupt);
         let result = convex::minimize(&mut energy, tol, u, &mut record);
         report.add_newton(record);
+        // A user-defined compliance law that fails ends the solve with its error.
+        if let Some(e) = eval.law_error.take() {
+            return Err(e);
+        }
         last = match result {
             Ok(outcome) => outcome,
             // The load pulls a body off the contact carrying its free rigid motions: no
