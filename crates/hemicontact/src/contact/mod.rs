@@ -8,6 +8,7 @@
 //! an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the
 //! body has normal part `σ_ν = −p(u_ν) ≤ 0` and tangential part `σ_τ ∈ −F ∂j(u_τ)`.
 
+mod describe;
 pub mod friction;
 pub mod nodes;
 pub mod normal;
