@@ -182,10 +182,10 @@ pub fn run_paper(
             "n = {n}: {repeat} linear and {repeat} nonlinear solves ({})",
             crate::problem_size(&paper)
         ));
-        let progress = c.progress(&format!("n = {n}"));
+        let progress = c.progress(&format!("n = {n}:"));
         let stop = std::sync::atomic::AtomicBool::new(false);
         for k in 0..repeat {
-            progress.set_what(&format!("n = {n}, repetition {}/{repeat}: linear", k + 1));
+            progress.set_what(&format!("n = {n}, repetition {}/{repeat}, linear:", k + 1));
             let t = Instant::now();
             let s = hemicontact::solver::solve_observed(
                 &linear,
@@ -197,7 +197,7 @@ pub fn run_paper(
             t_lin.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(s.report.converged, "linear solve did not converge");
             progress.set_what(&format!(
-                "n = {n}, repetition {}/{repeat}: nonlinear",
+                "n = {n}, repetition {}/{repeat}, nonlinear:",
                 k + 1
             ));
             let t = Instant::now();

@@ -545,7 +545,11 @@ fn run_and_write(
     } else {
         format!("{label}: ")
     };
-    let progress = c.progress(&prefix);
+    let progress = c.progress(&if folder.is_empty() {
+        "solving:".to_string()
+    } else {
+        format!("{label}:")
+    });
     let solution = hemicontact::solver::solve_observed(
         &problem,
         &settings,

@@ -48,7 +48,7 @@ pub fn run(
                     "{label}: {} n = {n}",
                     if reference { "reference" } else { "level" }
                 );
-                progress.set_what(&format!("[{}/{solves}] {what}", done + 1));
+                progress.set_what(&format!("[{}/{solves}] {what}:", done + 1));
                 *current.borrow_mut() = what;
             }
             Progress::Solved { seconds } => {
