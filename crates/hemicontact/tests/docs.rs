@@ -439,6 +439,7 @@ fn has_properties(schema: &serde_json::Value) -> bool {
         })
 }
 
+#[allow(clippy::expect_used)]
 fn json_schema() -> serde_json::Value {
     serde_json::from_str(hemicontact::scenario::JSON_SCHEMA).expect("the schema is JSON")
 }
@@ -511,7 +512,7 @@ fn violation(schema: &serde_json::Value, value: &serde_json::Value, at: &str) ->
     if let J::Object(map) = value {
         if let Some(req) = schema["required"].as_array() {
             for r in req {
-                if !map.contains_key(r.as_str().unwrap()) {
+                if !r.as_str().is_some_and(|r| map.contains_key(r)) {
                     return fail(format!("missing {r}"));
                 }
             }
@@ -565,6 +566,7 @@ fn violation(schema: &serde_json::Value, value: &serde_json::Value, at: &str) ->
 }
 
 /// A TOML text as the JSON value an editor checks against the schema.
+#[allow(clippy::expect_used)]
 fn as_json(text: &str) -> serde_json::Value {
     let v: Value = toml::from_str(text).expect("TOML");
     serde_json::to_value(v).expect("TOML as JSON")
