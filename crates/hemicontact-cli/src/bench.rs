@@ -216,6 +216,17 @@ pub fn run_paper(
             );
             let tm = &s.report.timings;
             t_solve.push(tm.total - tm.pattern - tm.symbolic);
+            if repeat > 1 {
+                progress.phase(format_args!(
+                    "n = {n}, repetition {}/{repeat}: linear {} s, nonlinear {} s ({} outer / {} \
+                     Newton)",
+                    k + 1,
+                    crate::console::significant_seconds(t_lin[k]),
+                    crate::console::significant_seconds(t_pap[k]),
+                    s.report.outer.len(),
+                    s.report.newton.len()
+                ));
+            }
             last = Some(s);
         }
         progress.finish();

@@ -17,6 +17,7 @@
 //!   L_μ = (a − b) β = 0.3 · 100 = 30, printed as `30` (not `30.000000000000004`).
 //! - **The `paper` header** gives both mesh sizes of n = 8 on the 4 × 4 square: element
 //!   area 16 / (2 · 64) = 0.125 m² and square side 4 / 8 = 0.5 m.
+//! - **`bench --paper`** says what it solves per mesh size and how each repetition went.
 //! - **`completions`** prints a non-empty script naming the program and its commands for
 //!   bash, zsh and fish; **`schema`** prints a JSON Schema (valid JSON, an object schema
 //!   whose properties are the scenario's top-level tables).
@@ -285,6 +286,31 @@ fn paper_header_gives_area_and_edge() {
     let phases: Vec<&str> = stderr.lines().filter(|l| !l.starts_with("note:")).collect();
     assert_eq!(phases.len(), 5, "{stderr}");
     assert!(phases[4].starts_with("written to p ("), "{stderr}");
+}
+
+#[test]
+fn bench_paper_says_what_it_solves() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = run(
+        tmp.path(),
+        &["bench", "--paper", "--n", "4", "8", "--repeat", "2"],
+    );
+    assert_success(&out);
+    let stderr = text(&out.stderr);
+    let lines: Vec<&str> = stderr.lines().filter(|l| !l.starts_with("note:")).collect();
+    // Per mesh size: what is solved, then one line per repetition.
+    assert_eq!(lines.len(), 6, "{stderr}");
+    assert!(lines[0].starts_with("n = 4: 2 linear and 2 nonlinear solves"));
+    assert!(lines[1].starts_with("n = 4, repetition 1/2: linear "));
+    assert!(lines[2].starts_with("n = 4, repetition 2/2: linear "));
+    assert!(lines[3].starts_with("n = 8: 2 linear and 2 nonlinear solves"));
+    // The table has one row per size.
+    assert_eq!(
+        text(&out.stdout).lines().count(),
+        4,
+        "{}",
+        text(&out.stdout)
+    );
 }
 
 #[test]
