@@ -490,7 +490,11 @@ impl std::fmt::Display for FrictionPotential {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
             NormTreatment::Smoothed { regularization } => {
-                write!(f, " (norm smoothed, ρ_num = {regularization:e} U)")
+                write!(
+                    f,
+                    " (norm smoothed, ρ_num = {} U)",
+                    crate::display::significant(regularization)
+                )
             }
             NormTreatment::Exact => write!(f, " (exact stick/slip)"),
         };
@@ -504,13 +508,15 @@ impl std::fmt::Display for FrictionPotential {
                 unit,
                 treatment: t,
             } => {
-                write!(f, "nonconvex, a = {a}")?;
+                write!(f, "nonconvex, a = {}", crate::display::significant(a))?;
                 if unit != 1.0 {
-                    write!(f, ", slip unit {unit:e} m")?;
+                    write!(f, ", slip unit {} m", crate::display::significant(unit))?;
                 }
                 treatment(f, t)
             }
-            FrictionPotential::Regularized { rho } => write!(f, "regularized, ρ = {rho:e} m"),
+            FrictionPotential::Regularized { rho } => {
+                write!(f, "regularized, ρ = {} m", crate::display::significant(rho))
+            }
         }
     }
 }

@@ -9,6 +9,7 @@
 //! body has normal part `σ_ν = −p(u_ν) ≤ 0` and tangential part `σ_τ ∈ −F ∂j(u_τ)`.
 
 pub mod compliance_law;
+mod describe;
 pub mod field_law;
 pub mod friction;
 pub mod nodes;

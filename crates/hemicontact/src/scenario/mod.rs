@@ -19,6 +19,13 @@ use crate::solver::SolverSettings;
 use schema::{NormalLawKind, OutputSpec, ScenarioFile};
 use std::path::{Path, PathBuf};
 
+/// A JSON Schema (draft 2020-12) of the scenario file, for editors that complete and check
+/// TOML against a schema (`hemicontact schema` prints it). It mirrors [`schema`] key for
+/// key, with the documented ranges as `minimum`/`maximum` and the choices as `enum`; a
+/// number for `mu` is the constant coefficient. Cross-key rules (e.g. `c_nu` only with
+/// `normal-compliance`) are checked when the scenario is read, not by the schema.
+pub const JSON_SCHEMA: &str = include_str!("scenario.schema.json");
+
 /// Largest scenario file [`Scenario::from_file`] reads (bytes): 1 MiB, far above any
 /// hand-written scenario (the examples are below 2 kB); meshes come from separate files.
 pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
@@ -163,8 +170,9 @@ impl Scenario {
     }
 
     /// A parameter the file must give; its range is checked by the library's laws.
-    fn required(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
-        v.ok_or_else(|| self.err(field, "missing", &format!("{what} > 0 (required)")))
+    /// `allowed` names the parameter with its range (e.g. `a parameter 0 < a < 1`).
+    fn required(&self, field: &str, v: Option<f64>, allowed: &str) -> Result<f64> {
+        v.ok_or_else(|| self.err(field, "missing", &format!("{allowed} (required)")))
     }
 
     fn positive(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
@@ -213,7 +221,7 @@ impl Scenario {
                         c_nu: self.required(
                             &f("c_nu"),
                             c.c_nu,
-                            "a normal compliance stiffness c_ν (Pa/m)",
+                            "a normal compliance stiffness c_ν > 0 (Pa/m)",
                         )?,
                     }),
                     NormalLawKind::Signorini => {
