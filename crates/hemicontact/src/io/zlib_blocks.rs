@@ -80,7 +80,17 @@ pub fn decompress(data: &[u8]) -> Result<(Vec<u8>, usize)> {
             "a positive block size larger than the size of the last block",
         ));
     }
-    let header = 8 * n_blocks.saturating_add(3);
+    let header = n_blocks
+        .checked_add(3)
+        .and_then(|words| words.checked_mul(8))
+        .filter(|&bytes| bytes <= data.len())
+        .ok_or_else(|| {
+            bad(
+                "header",
+                format!("{n_blocks} blocks in {} bytes", data.len()),
+                "a header of 3 + (number of blocks) little-endian u64 words within the data",
+            )
+        })?;
     let mut at = header;
     let mut out = Vec::new();
     for k in 0..n_blocks {
@@ -173,6 +183,10 @@ mod tests {
         let e = decompress(&flipped).unwrap_err().to_string();
         assert!(e.contains("block 0"), "{e}");
         let e = decompress(&encoded[..10]).unwrap_err().to_string();
+        assert!(e.contains("header"), "{e}");
+        let mut huge = encoded.clone();
+        huge[..8].copy_from_slice(&u64::MAX.to_le_bytes());
+        let e = decompress(&huge).unwrap_err().to_string();
         assert!(e.contains("header"), "{e}");
     }
 }
