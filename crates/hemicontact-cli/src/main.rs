@@ -421,6 +421,7 @@ fn run_and_write(
             folder,
             &problem,
             &solution,
+            &title,
             json.then_some(&summary),
             vtu,
             &extra,
