@@ -87,6 +87,7 @@ pub mod error;
 pub mod fem;
 pub mod io;
 pub mod linalg;
+pub mod loading;
 pub mod material;
 pub mod mesh;
 pub mod norms;

@@ -320,6 +320,7 @@ impl Scenario {
             Some(v) => self.finite("loads.body_force", v, dim)?,
         };
         self.settings()?;
+        self.load_factors()?;
         let contact = self.build_contact(&mesh)?;
         let mut builder = Problem::builder(mesh, material)
             .plane(self.file.material.plane)
@@ -346,6 +347,43 @@ impl Scenario {
         notes.extend(self.friction_notes());
         notes.extend(problem.notes());
         Ok((problem, notes))
+    }
+
+    /// The load factors of `[loading]` ([`crate::loading`]), checked; `None` without a
+    /// `[loading]` table (one solve at the full load).
+    ///
+    /// # Errors
+    /// [`Error::Scenario`] naming `loading`, `loading.steps`, `loading.factors` or
+    /// `loading.factors[k]`: exactly one of `steps` (1 to [`crate::loading::MAX_STEPS`]) and
+    /// `factors` (finite, > 0, strictly increasing) must be given.
+    pub fn load_factors(&self) -> Result<Option<Vec<f64>>> {
+        let Some(spec) = &self.file.loading else {
+            return Ok(None);
+        };
+        let in_file = |e: Error| e.in_file(&self.source, |f| format!("loading.{f}"));
+        let factors = match (spec.steps, &spec.factors) {
+            (Some(n), None) => crate::loading::uniform_factors(n).map_err(in_file)?,
+            (None, Some(list)) => {
+                crate::loading::validate_factors(list).map_err(in_file)?;
+                list.clone()
+            }
+            (Some(n), Some(_)) => {
+                return Err(self.err(
+                    "loading",
+                    format!("steps = {n} and factors"),
+                    "exactly one of steps and factors",
+                ))
+            }
+            (None, None) => {
+                return Err(self.err(
+                    "loading",
+                    "an empty table",
+                    "exactly one of steps (a number of uniform steps) and factors (a list of \
+                     load factors)",
+                ))
+            }
+        };
+        Ok(Some(factors))
     }
 
     /// The solver settings of `[solver]`, checked ([`SolverSettings::validate`]).

@@ -119,6 +119,9 @@ pub struct ScenarioFile {
     /// Outputs.
     #[serde(default)]
     pub output: OutputSpec,
+    /// Load stepping (`[loading]`); absent: one solve at the full load.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loading: Option<LoadingSpec>,
 }
 
 /// Mesh source.
@@ -482,4 +485,17 @@ impl Default for OutputSpec {
             summary: true,
         }
     }
+}
+
+/// `[loading]`: the path of load factors λ by which every load and prescribed displacement
+/// is multiplied (see [`crate::loading`]). Exactly one of `steps` and `factors`.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadingSpec {
+    /// Number N of uniform steps: λ_k = k/N, k = 1 … N (1 ≤ N ≤ 10000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
+    /// The load factors themselves: finite, > 0, strictly increasing (1 to 10000 of them).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub factors: Option<Vec<f64>>,
 }
