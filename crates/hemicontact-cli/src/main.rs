@@ -11,6 +11,7 @@
 mod bench;
 mod check;
 mod console;
+mod loading;
 mod output;
 mod study;
 
@@ -298,6 +299,18 @@ fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
     };
     // Fail before the solve if the results could not be written.
     ctx.output.begin(&dir)?;
+    if let Some(factors) = scenario.load_factors()? {
+        c.phase(format_args!(
+            "solving {} in {} load steps: {}",
+            file.display(),
+            factors.len(),
+            problem_size(&problem)
+        ));
+        let (cases, outcome) = loading::solve_path(ctx, &problem, &scenario, notes, &factors)?;
+        print_written(c, &dir, &ctx.output.commit()?);
+        print_table(c, &cases);
+        return Ok(outcome);
+    }
     c.phase(format_args!(
         "solving {}: {}",
         file.display(),
