@@ -24,5 +24,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<solution::NativeSolution>()?;
     m.add_function(wrap_pyfunction!(solution::solve, m)?)?;
     m.add_function(wrap_pyfunction!(solution::convergence, m)?)?;
+    m.add_function(wrap_pyfunction!(solution::load_path, m)?)?;
     Ok(())
 }

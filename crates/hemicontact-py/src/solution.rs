@@ -8,7 +8,7 @@ use crate::scenario::NativeScenario;
 use hemicontact::io::result_set::ResultSet;
 use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
-use hemicontact::io::vtu::cell_fields;
+use hemicontact::io::vtu::{cell_fields, solution_vtu};
 use hemicontact::problem::Problem;
 use hemicontact::scenario::schema::OutputSpec;
 use hemicontact::solver::{solve_interruptible, Solution};
@@ -25,13 +25,21 @@ pub struct NativeSolution {
     summary: Summary,
     title: String,
     output: OutputSpec,
+    /// The load factor of the solve (1 for a plain solve; the step's for a load path).
+    load_factor: f64,
 }
 
 /// Solves the scenario (GIL released, Ctrl-C honoured). A solve that does not converge
-/// returns its last iterate, marked `converged == False`.
+/// returns its last iterate, marked `converged == False`. With `[loading]`, solves the
+/// load path and returns its last step solved.
 #[pyfunction]
 pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSolution> {
     let s = &scenario.inner;
+    if s.load_factors().map_err(|e| scenario.error(e))?.is_some() {
+        return load_path(py, scenario)?.pop().ok_or_else(|| {
+            pyo3::exceptions::PyRuntimeError::new_err("internal error: a load path without steps")
+        });
+    }
     let (problem, notes, settings) = py
         .detach(|| {
             let settings = s.settings()?;
@@ -61,7 +69,61 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
         problem,
         solution,
         summary,
+        load_factor: 1.0,
     })
+}
+
+/// Solves the scenario along its `[loading]` path (a plain solve at load factor 1 without
+/// one; GIL released, Ctrl-C honoured): each step warm-started from the last, stopping
+/// after the first step that does not converge. Returns the steps solved, in order.
+#[pyfunction]
+pub fn load_path(py: Python<'_>, scenario: &NativeScenario) -> PyResult<Vec<NativeSolution>> {
+    let s = &scenario.inner;
+    let (problem, notes, settings, factors) = py
+        .detach(|| {
+            let settings = s.settings()?;
+            let factors = s.load_factors()?.unwrap_or_else(|| vec![1.0]);
+            let (problem, notes) = s.into_problem_with_notes()?;
+            Ok::<_, hemicontact::Error>((problem, notes, settings, factors))
+        })
+        .map_err(|e| scenario.error(e))?;
+    let steps = interrupt::run(py, |stop| {
+        hemicontact::loading::load_path(
+            &problem,
+            &settings,
+            &factors,
+            stop,
+            &|_, _| {},
+            &mut |_| Ok(()),
+        )
+    })?
+    .map_err(|e| scenario.error(e))?;
+    let title = s
+        .file
+        .title
+        .clone()
+        .unwrap_or_else(|| "scenario".to_string());
+    Ok(steps
+        .into_iter()
+        .map(|step| {
+            let mut summary = Summary::new(
+                &step.problem,
+                &settings,
+                &step.solution,
+                s.file.title.clone(),
+                &s.source,
+            );
+            summary.notes = notes.clone();
+            NativeSolution {
+                title: format!("{title}, load factor {}", step.factor),
+                output: s.output().clone(),
+                problem: step.problem,
+                solution: step.solution,
+                summary,
+                load_factor: step.factor,
+            }
+        })
+        .collect())
 }
 
 /// The convergence study of the scenario (a generated mesh) on the levels `levels`
@@ -254,6 +316,12 @@ impl NativeSolution {
         (numeric, text)
     }
 
+    /// The load factor λ of this solve (1 for a plain solve).
+    #[getter]
+    fn load_factor(&self) -> f64 {
+        self.load_factor
+    }
+
     /// The summary (`summary.json` without its file list) as JSON.
     fn summary_json(&self) -> PyResult<String> {
         serde_json::to_string(&self.summary)
@@ -266,7 +334,20 @@ impl NativeSolution {
     fn write(&self, py: Python<'_>, folder: PathBuf) -> PyResult<Vec<PathBuf>> {
         py.detach(|| {
             let mut set = ResultSet::begin(&folder)?;
-            let extra = solution_figures(&self.problem, &self.solution, &self.title)?;
+            let mut extra = Vec::new();
+            // A step of a load path: its load factor as the file's TimeValue (a plain
+            // solve's file, with TimeValue 1, is written by `write_results`).
+            let step = self.load_factor != 1.0;
+            if self.output.vtu && step {
+                let vtu =
+                    solution_vtu(&self.problem, &self.solution, &self.title, self.load_factor)?;
+                extra.push(("solution.vtu", vtu.to_bytes()));
+            }
+            extra.extend(solution_figures(
+                &self.problem,
+                &self.solution,
+                &self.title,
+            )?);
             write_results(
                 &mut set,
                 "",
@@ -274,7 +355,7 @@ impl NativeSolution {
                 &self.solution,
                 &self.title,
                 self.output.summary.then_some(&self.summary),
-                self.output.vtu,
+                self.output.vtu && !step,
                 &extra,
             )?;
             set.commit()

@@ -9,6 +9,8 @@ The solver is the Rust library of the same name; this package drives it from Pyt
   become boundary parts);
 - :func:`solve` returns a :class:`Result` with numpy arrays (displacement, strain, stress,
   the contact table), the certificate, the iteration history and the timings;
+- :func:`load_path` solves a scenario along its ``[loading]`` path, one :class:`Result`
+  per load step;
 - :func:`convergence` runs a mesh-refinement study.
 
 Units are SI throughout: lengths and displacements in m, stresses and pressures in Pa,
@@ -18,7 +20,7 @@ forces in N (N/m per unit thickness in 2D). Invalid input raises :class:`Scenari
 
 from ._core import ScenarioError, __version__
 from ._mesh import Mesh
-from ._result import Result, convergence, solve
+from ._result import Result, convergence, load_path, solve
 from ._scenario import Scenario, load, paper_example
 
 
@@ -40,6 +42,7 @@ __all__ = [
     "__version__",
     "convergence",
     "load",
+    "load_path",
     "paper_example",
     "solve",
 ]

@@ -32,7 +32,9 @@ class Result:
       ``friction_traction`` (tangential traction on the body, force / weight, Pa), K × 3;
     - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
-      ``summary.json`` as a dict).
+      ``summary.json`` as a dict);
+    - ``load_factor``: the factor λ by which the scenario's loads and prescribed
+      displacements were multiplied (1 for a plain solve; see :func:`load_path`).
     """
 
     def __init__(self, native: "_core.Solution") -> None:
@@ -42,6 +44,8 @@ class Result:
         self.title: str = native.title
         self.converged: bool = native.converged
         self.message: str = native.message
+        #: The load factor λ (dimensionless) of this solve.
+        self.load_factor: float = native.load_factor
         self.summary: Dict[str, Any] = json.loads(native.summary_json())
         report = self.summary["report"]
         self.certificate: Dict[str, Any] = report["certificate"]
@@ -126,7 +130,8 @@ def solve(scenario: ScenarioLike) -> Result:
     ``KeyboardInterrupt``. A solve that does not converge (or whose certificate fails)
     is not an exception: it returns the last iterate with ``converged == False`` and emits a
     ``RuntimeWarning`` with the solver's message. Invalid input raises
-    :class:`ScenarioError`."""
+    :class:`ScenarioError`. A scenario with ``[loading]`` is solved along its load path
+    (as :func:`load_path`) and the last step solved is returned."""
     s = _scenario(scenario)
     result = Result(_core.solve(s._native))
     if not result.converged:
@@ -137,6 +142,26 @@ def solve(scenario: ScenarioLike) -> Result:
             stacklevel=2,
         )
     return result
+
+
+def load_path(scenario: ScenarioLike) -> List[Result]:
+    """Solves ``scenario`` along its ``[loading]`` path — the problem with every load
+    (tractions, body force) and prescribed displacement multiplied by each load factor λ in
+    turn, each step starting from the last step's displacement — and returns one
+    :class:`Result` per step solved, in order, each with its ``load_factor``. Without
+    ``[loading]``, one plain solve (λ = 1). The path stops after the first step that does
+    not converge (a ``RuntimeWarning`` says so); the list then ends with that step. The GIL
+    is released while it runs, and Ctrl-C interrupts it with ``KeyboardInterrupt``."""
+    s = _scenario(scenario)
+    steps = [Result(native) for native in _core.load_path(s._native)]
+    if steps and not steps[-1].converged:
+        warnings.warn(
+            f"{steps[-1].title}: {steps[-1].message}; the load path stops at step "
+            f"{len(steps)} (converged == False)",
+            RuntimeWarning,
+            stacklevel=2,
+        )
+    return steps
 
 
 def convergence(
