@@ -58,6 +58,10 @@ impl HMeasure {
     }
 }
 
+/// One study as drawn: its colour, its levels with a positive error and mesh size, and
+/// their points (px).
+type Curve<'a> = (Rgb, Vec<&'a Level>, Vec<[f64; 2]>);
+
 /// The convergence figure of the studies against the edge length.
 pub fn figure(studies: &[Study], title: &str) -> Figure {
     figure_with(studies, title, HMeasure::Edge)
@@ -150,6 +154,19 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
     // Grid, decade ticks and labels.
     let mut grid = Vec::new();
     let mut marks = Vec::new();
+    // Minor ticks at 2…9 × 10^k.
+    for k in (x0 as i32)..(x1 as i32) {
+        for m in 2..10 {
+            let x = px(f64::from(m) * 10f64.powi(k));
+            marks.push(([x, bottom], [x, bottom + 3.0]));
+        }
+    }
+    for k in (y0 as i32)..(y1 as i32) {
+        for m in 2..10 {
+            let y = py(f64::from(m) * 10f64.powi(k));
+            marks.push(([left - 3.0, y], [left, y]));
+        }
+    }
     for k in (x0 as i32)..=(x1 as i32) {
         let x = px(10f64.powi(k));
         grid.push(([x, top], [x, bottom]));
@@ -210,52 +227,61 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
         anchor: Anchor::Start,
         color: DARK,
     });
-    // Markers occupy space that labels must avoid.
-    let mut taken: Vec<Rect> = Vec::new();
-    for st in studies {
-        for l in st
-            .levels
-            .iter()
-            .filter(|l| l.error > 0.0 && measure.h(l) > 0.0)
-        {
-            let (x, y) = (px(measure.h(l)), py(l.error));
-            taken.push([x - 5.0, y - 5.0, x + 5.0, y + 5.0]);
-        }
-    }
-    // Reference slopes through the first point of the first study, with their labels.
+    // The curves, and the reference slopes through the first point of the first study
+    // (each ending where it leaves the plot: at the left edge or the bottom).
+    let curves: Vec<Curve> = studies
+        .iter()
+        .enumerate()
+        .map(|(k, st)| {
+            let levels: Vec<&Level> = st
+                .levels
+                .iter()
+                .filter(|l| l.error > 0.0 && measure.h(l) > 0.0)
+                .collect();
+            let points = levels
+                .iter()
+                .map(|l| [px(measure.h(l)), py(l.error)])
+                .collect();
+            (COLORS[k % COLORS.len()], levels, points)
+        })
+        .collect();
+    let mut slopes: Vec<(f64, [f64; 2], [f64; 2])> = Vec::new();
     if let Some(l) = studies.first().and_then(|s| s.levels.first()) {
         let (h0, e0) = (measure.h(l), l.error);
         if h0 > 0.0 && e0 > 0.0 {
             for slope in measure.slopes() {
-                // End where the line leaves the plot: at the left edge or the bottom.
                 let x_end = 10f64
                     .powf(x0)
                     .max(h0 * (10f64.powf(y0) / e0).powf(1.0 / slope));
                 let y_end = e0 * (x_end / h0).powf(slope);
-                fig.prims.push(Prim::Polyline {
-                    points: vec![[px(h0), py(e0)], [px(x_end), py(y_end)]],
-                    color: DARK,
-                    width: 1.0,
-                    dashed: true,
-                });
-                let text = format!("slope {}", number(slope));
-                let at = [px(x_end), py(y_end)];
-                place(&mut fig, &mut boxes, &taken, plot, &text, at, DARK);
+                slopes.push((slope, [px(h0), py(e0)], [px(x_end), py(y_end)]));
             }
         }
     }
-    // Curves and their order labels.
-    for (k, st) in studies.iter().enumerate() {
-        let c = COLORS[k % COLORS.len()];
-        let levels: Vec<&Level> = st
-            .levels
-            .iter()
-            .filter(|l| l.error > 0.0 && measure.h(l) > 0.0)
-            .collect();
-        let points: Vec<[f64; 2]> = levels
-            .iter()
-            .map(|l| [px(measure.h(l)), py(l.error)])
-            .collect();
+    // Markers and lines occupy space that labels avoid where they can.
+    let mut taken: Vec<Rect> = Vec::new();
+    for (_, _, points) in &curves {
+        for p in points {
+            taken.push([p[0] - 5.0, p[1] - 5.0, p[0] + 5.0, p[1] + 5.0]);
+        }
+        for w in points.windows(2) {
+            trace(&mut taken, w[0], w[1]);
+        }
+    }
+    for (_, a, b) in &slopes {
+        trace(&mut taken, *a, *b);
+    }
+    for (slope, a, b) in &slopes {
+        fig.prims.push(Prim::Polyline {
+            points: vec![*a, *b],
+            color: DARK,
+            width: 1.0,
+            dashed: true,
+        });
+        let text = format!("slope {}", number(*slope));
+        place(&mut fig, &mut boxes, &taken, plot, &text, *b, DARK);
+    }
+    for (c, levels, points) in curves {
         for p in &points {
             fig.prims.push(Prim::Circle {
                 center: *p,
@@ -267,15 +293,8 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
             if let Some(order) = measure.order(pair[1]) {
                 let (a, b) = (points[j], points[j + 1]);
                 let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-                place(
-                    &mut fig,
-                    &mut boxes,
-                    &taken,
-                    plot,
-                    &format!("{order:.2}"),
-                    mid,
-                    c,
-                );
+                let text = format!("{order:.2}");
+                place(&mut fig, &mut boxes, &taken, plot, &text, mid, c);
             }
         }
         fig.prims.push(Prim::Polyline {
@@ -291,10 +310,21 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
     (fig, boxes)
 }
 
+/// Small boxes every 3 px along the segment `a–b`: the space a line takes.
+fn trace(taken: &mut Vec<Rect>, a: [f64; 2], b: [f64; 2]) {
+    let n = ((b[0] - a[0]).hypot(b[1] - a[1]) / 3.0).ceil().max(1.0) as usize;
+    for k in 0..=n {
+        let t = k as f64 / n as f64;
+        let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+        taken.push([x - 1.5, y - 1.5, x + 1.5, y + 1.5]);
+    }
+}
+
 /// Writes `text` (size 11) near `at` at the first candidate spot (right-below, left-above,
 /// right-above, left-below, then farther out) whose box lies inside `plot` and overlaps
-/// neither a box in `boxes` nor one in `taken`; falls back to the first candidate. Records
-/// the chosen box in `boxes`.
+/// neither another label's box in `boxes` nor a marker or line in `taken`; if there is
+/// none, at the first spot that overlaps no other label; failing that, at the first
+/// candidate. Records the chosen box in `boxes`.
 fn place(
     fig: &mut Figure,
     boxes: &mut Vec<Rect>,
@@ -307,20 +337,21 @@ fn place(
     let size = 11.0;
     let tw = super::text_width(text, size);
     let mut candidates = Vec::new();
-    for d in [8.0, 20.0, 34.0, 50.0] {
+    for d in [6.0, 12.0, 20.0, 30.0, 42.0, 56.0, 72.0] {
         candidates.push([at[0] + d * 0.5, at[1] + d + 0.5 * size]);
         candidates.push([at[0] - d * 0.5 - tw, at[1] - d]);
         candidates.push([at[0] + d * 0.5, at[1] - d]);
         candidates.push([at[0] - d * 0.5 - tw, at[1] + d + 0.5 * size]);
     }
-    let fits = |p: &[f64; 2]| {
+    let fits = |p: &[f64; 2], avoid: &[Rect]| {
         let b = text_box(text, p[0], p[1], size);
-        inside(b, plot) && !boxes.iter().chain(taken).any(|o| overlaps(b, *o))
+        inside(b, plot) && !boxes.iter().chain(avoid).any(|o| overlaps(b, *o))
     };
     let p = candidates
         .iter()
         .copied()
-        .find(|p| fits(p))
+        .find(|p| fits(p, taken))
+        .or_else(|| candidates.iter().copied().find(|p| fits(p, &[])))
         .unwrap_or(candidates[0]);
     boxes.push(text_box(text, p[0], p[1], size));
     fig.prims.push(Prim::Text {

@@ -9,7 +9,7 @@
 //! without friction, blue stick, red slip) and the interface tractions R_i/w_i (Pa: the
 //! force of the foundation on point i over its weight) as arrows to a stated scale.
 //!
-//! Displacements are magnified by [`magnification`] (a 1, 2 or 5 × 10^k factor making the
+//! Displacements are magnified by [`super::scales::magnification`] (a 1, 2 or 5 × 10^k factor making the
 //! largest displacement about a tenth of the body), and so are the gaps, so that the
 //! foundations stay where the magnified body touches them; the legend says so. At most
 //! [`Options::max_arrows`] arrows are drawn per contact part, evenly spaced along it. The
@@ -21,6 +21,9 @@ use super::field::{color_of, colorbar, range, ColorField};
 use super::interface::{along, traction_floor};
 use super::layout::{fit_text, quantity, round_down_125};
 use super::legend::{flow, Entry, Swatch};
+use super::scales::{
+    arrow_points, chains, contact_spacing, magnification, max_traction, mesh_drawn,
+};
 use super::{Anchor, Figure, Prim, Rgb};
 use crate::problem::Problem;
 use crate::solver::{ContactResult, FrictionState, NormalState, Solution};
@@ -67,67 +70,6 @@ fn touching(c: &ContactResult) -> bool {
     c.normal_state == NormalState::Contact
 }
 
-/// The displacement magnification: the largest `m · 10^k` (m ∈ {1, 2, 5}) not above
-/// `0.1 · size / max_u`, at least 1 (displacements are never shrunk); 1 when nothing moves.
-/// `size` is the body's largest extent and `max_u` its largest displacement (m).
-pub fn magnification(size: f64, max_u: f64) -> f64 {
-    if !(max_u > 0.0 && size > 0.0 && max_u.is_finite()) {
-        return 1.0;
-    }
-    round_down_125(0.1 * size / max_u).max(1.0)
-}
-
-/// The contact points that get an arrow: per contact boundary, at most `cap` points evenly
-/// spaced along it (all if it has no more than `cap`). Returns a flag per contact point.
-pub fn arrow_points(problem: &Problem, solution: &Solution, cap: usize) -> Vec<bool> {
-    let mut chosen = vec![false; solution.contact.len()];
-    for b in 0..problem.contact.len() {
-        let rows: Vec<usize> = if problem.mesh.dim() == 2 {
-            along(problem, solution, b).rows
-        } else {
-            (0..solution.contact.len())
-                .filter(|&k| solution.contact[k].boundary == b)
-                .collect()
-        };
-        for k in thin(rows.len(), cap) {
-            chosen[rows[k]] = true;
-        }
-    }
-    chosen
-}
-
-/// Indices of `cap` of `n` items evenly spaced from the first to the last (all if n ≤ cap).
-pub fn thin(n: usize, cap: usize) -> Vec<usize> {
-    if n <= cap {
-        return (0..n).collect();
-    }
-    if cap <= 1 {
-        return vec![0; cap.min(n)];
-    }
-    let mut out: Vec<usize> = (0..cap)
-        .map(|k| ((k * (n - 1)) as f64 / (cap - 1) as f64).round() as usize)
-        .collect();
-    out.dedup();
-    out
-}
-
-/// The largest traction magnitude ‖R_i‖/w_i (Pa) over touching points, 0 if below the
-/// round-off floor of equilibrium ([`traction_floor`]).
-pub fn max_traction(solution: &Solution) -> f64 {
-    let norm = |f: &[f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
-    let max = solution
-        .contact
-        .iter()
-        .filter(|c| touching(c) && c.weight > 0.0)
-        .map(|c| norm(&c.force) / c.weight)
-        .fold(0.0, f64::max);
-    if max <= traction_floor(solution) {
-        0.0
-    } else {
-        max
-    }
-}
-
 /// What a panel's legend needs to know.
 struct Key {
     magnification: f64,
@@ -138,6 +80,9 @@ struct Key {
     touching_points: usize,
     field: ColorField,
     gaps: bool,
+    /// Whether the mesh edges are drawn (else only the deformed boundary: too fine).
+    mesh_drawn: bool,
+    cells: usize,
 }
 
 /// The legend entries of a panel.
@@ -149,14 +94,28 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
         "displacements at true scale (× 1)".to_string()
     };
     let mut e = vec![
-        Entry::new(
-            Swatch::Line {
-                color: MESH,
-                width: 1.0,
-                dashed: false,
-            },
-            format!("deformed mesh, {scale}"),
-        ),
+        if key.mesh_drawn {
+            Entry::new(
+                Swatch::Line {
+                    color: MESH,
+                    width: 1.0,
+                    dashed: false,
+                },
+                format!("deformed mesh, {scale}"),
+            )
+        } else {
+            Entry::new(
+                Swatch::Line {
+                    color: DARK,
+                    width: 1.2,
+                    dashed: false,
+                },
+                format!(
+                    "deformed boundary, {scale} (the {} cells are too small to draw)",
+                    key.cells
+                ),
+            )
+        },
         Entry::new(
             Swatch::Line {
                 color: GREY,
@@ -218,13 +177,10 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
                 length: (key.arrow_scale * reference).max(8.0),
             },
             format!(
-                "interface traction R/w: this arrow = {}",
+                "interface traction R/w (max {}): this arrow = {}",
+                quantity(key.max_t, "Pa"),
                 quantity(reference, "Pa")
             ),
-        ));
-        e.push(Entry::new(
-            Swatch::None,
-            format!("max {}", quantity(key.max_t, "Pa")),
         ));
         if key.arrows < key.touching_points {
             e.push(Entry::new(
@@ -355,6 +311,7 @@ fn panel_layout(
         }
     }
     let gaps = problem.contact.iter().any(|cb| cb.gap != 0.0);
+    let spacing = contact_spacing(problem, solution);
     let mut lo = [blo[0], blo[iy]];
     let mut hi = [bhi[0], bhi[iy]];
     let mut grow = |p: [f64; 2]| {
@@ -397,6 +354,8 @@ fn panel_layout(
         touching_points,
         field,
         gaps,
+        mesh_drawn: true,
+        cells: if d == 2 { mesh.n_cells() } else { facing.len() },
     };
     let probe = flow(
         &entries(solution, &key),
@@ -413,6 +372,8 @@ fn panel_layout(
     ];
     let frame = Frame::new(lo, hi, area);
     let px = |p: [f64; 2]| frame.px(p);
+    key.mesh_drawn = mesh_drawn(mesh, frame.scale, d);
+    let mesh_drawn = key.mesh_drawn;
     let arrow_px = 0.08 * area[2];
     key.arrow_scale = if max_t > 0.0 { arrow_px / max_t } else { 0.0 };
     // Colour field on the deformed cells.
@@ -432,12 +393,12 @@ fn panel_layout(
         }
         bar = Some(r);
     }
-    // Undeformed boundary, dashed (in 3D the undeformed bounding box).
+    // Undeformed boundary, dashed along each chain of boundary edges (in 3D the undeformed
+    // bounding box).
     if d == 2 {
-        for f in 0..mesh.n_facets() {
-            let v = mesh.facet(f);
+        for chain in chains(mesh) {
             prims.push(Prim::Polyline {
-                points: vec![px(pos(v[0] as usize, 0.0)), px(pos(v[1] as usize, 0.0))],
+                points: chain.iter().map(|&n| px(pos(n as usize, 0.0))).collect(),
                 color: GREY,
                 width: 1.0,
                 dashed: true,
@@ -463,7 +424,7 @@ fn panel_layout(
     // Deformed mesh edges: in 2D each cell edge once (a < b; shared edges appear in two
     // cells with opposite orientation), in 3D the edges of the facets facing the viewer.
     let mut edges = Vec::new();
-    if d == 2 {
+    if d == 2 && mesh_drawn {
         for c in 0..mesh.n_cells() {
             let cell = mesh.cell(c);
             for k in 0..3 {
@@ -473,7 +434,7 @@ fn panel_layout(
                 }
             }
         }
-    } else {
+    } else if d == 3 {
         for &f in &facing {
             let v = mesh.facet(f);
             for k in 0..3 {
@@ -482,12 +443,13 @@ fn panel_layout(
             }
         }
     }
-    let n_drawn = if d == 2 { mesh.n_cells() } else { facing.len() };
-    prims.push(Prim::Segments {
-        segments: edges,
-        color: MESH,
-        width: if n_drawn > 20_000 { 0.3 } else { 0.6 },
-    });
+    if mesh_drawn {
+        prims.push(Prim::Segments {
+            segments: edges,
+            color: MESH,
+            width: 0.6,
+        });
+    }
     prims.push(Prim::Segments {
         segments: foundation.iter().map(|(a, b)| (px(*a), px(*b))).collect(),
         color: DARK,
@@ -511,7 +473,9 @@ fn panel_layout(
             px(pos(n, 1.0))
         }));
     }
-    // Interface tractions and contact points.
+    // Interface tractions and contact points; markers shrink where points are closer than
+    // about 8 px.
+    let marker = (0.35 * frame.scale * spacing).clamp(1.6, 3.0);
     for (k, c) in solution.contact.iter().enumerate() {
         if !visible[c.node as usize] {
             continue;
@@ -529,12 +493,14 @@ fn panel_layout(
                 });
             }
         }
-        let r = if touching(c) { 3.0 } else { 1.8 };
-        prims.push(Prim::Circle {
-            center: p,
-            radius: r + 0.8,
-            fill: [255, 255, 255],
-        });
+        let r = if touching(c) { marker } else { 0.6 * marker };
+        if marker >= 2.5 {
+            prims.push(Prim::Circle {
+                center: p,
+                radius: r + 0.8,
+                fill: [255, 255, 255],
+            });
+        }
         prims.push(Prim::Circle {
             center: p,
             radius: r,

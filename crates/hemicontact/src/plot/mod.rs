@@ -6,7 +6,8 @@
 //! [`interface`] the contact quantities along each contact part against the arc length,
 //! [`convergence`] the log–log convergence plot. [`layout`] holds the shared layout rules
 //! (round numbers, ticks, fitted titles, label boxes), [`field`] the colour fields and
-//! their colour bar, [`legend`] the legends set below a panel.
+//! their colour bar, [`legend`] the legends set below a panel, [`scales`] the scales of the
+//! deformed drawing (magnification, arrows).
 
 pub mod axes;
 pub mod convergence;
@@ -16,6 +17,9 @@ pub mod font;
 pub mod interface;
 pub mod layout;
 pub mod legend;
+pub mod scales;
+#[cfg(test)]
+mod tests;
 
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
@@ -58,7 +62,8 @@ pub enum Prim {
         /// Dashed.
         dashed: bool,
     },
-    /// A filled polygon.
+    /// A filled polygon (outlined by a 0.5 px line of its colour, so that adjacent polygons
+    /// show no seams).
     Polygon {
         /// Vertices.
         points: Vec<[f64; 2]>,
@@ -187,9 +192,9 @@ impl Figure {
                         .collect();
                     let _ = writeln!(
                         s,
-                        "<polygon points=\"{}\" fill=\"{}\"/>",
+                        "<polygon points=\"{}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
                         pts.join(" "),
-                        hex(*fill)
+                        c = hex(*fill)
                     );
                 }
                 Prim::Arrow {
@@ -321,6 +326,13 @@ impl Figure {
                 Prim::Polygon { points, fill } => {
                     if let Some(path) = polygon_path(points, true) {
                         pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
+                        // A hairline of the fill colour closes the anti-aliased seams
+                        // between adjacent polygons (cells of a colour field).
+                        let stroke = Stroke {
+                            width: 0.5,
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*fill), &stroke, id, None);
                     }
                 }
                 Prim::Arrow {
