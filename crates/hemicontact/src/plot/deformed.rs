@@ -41,7 +41,8 @@ const CONTACT: Rgb = [70, 70, 70];
 pub struct Options {
     /// The colour field on the cells (2D only).
     pub field: ColorField,
-    /// Largest number of traction arrows per contact part (evenly spaced along it).
+    /// Largest number of traction arrows per contact part (evenly spaced along it, and at
+    /// least 8 px apart on average).
     pub max_arrows: usize,
 }
 
@@ -329,7 +330,6 @@ fn panel_layout(
     }
     // Arrows and the legend, whose height fixes the drawing area.
     let max_t = max_traction(solution);
-    let chosen = arrow_points(problem, solution, options.max_arrows);
     let field = if d == 2 {
         options.field
     } else {
@@ -343,9 +343,9 @@ fn panel_layout(
         visible[c.node as usize] && touching(c)
     };
     let touching_points = (0..solution.contact.len()).filter(|&k| shown(k)).count();
-    let arrows = (0..solution.contact.len())
-        .filter(|&k| shown(k) && chosen[k])
-        .count();
+    // The legend is first set with the note on thinned arrows (the arrows are chosen once
+    // the scale is known), so that the final legend is never taller.
+    let arrows = 0;
     let mut key = Key {
         magnification: m,
         max_t,
@@ -376,6 +376,10 @@ fn panel_layout(
     let mesh_drawn = key.mesh_drawn;
     let arrow_px = 0.08 * area[2];
     key.arrow_scale = if max_t > 0.0 { arrow_px / max_t } else { 0.0 };
+    let chosen = arrow_points(problem, solution, options.max_arrows, 8.0 / frame.scale);
+    key.arrows = (0..solution.contact.len())
+        .filter(|&k| shown(k) && chosen[k])
+        .count();
     // Colour field on the deformed cells.
     let mut bar = None;
     if let Some(values) = field.cell_values(problem, solution) {

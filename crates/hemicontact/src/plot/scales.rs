@@ -19,17 +19,35 @@ pub fn magnification(size: f64, max_u: f64) -> f64 {
     round_down_125(0.1 * size / max_u).max(1.0)
 }
 
-/// The contact points that get an arrow: per contact boundary, at most `cap` points evenly
-/// spaced along it (all if it has no more than `cap`). Returns a flag per contact point.
-pub fn arrow_points(problem: &Problem, solution: &Solution, cap: usize) -> Vec<bool> {
+/// The contact points that get an arrow: per contact boundary, of its points in contact,
+/// at most `cap` evenly spaced along it, and in 2D no more than one per `min_gap` (m) of
+/// the stretch they cover. Returns a flag per contact point.
+pub fn arrow_points(problem: &Problem, solution: &Solution, cap: usize, min_gap: f64) -> Vec<bool> {
+    let touching = |k: &usize| solution.contact[*k].normal_state == NormalState::Contact;
     let mut chosen = vec![false; solution.contact.len()];
     for b in 0..problem.contact.len() {
-        let rows: Vec<usize> = if problem.mesh.dim() == 2 {
-            along(problem, solution, b).rows
+        let (rows, cap) = if problem.mesh.dim() == 2 {
+            let al = along(problem, solution, b);
+            let (rows, s): (Vec<usize>, Vec<f64>) = al
+                .rows
+                .iter()
+                .zip(&al.s)
+                .filter(|(k, _)| touching(k))
+                .map(|(k, s)| (*k, *s))
+                .unzip();
+            let stretch = s.last().copied().unwrap_or(0.0) - s.first().copied().unwrap_or(0.0);
+            let room = if min_gap > 0.0 {
+                (stretch / min_gap).floor() as usize + 1
+            } else {
+                cap
+            };
+            (rows, cap.min(room))
         } else {
-            (0..solution.contact.len())
+            let rows = (0..solution.contact.len())
                 .filter(|&k| solution.contact[k].boundary == b)
-                .collect()
+                .filter(touching)
+                .collect();
+            (rows, cap)
         };
         for k in thin(rows.len(), cap) {
             chosen[rows[k]] = true;

@@ -84,11 +84,23 @@ fn arrows_are_thinned_to_the_cap_evenly() {
     let gaps: Vec<usize> = k.windows(2).map(|w| w[1] - w[0]).collect();
     assert!(gaps.iter().all(|&g| g == 3 || g == 4), "{gaps:?}");
     let (problem, solution) = solved(16, 0.4);
+    let touching = solution
+        .contact
+        .iter()
+        .filter(|c| c.normal_state == crate::solver::NormalState::Contact)
+        .count();
+    assert!(touching > 2 * 3, "{touching} points in contact");
     for cap in [3, 10, 40] {
-        let chosen = arrow_points(&problem, &solution, cap);
+        let chosen = arrow_points(&problem, &solution, cap, 0.0);
         let n = chosen.iter().filter(|&&c| c).count();
-        assert!(n <= cap * problem.contact.len(), "{n} arrows for cap {cap}");
+        assert_eq!(n, touching.min(cap * problem.contact.len()), "cap {cap}");
     }
+    // One arrow per 1 m of contact at most: the contact zones are shorter than 4 m.
+    let n = arrow_points(&problem, &solution, 40, 1.0)
+        .iter()
+        .filter(|&&c| c)
+        .count();
+    assert!(n <= 2 * 4, "{n}");
 }
 
 #[test]
