@@ -17,7 +17,7 @@
 //! (orthographic projection on the x–z plane).
 
 use super::axes::{self, Axis};
-use super::field::{color_of, colorbar, range, ColorField};
+use super::field::{color_of, colorbar, level, level_color, range, ColorField, LEVELS};
 use super::interface::{along, traction_floor};
 use super::layout::{fit_text, quantity, round_down_125};
 use super::legend::{flow, Entry, Swatch};
@@ -81,6 +81,8 @@ struct Key {
     touching_points: usize,
     field: ColorField,
     gaps: bool,
+    /// Whether the problem has a contact boundary.
+    contact: bool,
     /// Whether the mesh edges are drawn (else only the deformed boundary: too fine).
     mesh_drawn: bool,
     cells: usize,
@@ -125,19 +127,24 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
             },
             "undeformed boundary",
         ),
-        Entry::new(
-            Swatch::Line {
-                color: DARK,
-                width: 4.0,
-                dashed: false,
-            },
-            if key.gaps && m > 1.0 {
-                format!("rigid foundation (gap × {})", super::layout::number(m))
-            } else {
-                "rigid foundation".to_string()
-            },
-        ),
     ];
+    if !key.contact {
+        e.push(Entry::new(Swatch::None, "no contact boundary"));
+        push_field(&mut e, key.field);
+        return e;
+    }
+    e.push(Entry::new(
+        Swatch::Line {
+            color: DARK,
+            width: 4.0,
+            dashed: false,
+        },
+        if key.gaps && m > 1.0 {
+            format!("rigid foundation (gap × {})", super::layout::number(m))
+        } else {
+            "rigid foundation".to_string()
+        },
+    ));
     let count =
         |f: &dyn Fn(&ContactResult) -> bool| solution.contact.iter().filter(|c| f(c)).count();
     let states: [(Rgb, &str, usize); 4] = [
@@ -198,15 +205,20 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
             "interface traction 0 (no point in contact)",
         ));
     }
-    if key.field != ColorField::None {
+    push_field(&mut e, key.field);
+    e
+}
+
+/// The legend entry naming the colour field, if any.
+fn push_field(e: &mut Vec<Entry>, field: ColorField) {
+    if field != ColorField::None {
         e.push(Entry::new(
             Swatch::Patch {
                 color: color_of(0.7, [0.0, 1.0]),
             },
-            format!("colours: {}", key.field.label()),
+            format!("colours: {}", field.label()),
         ));
     }
-    e
 }
 
 /// The title lines of a panel fitted to its width; returns the primitives and the height
@@ -354,6 +366,7 @@ fn panel_layout(
         touching_points,
         field,
         gaps,
+        contact: !problem.contact.is_empty(),
         mesh_drawn: true,
         cells: if d == 2 { mesh.n_cells() } else { facing.len() },
     };
@@ -384,16 +397,23 @@ fn panel_layout(
     let mut bar = None;
     if let Some(values) = field.cell_values(problem, solution) {
         let r = range(&values);
-        for c in 0..mesh.n_cells() {
-            let pts = mesh
+        // One primitive per colour band of the bar: cells grouped by their band.
+        let mut bands: Vec<Vec<Vec<[f64; 2]>>> = vec![Vec::new(); LEVELS];
+        for (c, v) in values.iter().enumerate() {
+            let ring = mesh
                 .cell(c)
                 .iter()
                 .map(|&v| px(pos(v as usize, 1.0)))
                 .collect();
-            prims.push(Prim::Polygon {
-                points: pts,
-                fill: color_of(values[c], r),
-            });
+            bands[level(*v, r)].push(ring);
+        }
+        for (k, rings) in bands.into_iter().enumerate() {
+            if !rings.is_empty() {
+                prims.push(Prim::Polygons {
+                    rings,
+                    fill: level_color(k),
+                });
+            }
         }
         bar = Some(r);
     }

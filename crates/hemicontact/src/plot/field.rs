@@ -104,6 +104,25 @@ pub fn colormap(t: f64) -> Rgb {
     c
 }
 
+/// The number of colour bands of a field and its bar (64: the eye sees a continuous ramp).
+pub const LEVELS: usize = 64;
+
+/// The band (0 … [`LEVELS`] − 1) of value `v` in the range `[lo, hi]`.
+pub fn level(v: f64, [lo, hi]: [f64; 2]) -> usize {
+    let t = (v - lo) / (hi - lo);
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    ((t * LEVELS as f64) as usize).min(LEVELS - 1)
+}
+
+/// The colour of band `k`: the map at the band's middle.
+pub fn level_color(k: usize) -> Rgb {
+    colormap((k as f64 + 0.5) / LEVELS as f64)
+}
+
 /// The colour of value `v` in the range `[lo, hi]`.
 pub fn color_of(v: f64, [lo, hi]: [f64; 2]) -> Rgb {
     colormap((v - lo) / (hi - lo))
@@ -115,13 +134,12 @@ pub fn color_of(v: f64, [lo, hi]: [f64; 2]) -> Rgb {
 pub fn colorbar(field: ColorField, [lo, hi]: [f64; 2], rect: [f64; 4]) -> Vec<Prim> {
     let [x, y, w, h] = rect;
     let mut prims = Vec::new();
-    let steps = 64;
-    for k in 0..steps {
-        let (a, b) = (k as f64 / steps as f64, (k + 1) as f64 / steps as f64);
+    for k in 0..LEVELS {
+        let (a, b) = (k as f64 / LEVELS as f64, (k + 1) as f64 / LEVELS as f64);
         let (ya, yb) = (y + h * (1.0 - a), y + h * (1.0 - b));
         prims.push(Prim::Polygon {
-            points: vec![[x, ya + 0.5], [x + w, ya + 0.5], [x + w, yb], [x, yb]],
-            fill: colormap(0.5 * (a + b)),
+            points: vec![[x, ya], [x + w, ya], [x + w, yb], [x, yb]],
+            fill: level_color(k),
         });
     }
     prims.push(Prim::Polyline {
@@ -189,5 +207,15 @@ mod tests {
         assert_eq!(range(&[-1.0, 3.0]), [-1.0, 3.0]);
         assert_eq!(range(&[0.0, 0.0]), [0.0, 1.0]);
         assert_eq!(range(&[]), [0.0, 1.0]);
+    }
+
+    #[test]
+    fn bands_split_the_range_evenly() {
+        let r = [2.0, 10.0];
+        assert_eq!(level(2.0, r), 0);
+        assert_eq!(level(10.0, r), LEVELS - 1);
+        assert_eq!(level(6.0, r), LEVELS / 2);
+        assert_eq!(level(-5.0, r), 0);
+        assert_eq!(level(f64::NAN, r), 0);
     }
 }

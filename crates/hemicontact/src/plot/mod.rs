@@ -70,6 +70,14 @@ pub enum Prim {
         /// Fill colour.
         fill: Rgb,
     },
+    /// Several filled polygons of one colour (cells of a colour field), each outlined by a
+    /// 0.5 px line of the colour like [`Prim::Polygon`].
+    Polygons {
+        /// The polygons' vertices.
+        rings: Vec<Vec<[f64; 2]>>,
+        /// Fill colour.
+        fill: Rgb,
+    },
     /// An arrow from `from` to `to` with a head of `head` px.
     Arrow {
         /// Tail.
@@ -194,6 +202,21 @@ impl Figure {
                         s,
                         "<polygon points=\"{}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
                         pts.join(" "),
+                        c = hex(*fill)
+                    );
+                }
+                Prim::Polygons { rings, fill } => {
+                    let mut d = String::with_capacity(32 * rings.len());
+                    for ring in rings {
+                        for (k, p) in ring.iter().enumerate() {
+                            let c = if k == 0 { 'M' } else { 'L' };
+                            let _ = write!(d, "{c}{:.1} {:.1}", p[0], p[1]);
+                        }
+                        d.push('Z');
+                    }
+                    let _ = writeln!(
+                        s,
+                        "<path d=\"{d}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
                         c = hex(*fill)
                     );
                 }
@@ -328,6 +351,24 @@ impl Figure {
                         pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
                         // A hairline of the fill colour closes the anti-aliased seams
                         // between adjacent polygons (cells of a colour field).
+                        let stroke = Stroke {
+                            width: 0.5,
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*fill), &stroke, id, None);
+                    }
+                }
+                Prim::Polygons { rings, fill } => {
+                    let mut pb = PathBuilder::new();
+                    for ring in rings.iter().filter(|r| !r.is_empty()) {
+                        pb.move_to(f(ring[0][0]), f(ring[0][1]));
+                        for q in &ring[1..] {
+                            pb.line_to(f(q[0]), f(q[1]));
+                        }
+                        pb.close();
+                    }
+                    if let Some(path) = pb.finish() {
+                        pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
                         let stroke = Stroke {
                             width: 0.5,
                             ..Stroke::default()
