@@ -9,7 +9,9 @@ writes its results, alternately with the command-line program (`hemicontact solv
 solver's own time (`timings.total`) of the Python solves, and how long the conversion of the
 result into numpy arrays takes (the Python-only part), and what a friction coefficient
 written in Python costs: the same scenario with the built-in exponential law replaced by the
-identical numpy function, per outer iteration and per call.
+identical numpy function, per outer iteration and per call; and what a normal compliance
+written in Python costs: the built-in linear law replaced by identical numpy functions p and
+dp, per Newton step and per call.
 
 Usage: python scripts/bench-python.py [--scenario FILE] [--rounds 7] [--cli PATH]
 (needs the package installed, e.g. `bash scripts/test-python.sh` or `pip install
@@ -81,6 +83,38 @@ def main() -> None:
             python.append(time.perf_counter() - t)
             outer.append(len(r1.history["outer"]))
             per_call.append(calls[0])
+    # A Python normal compliance identical to the built-in linear one (the scenario's c_nu).
+    d = hc.load(args.scenario).to_dict()
+    p_calls = [0]
+    compliance = False
+    for c in d.get("contact", []):
+        if c.get("law") == "normal-compliance":
+            c_nu = c.pop("c_nu")
+            del c["law"]
+
+            def p(x, c_nu=c_nu):
+                p_calls[0] += 1
+                return c_nu * x
+
+            def dp(x, c_nu=c_nu):
+                p_calls[0] += 1
+                return np.full_like(x, c_nu)
+
+            c["normal"] = {"law": "compliance", "p": p, "dp": dp}
+            compliance = True
+    normal = hc.Scenario.from_dict(d, source=args.scenario) if compliance else None
+    n_plain, n_python, n_calls, n_newton = [], [], [], []
+    if normal is not None:
+        for _ in range(args.rounds):
+            t = time.perf_counter()
+            hc.solve(builtin)
+            n_plain.append(time.perf_counter() - t)
+            p_calls[0] = 0
+            t = time.perf_counter()
+            r2 = hc.solve(normal)
+            n_python.append(time.perf_counter() - t)
+            n_calls.append(p_calls[0])
+            n_newton.append(len(r2.history["newton"]))
     m = statistics.median
     print(f"scenario {args.scenario}, {args.rounds} rounds, medians:")
     print(f"  command line (solve + write, process)   {m(cli):.3f} s")
@@ -95,6 +129,14 @@ def main() -> None:
               f"({m(per_call):.0f} calls, {m(outer):.0f} outer iterations)")
         print(f"  difference per outer iteration          {extra / m(outer) * 1e3:.2f} ms")
         print(f"  difference per call                     {extra / m(per_call) * 1e3:.3f} ms")
+
+    if n_python:
+        extra = m(n_python) - m(n_plain)
+        print(f"built-in linear normal compliance         {m(n_plain):.3f} s")
+        print(f"the same law as Python p and dp           {m(n_python):.3f} s "
+              f"({m(n_calls):.0f} calls, {m(n_newton):.0f} Newton steps)")
+        print(f"  difference per Newton step              {extra / m(n_newton) * 1e3:.2f} ms")
+        print(f"  difference per call                     {extra / m(n_calls) * 1e3:.3f} ms")
 
 
 if __name__ == "__main__":

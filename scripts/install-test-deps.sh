@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Python packages the test suite uses to read outputs with real readers
-# (meshio for .vtu) into a virtual environment, and prints its interpreter.
+# (meshio and VTK's own Python package `vtk` for .vtu and .pvd) into a virtual environment,
+# and prints its interpreter.
 #
 # Usage: scripts/install-test-deps.sh [VENV]   (default: target/test-venv)
 # Then: export HEMICONTACT_PYTHON="$PWD/VENV/bin/python" before `cargo test`.
@@ -8,6 +9,6 @@
 set -euo pipefail
 venv="${1:-target/test-venv}"
 python3 -m venv "$venv"
-"$venv/bin/python" -m pip install --quiet --disable-pip-version-check meshio
-"$venv/bin/python" -c "import meshio, numpy"
+"$venv/bin/python" -m pip install --quiet --disable-pip-version-check meshio vtk
+"$venv/bin/python" -c "import meshio, numpy, vtk"
 echo "$venv/bin/python"

@@ -14,8 +14,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Runs the benchmark for each mesh size in `sizes`, repeating numeric phases `repeat` times.
 pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usize) -> Result<()> {
+    let c = &ctx.console;
     let repeat = repeat.max(1);
-    println!(
+    crate::say!(
+        c,
         "{:>5} {:>9} {:>18} {:>11} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9}",
         "n",
         "DOFs",
@@ -31,6 +33,10 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
     for &n in sizes {
         let scenario = ctx.parse_scenario(&builtin::paper_elastic(n), "<bench>")?;
         let problem = scenario.into_problem()?;
+        c.phase(format_args!(
+            "n = {n}: timing the phases of a linear solve ({}), {repeat} repetitions",
+            crate::problem_size(&problem)
+        ));
         let mesh = problem.mesh();
         let dofs = problem.dof_map();
         let t = Instant::now();
@@ -89,7 +95,8 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
                 .sqrt()
                 / rhs.iter().map(|b| b * b).sum::<f64>().sqrt();
             let (num, sol) = (median(t_num), median(t_sol));
-            println!(
+            crate::say!(
+                c,
                 "{:>5} {:>9} {:>18} {:>11} {:>8.3} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>9.3}   (residual {:.1e})",
                 n,
                 dofs.n_dofs(),
@@ -105,7 +112,10 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
             );
         }
     }
-    println!("times in seconds; numeric phases are medians of the repetitions");
+    crate::say!(
+        c,
+        "times in seconds; numeric phases are medians of the repetitions"
+    );
     Ok(())
 }
 
@@ -126,15 +136,17 @@ pub fn run_paper(
     repeat: usize,
     file: Option<&std::path::Path>,
 ) -> Result<()> {
+    let c = &ctx.console;
     let repeat = repeat.max(1);
     let scenario = match file {
         Some(f) => Some(hemicontact::scenario::Scenario::from_file(f)?),
         None => None,
     };
     if let Some(f) = file {
-        println!("scenario {}", f.display());
+        crate::say!(c, "scenario {}", f.display());
     }
-    println!(
+    crate::say!(
+        c,
         "{:>5} {:>9} {:>10} {:>10} {:>7} {:>6} {:>7} {:>8} {:>10} {:>10}",
         "n",
         "DOFs",
@@ -166,13 +178,36 @@ pub fn run_paper(
         let mut t_pap = Vec::new();
         let mut t_solve = Vec::new();
         let mut last = None;
-        for _ in 0..repeat {
+        c.phase(format_args!(
+            "n = {n}: {repeat} linear and {repeat} nonlinear solves ({})",
+            crate::problem_size(&paper)
+        ));
+        let progress = c.progress(&format!("n = {n}:"));
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        for k in 0..repeat {
+            progress.set_what(&format!("n = {n}, repetition {}/{repeat}, linear:", k + 1));
             let t = Instant::now();
-            let s = hemicontact::solver::solve(&linear, &settings)?;
+            let s = hemicontact::solver::solve_observed(
+                &linear,
+                &settings,
+                linear.prescribed_displacement(),
+                &stop,
+                &|p| progress.observe(p),
+            )?;
             t_lin.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(s.report.converged, "linear solve did not converge");
+            progress.set_what(&format!(
+                "n = {n}, repetition {}/{repeat}, nonlinear:",
+                k + 1
+            ));
             let t = Instant::now();
-            let s = hemicontact::solver::solve(&paper, &settings)?;
+            let s = hemicontact::solver::solve_observed(
+                &paper,
+                &settings,
+                paper.prescribed_displacement(),
+                &stop,
+                &|p| progress.observe(p),
+            )?;
             t_pap.push(t.elapsed().as_secs_f64());
             anyhow::ensure!(
                 s.report.converged,
@@ -181,11 +216,24 @@ pub fn run_paper(
             );
             let tm = &s.report.timings;
             t_solve.push(tm.total - tm.pattern - tm.symbolic);
+            if repeat > 1 {
+                progress.phase(format_args!(
+                    "n = {n}, repetition {}/{repeat}: linear {} s, nonlinear {} s ({} outer / {} \
+                     Newton)",
+                    k + 1,
+                    crate::console::significant_seconds(t_lin[k]),
+                    crate::console::significant_seconds(t_pap[k]),
+                    s.report.outer.len(),
+                    s.report.newton.len()
+                ));
+            }
             last = Some(s);
         }
+        progress.finish();
         let s = last.ok_or_else(|| anyhow::anyhow!("no run"))?;
         let (lin, pap) = (median(t_lin), median(t_pap));
-        println!(
+        crate::say!(
+            c,
             "{:>5} {:>9} {:>10.3} {:>10.3} {:>7.2} {:>6} {:>7} {:>8} {:>10.3} {:>10.0}",
             n,
             s.report.n_dofs,
@@ -199,7 +247,8 @@ pub fn run_paper(
             peak_memory_mib().unwrap_or(f64::NAN)
         );
     }
-    println!(
+    crate::say!(
+        c,
         "end-to-end seconds (setup included), medians of {repeat}; 'solve s' excludes the pattern \
          and symbolic analysis; ratio = paper / linear elastic on the same mesh; peak = process \
          peak resident memory so far"

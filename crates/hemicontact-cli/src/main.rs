@@ -1,34 +1,39 @@
 //! `hemicontact`: the command-line program over the hemicontact library.
 //!
 //! Commands: `check FILE`, `solve FILE [--out DIR]`, `paper [--n N] [--out DIR]`,
-//! `bench [--n LIST]`, `convergence FILE`. Exit codes: 0 success, 1 invalid input or failed
+//! `bench [--n LIST]`, `convergence FILE`, `completions SHELL`, `schema`; global flags
+//! `--quiet`, `-v` (see [`console`]). Exit codes: 0 success, 1 invalid input or failed
 //! solve, 2 usage error, 3 solve did not converge (results are still written, marked as not
 //! converged), 130 interrupted by Ctrl-C. Each run writes its output folder as one result
 //! set ([`hemicontact::io::result_set`]): the folder holds the previous complete set or the
 //! new complete set, never a mix; a second run into a folder being written fails at once.
 
 mod bench;
+mod check;
+mod console;
 mod output;
 mod study;
 
-/// `println!` that ignores a closed standard output (a pipe into `head`) instead of
-/// panicking.
+/// A line of results on standard output through a [`console::Console`] (nothing with
+/// `--quiet`; a closed standard output is ignored instead of panicking).
 #[macro_export]
 macro_rules! say {
-    ($($t:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($t)*);
-    }};
+    ($console:expr, $($t:tt)*) => {
+        $console.out(format_args!($($t)*))
+    };
 }
 
 use anyhow::{Context, Result};
+use clap::CommandFactory as _;
 use clap::{Parser, Subcommand};
+use console::{significant_seconds, Console, Verbosity};
+use hemicontact::display::significant;
 use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
 use hemicontact::plot::deformed;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::{builtin, Scenario};
-use hemicontact::solver::{Solution, SolverSettings};
+use hemicontact::solver::Solution;
 use hemicontact::study::StudySettings;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -47,6 +52,12 @@ struct Cli {
     /// Skip the check of the estimated memory of a solve against the available memory.
     #[arg(long, global = true)]
     ignore_memory_limit: bool,
+    /// Print nothing but errors (the exit code still tells a solve that did not converge).
+    #[arg(long, short, global = true, conflicts_with = "verbose")]
+    quiet: bool,
+    /// Print one line per outer iteration of every solve, on a terminal or not.
+    #[arg(long, short, global = true)]
+    verbose: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -82,8 +93,9 @@ enum Command {
         /// Run the convergence study (levels and reference below).
         #[arg(long)]
         study: bool,
-        /// Study levels (squares per side).
-        #[arg(long, value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
+        /// Study levels (squares per side), space- or comma-separated: `--levels 4 8 16` or
+        /// `--levels 4,8,16`.
+        #[arg(long, num_args = 1.., value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
         levels: Vec<usize>,
         /// Study reference resolution.
         #[arg(long, default_value_t = 512)]
@@ -94,8 +106,9 @@ enum Command {
     Convergence {
         /// Scenario file (TOML).
         file: PathBuf,
-        /// Levels (squares along x), increasing.
-        #[arg(long, value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
+        /// Levels (squares along x), increasing, space- or comma-separated: `--levels 4 8 16`
+        /// or `--levels 4,8,16`.
+        #[arg(long, num_args = 1.., value_delimiter = ',', default_values_t = vec![4usize, 8, 16, 32, 64, 128])]
         levels: Vec<usize>,
         /// Reference resolution (squares along x).
         #[arg(long, default_value_t = 512)]
@@ -111,8 +124,8 @@ enum Command {
     /// ordering + symbolic analysis, numeric factorization, triangular solve), or with
     /// --paper the whole nonlinear paper solve against a linear elastic solve.
     Bench {
-        /// Comma-separated mesh sizes n (squares per side).
-        #[arg(long, value_delimiter = ',', default_values_t = vec![128usize, 512])]
+        /// Mesh sizes n (squares per side), space- or comma-separated.
+        #[arg(long, num_args = 1.., value_delimiter = ',', default_values_t = vec![128usize, 512])]
         n: Vec<usize>,
         /// Repetitions of the numeric phases (the median is reported).
         #[arg(long, default_value_t = 3)]
@@ -129,6 +142,16 @@ enum Command {
         #[arg(long, requires = "paper")]
         scenario: Option<PathBuf>,
     },
+    /// Print a shell completion script, e.g. `hemicontact completions bash >
+    /// ~/.local/share/bash-completion/completions/hemicontact`.
+    Completions {
+        /// The shell.
+        #[arg(value_enum)]
+        shell: clap_complete::Shell,
+    },
+    /// Print the JSON Schema of the scenario file (for editors that check TOML against a
+    /// schema).
+    Schema,
 }
 
 /// Outcome of a command that solved something.
@@ -144,6 +167,8 @@ pub struct RunContext {
     pub ignore_memory_limit: bool,
     /// This run's result set, shared with the Ctrl-C handler.
     pub output: output::Output,
+    /// What the run prints, from `--quiet` and `-v`.
+    pub console: Console,
 }
 
 impl RunContext {
@@ -169,12 +194,18 @@ fn main() -> ExitCode {
     let output = output::Output::new();
     output.install_interrupt_handler();
     let cli = Cli::parse();
+    let verbosity = match (cli.quiet, cli.verbose) {
+        (true, _) => Verbosity::Quiet,
+        (false, true) => Verbosity::Verbose,
+        (false, false) => Verbosity::Normal,
+    };
     let ctx = RunContext {
         ignore_memory_limit: cli.ignore_memory_limit,
         output,
+        console: Console::new(verbosity),
     };
     let result = match cli.command {
-        Command::Check { file } => check(&ctx, &file).map(|_| Outcome::Done),
+        Command::Check { file } => check::check(&ctx, &file).map(|_| Outcome::Done),
         Command::Solve { file, out } => solve(&ctx, &file, out.as_deref()),
         Command::Paper {
             n,
@@ -209,6 +240,20 @@ fn main() -> ExitCode {
             bench::run(&ctx, &n, repeat, threads)
         }
         .map(|_| Outcome::Done),
+        Command::Completions { shell } => {
+            let mut stdout = std::io::stdout().lock();
+            clap_complete::generate(shell, &mut Cli::command(), "hemicontact", &mut stdout);
+            Ok(Outcome::Done)
+        }
+        Command::Schema => {
+            use std::io::Write as _;
+            let _ = writeln!(
+                std::io::stdout().lock(),
+                "{}",
+                hemicontact::scenario::JSON_SCHEMA.trim_end()
+            );
+            Ok(Outcome::Done)
+        }
     };
     ctx.output.discard();
     match result {
@@ -234,160 +279,11 @@ fn error_chain(e: &anyhow::Error) -> String {
     message
 }
 
-fn check(ctx: &RunContext, file: &Path) -> Result<()> {
-    let scenario = ctx.read_scenario(file)?;
-    let (problem, notes) = scenario.into_problem_with_notes()?;
-    let settings = scenario.settings()?;
-    // The scales of the dimensionless solve: data too far apart to represent the
-    // displacements would fail every solve, so they fail the check too.
-    hemicontact::solver::scaling::Scales::of(&problem)
-        .with_context(|| format!("{}: the problem cannot be solved", scenario.source))?;
-    print_problem(&problem, &settings, &scenario.source);
-    print_notes(&notes);
-    // Rigid motions not blocked by a Dirichlet condition that contact carries (those it
-    // does not carry were refused above).
-    for motion in problem.rigid_motions().describe_all() {
-        say!("free rigid motion carried by contact: {motion}");
-    }
-    let iterative =
-        hemicontact::solver::system::resolved_linear_solver(&problem, settings.linear_solver)
-            == hemicontact::solver::LinearSolver::Iterative;
-    if !problem.contact().is_empty() && iterative {
-        say!(
-            "uniqueness (Theorem 4): not checked — the discrete trace constant needs a Cholesky \
-             factorization, and this scenario uses the iterative linear solver"
-        );
-    } else if !problem.contact().is_empty() {
-        print_uniqueness(&hemicontact::solver::uniqueness::check(
-            &problem, &settings,
-        )?);
-    }
-    say!("ok: {} is valid", file.display());
-    Ok(())
-}
-
-fn print_problem(problem: &Problem, settings: &SolverSettings, source: &str) {
-    let mesh = problem.mesh();
-    let dofs = problem.dof_map();
-    say!("scenario   {source}");
-    say!("dimension  {}", mesh.dim());
-    say!("nodes      {}", mesh.n_nodes());
-    say!("cells      {}", mesh.n_cells());
-    say!(
-        "DOFs       {} ({} free, {} prescribed)",
-        dofs.n_dofs(),
-        dofs.n_free(),
-        dofs.n_dofs() - dofs.n_free()
-    );
-    let h = problem.material().elasticity.small_strain_hooke(mesh.dim());
-    say!("Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
-    match hemicontact::solver::scaling::Scales::of(problem) {
-        Ok(scales) => say!(
-            "scales     length {:e} m, stress {:e} Pa, displacement {:e} m (the solve is dimensionless in these)",
-            scales.length,
-            scales.stress,
-            scales.displacement
-        ),
-        Err(e) => say!("scales     {e}"),
-    }
-    say!(
-        "certificate tolerance {:e} (relative residuals of every law)",
-        settings.certificate_tolerance
-    );
-    use hemicontact::material::Locking;
-    match problem.material().locking {
-        Locking::Ideal(set) => {
-            say!("locking    {set:?}, ideal (exact constraint, augmented Lagrangian)")
-        }
-        Locking::Penalty(p) if p.c_kappa > 0.0 => {
-            say!("locking    {:?}, penalty C_κ = {:e} Pa", p.set, p.c_kappa)
-        }
-        _ => say!("locking    none"),
-    }
-    for (k, c) in problem.contact().iter().enumerate() {
-        let friction = match &c.friction {
-            None => "frictionless".to_string(),
-            Some(f) => format!(
-                "{:?}-type bound, μ = {:?}, j = {}",
-                f.bound, f.mu, f.potential
-            ),
-        };
-        let normal = match c.normal {
-            hemicontact::contact::NormalLaw::Compliance(n) => {
-                format!("normal compliance c_ν = {:e}", n.c_nu)
-            }
-            hemicontact::contact::NormalLaw::Signorini => "Signorini (rigid)".to_string(),
-        };
-        say!(
-            "contact[{k}] part `{}`: gap {} m, {normal}, {friction}",
-            mesh.part_names()[c.part],
-            c.gap,
-        );
-    }
-    say!("contact points {}", problem.contact_nodes().len());
-    say!("boundary parts:");
-    for (p, name) in mesh.part_names().iter().enumerate() {
-        let facets = mesh.part_facets(p).count();
-        let nodes = mesh.part_nodes(p).len();
-        let mut roles = Vec::new();
-        if problem.dirichlet().iter().any(|b| b.part == p) {
-            roles.push("Dirichlet");
-        }
-        if problem.tractions().iter().any(|t| t.part == p) {
-            roles.push("Neumann");
-        }
-        if problem.contact().iter().any(|c| c.part == p) {
-            roles.push("contact");
-        }
-        let role = if roles.is_empty() {
-            "free".to_string()
-        } else {
-            roles.join(" + ")
-        };
-        say!("  {name:<10} {facets:>6} facets {nodes:>6} nodes  {role}");
-    }
-}
-
-/// Prints the notes of a scenario (warnings that do not stop the run) to standard error.
-fn print_notes(notes: &[String]) {
-    for n in notes {
-        eprintln!("note: {n}");
-    }
-}
-
-fn print_uniqueness(u: &hemicontact::solver::uniqueness::Uniqueness) {
-    say!(
-        "uniqueness (Theorem 4): m_A = {:.6e}, μ₀ = {}, L_μ = {}, c_j = {}, α_j = {}",
-        u.m_a,
-        u.mu0,
-        u.l_mu,
-        u.c_j,
-        u.alpha_j
-    );
-    if let Some(estimated) = &u.estimated {
-        say!("  {estimated}");
-    }
-    match (&u.note, u.trace_constant) {
-        (Some(note), _) => say!("  not applicable: {note}"),
-        (None, Some(g)) => say!(
-            "  ‖γ‖ = {g:.6e} ({} power iterations); (μ₀α_j + c_jL_μ)‖γ‖² = {:.6e} {} m_A: condition {} (margin {:.6e})",
-            u.iterations,
-            u.lhs,
-            if u.holds { "<" } else { "≥" },
-            if u.holds { "holds" } else { "FAILS" },
-            u.margin
-        ),
-        (None, None) => say!(
-            "  μ₀α_j + c_jL_μ = 0: the condition holds whatever ‖γ‖ (margin {:.6e})",
-            u.margin
-        ),
-    }
-}
-
 fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
+    let c = &ctx.console;
     let scenario = ctx.read_scenario(file)?;
     let (problem, notes) = scenario.into_problem_with_notes()?;
-    print_notes(&notes);
+    check::print_notes(c, &notes);
     let settings = scenario.output();
     let dir = match (out, &settings.dir) {
         (Some(d), _) => d.to_path_buf(),
@@ -402,6 +298,11 @@ fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
     };
     // Fail before the solve if the results could not be written.
     ctx.output.begin(&dir)?;
+    c.phase(format_args!(
+        "solving {}: {}",
+        file.display(),
+        problem_size(&problem)
+    ));
     let case = run_and_write(
         ctx,
         problem,
@@ -412,10 +313,31 @@ fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
         settings.summary,
         "scenario",
     )?;
-    print_written(&ctx.output.commit()?);
+    print_written(c, &dir, &ctx.output.commit()?);
     let cases = [case];
-    print_table(&cases);
+    print_table(c, &cases);
     Ok(outcome(&cases))
+}
+
+/// The size of a problem in words: nodes, cells, DOFs and contact points.
+fn problem_size(problem: &Problem) -> String {
+    let mesh = problem.mesh();
+    let cells = if mesh.dim() == 2 {
+        "triangles"
+    } else {
+        "tetrahedra"
+    };
+    let mut text = format!(
+        "{} nodes, {} {cells}, {} DOFs",
+        mesh.n_nodes(),
+        mesh.n_cells(),
+        problem.dof_map().n_dofs()
+    );
+    let points = problem.contact_nodes().len();
+    if points > 0 {
+        text.push_str(&format!(", {points} contact points"));
+    }
+    text
 }
 
 /// A solved case, for the terminal table.
@@ -426,10 +348,15 @@ struct Case {
     summary: Summary,
 }
 
-/// Prints the files of a result set once it is in place.
-fn print_written(files: &[PathBuf]) {
+/// Prints the files of a result set once it is in place (and the phase line saying where).
+fn print_written(c: &Console, dir: &Path, files: &[PathBuf]) {
+    c.phase(format_args!(
+        "written to {} ({} files)",
+        dir.display(),
+        files.len()
+    ));
     for p in files {
-        say!("  wrote {}", p.display());
+        say!(c, "  wrote {}", p.display());
     }
 }
 
@@ -446,8 +373,34 @@ fn run_and_write(
     label: &str,
 ) -> Result<Case> {
     let settings = scenario.settings()?;
-    let solution = hemicontact::solver::solve(&problem, &settings)
-        .with_context(|| format!("{}: solve failed", scenario.source))?;
+    let c = &ctx.console;
+    let prefix = if folder.is_empty() {
+        String::new()
+    } else {
+        format!("{label}: ")
+    };
+    let progress = c.progress(&if folder.is_empty() {
+        "solving:".to_string()
+    } else {
+        format!("{label}:")
+    });
+    let solution = hemicontact::solver::solve_observed(
+        &problem,
+        &settings,
+        problem.prescribed_displacement(),
+        &std::sync::atomic::AtomicBool::new(false),
+        &|p| progress.observe(p),
+    )
+    .with_context(|| format!("{}: solve failed", scenario.source))?;
+    progress.finish();
+    let r = &solution.report;
+    c.phase(format_args!(
+        "{prefix}solved in {} outer iterations / {} Newton steps in {} s{}",
+        r.outer.len(),
+        r.newton.len(),
+        significant_seconds(r.timings.total),
+        if r.converged { "" } else { " (not converged)" }
+    ));
     let mut summary = Summary::new(
         &problem,
         &settings,
@@ -468,6 +421,7 @@ fn run_and_write(
             folder,
             &problem,
             &solution,
+            &title,
             json.then_some(&summary),
             vtu,
             &extra,
@@ -475,10 +429,10 @@ fn run_and_write(
     })?;
     let r = &solution.report;
     if !r.converged {
-        eprintln!(
+        c.warn(format_args!(
             "warning: {label}: {}; the last iterate was written, marked \"converged\": false",
             r.message
-        );
+        ));
     }
     Ok(Case {
         label: label.to_string(),
@@ -488,8 +442,9 @@ fn run_and_write(
     })
 }
 
-fn print_table(cases: &[Case]) {
+fn print_table(c: &Console, cases: &[Case]) {
     say!(
+        c,
         "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>6} {:>6} {:>10} {:>10}",
         "case",
         "DOFs",
@@ -503,8 +458,8 @@ fn print_table(cases: &[Case]) {
         "max |u| m",
         "certif."
     );
-    for c in cases {
-        let r = &c.solution.report;
+    for case in cases {
+        let r = &case.solution.report;
         let cert = &r.certificate;
         let worst = cert
             .equilibrium
@@ -512,8 +467,9 @@ fn print_table(cases: &[Case]) {
             .max(cert.friction_law)
             .max(cert.kkt.as_ref().map_or(0.0, |k| k.worst()));
         say!(
+            c,
             "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>7} {:>6} {:>6} {:>10.4e} {:>10.1e}{}",
-            c.label,
+            case.label,
             r.n_dofs,
             r.outer.len(),
             r.newton.len(),
@@ -522,17 +478,22 @@ fn print_table(cases: &[Case]) {
             cert.n_contact,
             cert.n_stick,
             cert.n_slip,
-            c.summary.max_displacement,
+            case.summary.max_displacement,
             worst,
             if r.converged { "" } else { "  NOT CONVERGED" }
         );
     }
-    for c in cases {
-        if let Some(k) = &c.solution.report.certificate.kkt {
+    for case in cases {
+        if let Some(k) = &case.solution.report.certificate.kkt {
             let (cells, points, friction) = k.n_constraints;
-            say!("KKT ({}): exact constraints, relative residuals", c.label);
+            say!(
+                c,
+                "KKT ({}): exact constraints, relative residuals",
+                case.label
+            );
             if cells > 0 {
                 say!(
+            c,
                     "  ideal locking  {cells} cells, {} locked: violation {:.1e}, complementarity {:.1e}, min multiplier/max {:.1e}",
                     k.n_locked,
                     k.locking_violation,
@@ -542,6 +503,7 @@ fn print_table(cases: &[Case]) {
             }
             if points > 0 {
                 say!(
+            c,
                     "  Signorini      {points} points: violation {:.1e}, complementarity {:.1e}, min pressure/max {:.1e}",
                     k.contact_violation,
                     k.contact_complementarity,
@@ -550,6 +512,7 @@ fn print_table(cases: &[Case]) {
             }
             if friction > 0 {
                 say!(
+            c,
                     "  exact friction {friction} points: largest slip of a sticking point {:.1e} (relative to max |u|)",
                     k.stick_slip
                 );
@@ -572,11 +535,7 @@ fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
             "--n {n}: the paper's mesh needs an even, positive number of squares per side"
         );
     }
-    say!(
-        "paper example, n = {n}: {} squares, h = {}",
-        n * n,
-        16.0 / (2.0 * (n * n) as f64)
-    );
+    let c = &ctx.console;
     // Fail before the solves if the results could not be written.
     ctx.output.begin(out)?;
     let mut cases = Vec::new();
@@ -589,7 +548,20 @@ fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
             &format!("<built-in paper, {label}>"),
         )?;
         let problem = scenario.into_problem()?;
-        say!("{label}:");
+        if cases.is_empty() {
+            // The paper's h is the element area; the edge is the side of a square.
+            let mesh = problem.mesh();
+            let (lo, hi) = mesh.bounding_box();
+            say!(
+                c,
+                "paper example, n = {n}: {} squares, h = {} m² (element area), edge h = {} m \
+                 (square side)",
+                n * n,
+                significant(mesh.measure() / mesh.n_cells() as f64),
+                significant((hi[0] - lo[0]) / n as f64)
+            );
+        }
+        c.phase(format_args!("{label}: solving {}", problem_size(&problem)));
         cases.push(run_and_write(
             ctx,
             problem,
@@ -612,8 +584,8 @@ fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
         set.write("comparison.png", &png)?;
         Ok(())
     })?;
-    print_written(&ctx.output.commit()?);
-    print_table(&cases);
+    print_written(c, out, &ctx.output.commit()?);
+    print_table(c, &cases);
     Ok(outcome(&cases))
 }
 
@@ -636,7 +608,10 @@ fn paper_study(
         reference,
         nested_iteration: true,
     };
-    say!("paper convergence study: levels {levels:?}, reference n = {reference}");
+    say!(
+        &ctx.console,
+        "paper convergence study: levels {levels:?}, reference n = {reference}"
+    );
     let studies = study::run(
         ctx,
         &cases,
@@ -644,7 +619,7 @@ fn paper_study(
         out,
         "Paper example: relative energy-norm error",
     )?;
-    Ok(study_outcome(&studies))
+    Ok(study_outcome(&ctx.console, &studies))
 }
 
 fn convergence(
@@ -681,17 +656,19 @@ fn convergence(
         nested_iteration: nested,
     };
     let studies = study::run(ctx, &[(label.clone(), scenario)], &settings, &dir, &label)?;
-    Ok(study_outcome(&studies))
+    Ok(study_outcome(&ctx.console, &studies))
 }
 
-fn study_outcome(studies: &[hemicontact::study::Study]) -> Outcome {
+fn study_outcome(c: &Console, studies: &[hemicontact::study::Study]) -> Outcome {
     let all = studies
         .iter()
         .all(|s| s.reference_converged && s.levels.iter().all(|l| l.converged));
     if all {
         Outcome::Done
     } else {
-        eprintln!("warning: some solves did not converge (see table.md)");
+        c.warn(format_args!(
+            "warning: some solves did not converge (see table.md)"
+        ));
         Outcome::NotConverged
     }
 }

@@ -1,5 +1,6 @@
 //! `hemicontact convergence` and `hemicontact paper --study`: convergence studies with a
-//! progress bar (drawn only on a terminal) and their outputs.
+//! progress bar (drawn only on a terminal; off a terminal one line per solve) and their
+//! outputs.
 
 use anyhow::Result;
 use hemicontact::io::study_table;
@@ -7,9 +8,9 @@ use hemicontact::io::summary::SUMMARY_FILE;
 use hemicontact::plot::convergence;
 use hemicontact::scenario::Scenario;
 use hemicontact::study::{self, Progress, Study, StudySettings};
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
+use std::cell::RefCell;
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 /// Runs the studies of `cases` (label, scenario) and writes table.md, table.csv,
 /// convergence.png/.svg and summary.json into `out`. Returns the studies.
@@ -22,33 +23,60 @@ pub fn run(
 ) -> Result<Vec<Study>> {
     // Fail before the solves if the results could not be written.
     ctx.output.begin(out)?;
+    let c = &ctx.console;
     let solves = cases.len() * (settings.levels.len() + 1);
-    let bar = if std::io::stderr().is_terminal() {
-        ProgressBar::new(solves as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let progress = c.progress("");
+    c.phase(format_args!(
+        "convergence study: {solves} solves (levels {:?}, reference n = {}), results to {}",
+        settings.levels,
+        settings.reference,
+        out.display()
+    ));
     let started = std::time::Instant::now();
     let mut studies = Vec::new();
+    let mut done = 0;
     for (label, scenario) in cases {
+        // What is being solved, for the phase line of the solve when it ends.
+        let current = RefCell::new(String::new());
         let mut on_progress = |p: Progress| match p {
             Progress::Solving {
                 label,
                 n,
                 reference,
-            } => bar.set_message(format!(
-                "{label}: {} n = {n}",
-                if reference { "reference" } else { "level" }
-            )),
-            Progress::Solved { .. } => bar.inc(1),
+            } => {
+                let what = format!(
+                    "{label}: {} n = {n}",
+                    if reference { "reference" } else { "level" }
+                );
+                progress.set_what(&format!("[{}/{solves}] {what}:", done + 1));
+                *current.borrow_mut() = what;
+            }
+            Progress::Solved { seconds } => {
+                done += 1;
+                let steps = progress.last().map_or(String::new(), |p| {
+                    format!(
+                        " in {} outer iterations / {} Newton steps",
+                        p.iteration + 1,
+                        p.newton_steps
+                    )
+                });
+                progress.phase(format_args!(
+                    "[{done}/{solves}] {} solved{steps} in {} s",
+                    current.borrow(),
+                    crate::console::significant_seconds(seconds)
+                ));
+            }
         };
-        studies.push(study::run(scenario, label, settings, &mut on_progress)?);
+        studies.push(study::run_observed(
+            scenario,
+            label,
+            settings,
+            &mut on_progress,
+            &AtomicBool::new(false),
+            &|p| progress.observe(p),
+        )?);
     }
-    bar.finish_and_clear();
+    progress.finish();
     let total = started.elapsed().as_secs_f64();
     let table = study_table::markdown(&studies);
     let figure = convergence::figure(&studies, title);
@@ -76,7 +104,7 @@ pub fn run(
         Ok(())
     })?;
     ctx.output.commit()?;
-    crate::say!("{table}");
-    crate::say!("total {total:.2} s; wrote {}/{{table.md, table.csv, convergence.png, convergence.svg, summary.json}}", out.display());
+    crate::say!(c, "{table}");
+    crate::say!(c, "total {total:.2} s; wrote {}/{{table.md, table.csv, convergence.png, convergence.svg, summary.json}}", out.display());
     Ok(studies)
 }

@@ -3,9 +3,11 @@
 
 use crate::convert::{to_python, to_toml};
 use crate::errors::{scenario_error, to_py};
-use crate::laws::PySlipFunction;
+use crate::laws::PyLaw;
 use crate::mesh::NativeMesh;
-use hemicontact::contact::{CustomCoefficient, FrictionCoefficient};
+use hemicontact::contact::{
+    CustomCoefficient, CustomCompliance, CustomField, FrictionCoefficient, NormalLaw,
+};
 use hemicontact::scenario::schema::ScenarioFile;
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::Error;
@@ -13,14 +15,19 @@ use pyo3::prelude::*;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+/// A law written in Python as `Scenario.from_dict` receives it: (contact entry, kind
+/// `slip`/`position`/`compliance`, callable, derivative of a compliance law, label).
+type PythonLaw = (usize, String, Py<PyAny>, Option<Py<PyAny>>, String);
+
 /// A scenario of the library (parsed, not yet resolved into a problem).
 #[pyclass(module = "hemicontact._core", name = "Scenario", frozen)]
 pub struct NativeScenario {
     /// The library's scenario.
     pub inner: Scenario,
-    /// The Python laws of the scenario (also in `inner.given_friction`), whose exceptions
-    /// are raised again in place of the library's error.
-    pub laws: Vec<Arc<PySlipFunction>>,
+    /// The Python laws of the scenario (also in `inner.given_friction` and
+    /// `inner.given_normal`), whose exceptions are raised again in place of the library's
+    /// error.
+    pub laws: Vec<Arc<PyLaw>>,
 }
 
 impl NativeScenario {
@@ -54,8 +61,8 @@ impl NativeScenario {
     /// The scenario of the Python dict `value` (the schema of a scenario file), named
     /// `source` in messages, with an optional mesh given in memory instead of `[mesh]` and
     /// the folder `dir` against which relative paths (`mesh.file`) are resolved, and the
-    /// friction coefficients `laws` written in Python: (contact entry, callable, name), each
-    /// replacing the entry's `mu`.
+    /// laws written in Python: (contact entry, kind, callable, derivative, label), the kind
+    /// `slip` or `position` replacing the entry's `mu`, `compliance` its normal law.
     #[staticmethod]
     #[pyo3(signature = (value, source, mesh=None, dir=None, laws=Vec::new()))]
     fn from_dict(
@@ -63,7 +70,7 @@ impl NativeScenario {
         source: &str,
         mesh: Option<&NativeMesh>,
         dir: Option<PathBuf>,
-        laws: Vec<(usize, Py<PyAny>, String)>,
+        laws: Vec<PythonLaw>,
     ) -> PyResult<Self> {
         let table = to_toml(value, "", source)?;
         if !table.is_table() {
@@ -88,17 +95,38 @@ impl NativeScenario {
                 },
             })
         })?;
-        let laws: Vec<(usize, Arc<PySlipFunction>)> = laws
-            .into_iter()
-            .map(|(k, f, name)| (k, Arc::new(PySlipFunction::new(f, name))))
-            .collect();
-        let given_friction = laws
-            .iter()
-            .map(|(k, law)| {
-                let mu = CustomCoefficient::new(law.name.clone(), law.clone());
-                (*k, FrictionCoefficient::Custom(mu))
-            })
-            .collect();
+        let mut given_friction = Vec::new();
+        let mut given_normal = Vec::new();
+        let mut kept = Vec::new();
+        for (k, kind, f, df, label) in laws {
+            let field = if kind == "compliance" {
+                "normal"
+            } else {
+                "friction.mu"
+            };
+            let name = format!("contact[{k}].{field} ({label})");
+            let law = Arc::new(PyLaw::new(f, df, label.clone(), name));
+            match kind.as_str() {
+                "slip" => given_friction.push((
+                    k,
+                    FrictionCoefficient::Custom(CustomCoefficient::new(label, law.clone())),
+                )),
+                "position" => given_friction.push((
+                    k,
+                    FrictionCoefficient::Field(CustomField::new(label, law.clone())),
+                )),
+                "compliance" => given_normal.push((
+                    k,
+                    NormalLaw::Custom(CustomCompliance::new(label, law.clone())),
+                )),
+                other => {
+                    return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                        "unknown kind of law `{other}`: slip, position or compliance"
+                    )))
+                }
+            }
+            kept.push(law);
+        }
         Ok(NativeScenario {
             inner: Scenario {
                 source: source.to_string(),
@@ -107,8 +135,9 @@ impl NativeScenario {
                 dir,
                 given_mesh: mesh.map(|m| m.mesh.clone()),
                 given_friction,
+                given_normal,
             },
-            laws: laws.into_iter().map(|(_, law)| law).collect(),
+            laws: kept,
         })
     }
 

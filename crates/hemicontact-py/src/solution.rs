@@ -272,6 +272,7 @@ impl NativeSolution {
                 "",
                 &self.problem,
                 &self.solution,
+                &self.title,
                 self.output.summary.then_some(&self.summary),
                 self.output.vtu,
                 &extra,

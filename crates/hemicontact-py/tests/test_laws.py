@@ -126,3 +126,146 @@ def test_the_custom_law_example_runs(tmp_path):
     line = next(l for l in out.stdout.splitlines() if l.startswith("max |bound"))
     assert float(line.split(":")[1].split()[0]) <= 1e-12, line
     assert (tmp_path / "solution.vtu").is_file() and (tmp_path / "interface.png").is_file()
+
+
+# A friction bound of the position and a normal compliance written in Python.
+
+
+def tresca_with(mu, n=16):
+    d = hc.paper_example(n=n).to_dict()
+    for c in d["contact"]:
+        c["friction"]["bound"] = "tresca"
+        c["friction"]["mu"] = mu
+    return d
+
+
+def test_a_constant_tresca_bound_of_the_position_equals_the_built_in_constant_bound():
+    seen = []
+
+    def thirty(x):
+        seen.append(x.shape)
+        return np.full(len(x), 30.0)
+
+    a = hc.solve(tresca_with({"law": "constant", "mu": 30.0}))
+    b = hc.solve(tresca_with({"law": "position", "function": thirty}))
+    assert a.converged and b.converged
+    assert a.certificate["n_slip"] > 0, "some points slip: the bound matters"
+    scale = np.abs(a.displacement).max()
+    assert np.abs(b.displacement - a.displacement).max() <= 1e-12 * scale
+    # (n, 2) arrays of the 16 points of a side, once per part per outer iteration, and a
+    # few more calls per part (validation and the uniqueness check at the part's 17 nodes,
+    # the start, the certificate): never one call per point.
+    assert all(s in ((16, 2), (17, 2)) for s in seen), set(seen)
+    assert len(seen) <= 2 * (len(b.history["outer"]) + 5)
+
+
+def test_the_bound_at_each_contact_point_is_the_callable_at_its_coordinates():
+    r = hc.solve(tresca_with({"law": "position", "function": lambda x: 10.0 + 5.0 * x[:, 1]}))
+    assert r.converged
+    expected = 10.0 + 5.0 * r.contact["y"]
+    assert np.abs(r.contact["bound"] - expected).max() <= 1e-12 * expected.max()
+    # μ₀ of the uniqueness check: the largest value at the contact nodes, F(·, 4) = 30 Pa.
+    assert r.summary["uniqueness"]["mu0"] == 30.0
+
+
+def test_a_negative_bound_of_the_position_is_a_scenario_error_naming_the_law():
+    with pytest.raises(hc.ScenarioError) as e:
+        hc.solve(tresca_with({"law": "position", "function": lambda x: 2.0 - x[:, 1]}))
+    text = str(e.value)
+    assert "contact[0].friction.mu (" in text and "<lambda>, part 'left')" in text, text
+    assert "μ(x = [0.0, 2.25] m) = -0.25" in text and "≥ 0" in text, text
+
+
+def with_compliance(p, dp, n=16):
+    d = hc.paper_example(n=n).to_dict()
+    for c in d["contact"]:
+        del c["law"], c["c_nu"]
+        c["normal"] = {"law": "compliance", "p": p, "dp": dp}
+    return d
+
+
+C_NU = 1e4  # the paper's c_ν (Pa/m)
+
+
+def test_a_linear_python_compliance_equals_the_built_in_one():
+    sizes = []
+
+    def p(x):
+        sizes.append(len(x))
+        return C_NU * x
+
+    a = hc.solve(hc.paper_example(n=16))
+    b = hc.solve(with_compliance(p, lambda x: np.full_like(x, C_NU)))
+    assert a.converged and b.converged
+    scale = np.abs(a.displacement).max()
+    assert np.abs(b.displacement - a.displacement).max() <= 1e-12 * scale
+    assert np.abs(b.contact["pressure"] - a.contact["pressure"]).max() <= 1e-12 * scale * C_NU
+    # Whole arrays: the penetrating points of a side (≤ 16), or 9 times as many with the
+    # quadrature nodes, or the 3 × 102 validation samples; never one call per point.
+    assert max(sizes) == 306 and all(s <= 9 * 16 for s in sizes if s != 306)
+
+
+def test_a_block_on_a_cubic_python_foundation_sinks_by_the_closed_form_penetration():
+    c, q, gap = 1e9, 50.0, 0.01
+    d = {
+        "mesh": {"kind": "rectangle", "size": [1.0, 1.0], "n": [6, 6]},
+        "material": {"young": 1000.0, "poisson": 0.3},
+        "dirichlet": [
+            {"part": "left", "components": ["x"]},
+            {"part": "right", "components": ["x"]},
+        ],
+        "loads": {"traction": [{"part": "top", "value": [0.0, -q]}]},
+        "contact": [
+            {
+                "part": "bottom",
+                "gap": gap,
+                "normal": {"law": "compliance", "p": lambda x: c * x**3, "dp": lambda x: 3 * c * x**2},
+            }
+        ],
+    }
+    r = hc.solve(d)
+    assert r.converged
+    delta = (q / c) ** (1.0 / 3.0)  # p(δ) = q
+    assert np.abs(r.contact["gap"] + delta).max() <= 1e-9 * delta
+    assert np.abs(r.contact["pressure"] - q).max() <= 1e-8 * q
+    back = hc.Scenario.from_dict(d).to_dict()["contact"][0]
+    assert back["normal"]["p"] is d["contact"][0]["normal"]["p"] and "c_nu" not in back
+
+
+@pytest.mark.parametrize(
+    "p, dp, says",
+    [
+        (lambda x: C_NU * x + 1.0, lambda x: np.full_like(x, C_NU), "p(0)"),
+        (lambda x: C_NU * np.minimum(x, 1e-3) - x, lambda x: np.full_like(x, C_NU), "monotone"),
+        (lambda x: C_NU * x, lambda x: np.full_like(x, 2 * C_NU), "derivative of p"),
+        (lambda x: np.where(x > 1e-3, np.nan, C_NU * x), lambda x: np.full_like(x, C_NU), "NaN"),
+    ],
+)
+def test_a_compliance_that_is_not_monotone_and_consistent_is_a_scenario_error(p, dp, says):
+    with pytest.raises(hc.ScenarioError) as e:
+        hc.solve(with_compliance(p, dp, n=4))
+    text = str(e.value)
+    assert "contact[0].normal (<lambda>, part 'left')" in text and says in text, text
+
+
+def test_an_exception_in_a_compliance_law_propagates_as_itself_naming_the_law():
+    def p(x):
+        if len(x) < 303:  # after validation: during the solve
+            raise Boom("asperity model out of range")
+        return C_NU * x
+
+    with pytest.raises(Boom) as e:
+        hc.solve(with_compliance(p, lambda x: np.full_like(x, C_NU), n=8))
+    if sys.version_info >= (3, 11):
+        notes = " ".join(getattr(e.value, "__notes__", []))
+        assert "contact[0].normal (" in notes and ".p, part 'left')" in notes, notes
+
+
+def test_normal_with_law_or_c_nu_in_the_same_entry_is_a_scenario_error():
+    d = with_compliance(lambda x: C_NU * x, lambda x: np.full_like(x, C_NU), n=4)
+    d["contact"][1]["c_nu"] = 5.0
+    with pytest.raises(hc.ScenarioError, match=r"contact\[1\]\.c_nu"):
+        hc.Scenario.from_dict(d)
+    d = with_compliance(lambda x: C_NU * x, None, n=4)
+    with pytest.raises(hc.ScenarioError, match=r"contact\[0\]\.normal"):
+        hc.Scenario.from_dict(d)

@@ -1,6 +1,7 @@
 """Scenarios from Python: dicts of the file's schema, the round trip through `to_dict`,
 and errors that name the field as the command line does."""
 
+import copy
 import math
 
 import pytest
@@ -22,6 +23,30 @@ def test_dict_round_trip_gives_the_same_scenario():
     d = s.to_dict()
     assert hc.Scenario.from_dict(d).to_dict() == d
     assert d["contact"][0]["friction"]["mu"] == {"law": "exponential", "a": 0.4, "b": 0.1, "beta": 100.0}
+
+
+def test_a_number_for_mu_is_the_constant_law():
+    # `"mu": 0.3` is `{"law": "constant", "mu": 0.3}`, as `mu = 0.3` in a file: the same
+    # solution bit for bit, and the table form when written back.
+    d = hc.paper_example(n=8).to_dict()
+    short = copy.deepcopy(d)
+    table = copy.deepcopy(d)
+    for c in short["contact"]:
+        c["friction"]["mu"] = 0.3
+    for c in table["contact"]:
+        c["friction"]["mu"] = {"law": "constant", "mu": 0.3}
+    a, b = hc.solve(short), hc.solve(table)
+    assert a.converged and b.converged
+    assert (a.displacement == b.displacement).all()
+    assert hc.Scenario.from_dict(short).to_dict()["contact"][0]["friction"]["mu"] == {
+        "law": "constant",
+        "mu": 0.3,
+    }
+    # A wrong value names both forms.
+    for c in short["contact"]:
+        c["friction"]["mu"] = "high"
+    with pytest.raises(hc.ScenarioError, match="a number"):
+        hc.Scenario.from_dict(short)
 
 
 def test_file_and_dict_give_the_same_solution():

@@ -99,7 +99,7 @@ pub enum Error {
     Law {
         /// The law, by its path and name, e.g. `contact[0].friction.mu (my_law)`.
         law: String,
-        /// What went wrong, naming the slip (m) where it did.
+        /// What went wrong, naming the slip (m) or the point where it did.
         message: String,
     },
     /// A numerical breakdown (NaN or infinity) during a solve.

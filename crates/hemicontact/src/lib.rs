@@ -82,6 +82,7 @@
 
 pub mod assembly;
 pub mod contact;
+pub mod display;
 pub mod error;
 pub mod fem;
 pub mod io;

@@ -220,6 +220,24 @@ impl Problem {
             let field = format!("contact[{k}]");
             self.check_part(&format!("{field}.part"), c.part)?;
             c.validate().map_err(|e| e.within(&field))?;
+            if let crate::contact::NormalLaw::Custom(law) = &c.normal {
+                law.validate(self.diameter())
+                    .map_err(|message| Error::Law {
+                        law: format!("{field}.normal ({})", law.name),
+                        message: format!(
+                            "sampled at 0 and 1e-10 … 1 times the body's size: {message}"
+                        ),
+                    })?;
+            }
+            if let Some(f) = c.friction.as_ref().filter(|f| f.mu.is_field()) {
+                let x = self.part_positions(c.part);
+                let mut mu = vec![0.0; x.len()];
+                f.mu.values(&vec![0.0; x.len()], &x, dim, &mut mu)
+                    .map_err(|message| Error::Law {
+                        law: format!("{field}.friction.mu ({})", f.mu.name()),
+                        message: format!("evaluated at the nodes of the contact part: {message}"),
+                    })?;
+            }
         }
         self.check_contradictions()?;
         self.rigid_motions().check("problem")?;
@@ -451,6 +469,21 @@ impl Problem {
     /// The contact points of the problem.
     pub fn contact_nodes(&self) -> ContactNodes {
         ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())
+    }
+
+    /// The positions of the nodes of boundary part `part` (m, unused coordinates 0), in the
+    /// order of [`Mesh::part_nodes`].
+    pub fn part_positions(&self, part: usize) -> Vec<[f64; 3]> {
+        let d = self.mesh.dim();
+        self.mesh
+            .part_nodes(part)
+            .iter()
+            .map(|&v| {
+                let mut x = [0.0; 3];
+                x[..d].copy_from_slice(self.mesh.node(v as usize));
+                x
+            })
+            .collect()
     }
 
     /// Diameter of the mesh's bounding box (m): the length scale of the problem.

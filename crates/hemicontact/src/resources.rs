@@ -104,7 +104,7 @@ pub fn estimate_box(nx: u64, ny: u64, nz: u64) -> u64 {
 /// 80 N entries of 16 bytes: column, value, slot), coarse operators and work products
 /// (about 30 % more), the prolongations (8 entries of 12 bytes per row, twice) and the
 /// Galerkin intermediate `A P` (about 30 N entries), with the same 20 % margin. On
-/// `scenarios/paper3d.toml` the estimate is 0.51 GiB at n = 32 (measured peak 0.38 GiB)
+/// `scenarios/paper3d-paper-gap.toml` the estimate is 0.51 GiB at n = 32 (measured peak 0.38 GiB)
 /// and 1.69 GiB at n = 48 (measured 1.23 GiB): conservative by about 1.4×.
 pub fn estimate_box_iterative(nx: u64, ny: u64, nz: u64) -> u64 {
     let nodes = (nx as f64 + 1.0) * (ny as f64 + 1.0) * (nz as f64 + 1.0);

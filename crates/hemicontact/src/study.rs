@@ -18,7 +18,7 @@ use crate::fem::transfer::interpolate;
 use crate::norms::energy_norm;
 use crate::problem::Problem;
 use crate::scenario::Scenario;
-use crate::solver::{solve_interruptible, Solution};
+use crate::solver::{solve_observed, OuterProgress, Solution};
 use serde::Serialize;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -145,6 +145,22 @@ pub fn run_interruptible(
     progress: &mut dyn FnMut(Progress),
     stop: &AtomicBool,
 ) -> Result<Study> {
+    run_observed(scenario, label, settings, progress, stop, &|_| {})
+}
+
+/// [`run_interruptible`] that hands every outer iteration of every solve to `observe`
+/// (see [`crate::solver::solve_observed`]), for a progress display within a solve.
+///
+/// # Errors
+/// As [`run_interruptible`].
+pub fn run_observed(
+    scenario: &Scenario,
+    label: &str,
+    settings: &StudySettings,
+    progress: &mut dyn FnMut(Progress),
+    stop: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
+) -> Result<Study> {
     if settings.levels.is_empty() {
         return Err(Error::Scenario {
             file: scenario.source.clone(),
@@ -173,11 +189,12 @@ pub fn run_interruptible(
         .with_resolution(settings.reference)?
         .into_problem()?;
     let t = Instant::now();
-    let ref_sol = solve_interruptible(
+    let ref_sol = solve_observed(
         &reference,
         &solver,
         reference.prescribed_displacement(),
         stop,
+        observe,
     )?;
     let reference_seconds = t.elapsed().as_secs_f64();
     progress(Progress::Solved {
@@ -214,7 +231,7 @@ pub fn run_interruptible(
             _ => problem.prescribed_displacement(),
         };
         let t = Instant::now();
-        let sol = solve_interruptible(&problem, &solver, start, stop)?;
+        let sol = solve_observed(&problem, &solver, start, stop, observe)?;
         let seconds = t.elapsed().as_secs_f64();
         progress(Progress::Solved { seconds });
         let on_ref = interpolate(&problem.mesh, &sol.u, &reference.mesh);

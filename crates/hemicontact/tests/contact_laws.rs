@@ -749,6 +749,7 @@ fn assembled_contact_terms_2d_match_finite_differences() {
         boundaries: problem.contact(),
         regularization_floor: RHO_NUM,
         penalty: &penalty,
+        responses: &[],
     };
     let equations = dofs.equations().to_vec();
     let mut rng = Rng::new(40);
@@ -924,6 +925,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         boundaries: &boundaries,
         regularization_floor: RHO_NUM,
         penalty: &penalty,
+        responses: &[],
     };
     let np = nodes.len();
     let ndof = 12;

@@ -317,7 +317,7 @@ fn the_dimensionless_rewrite_sets_the_units_and_leaves_the_function_untouched() 
     let user = CustomCoefficient::new("exponential_in_rust", law.clone());
     // Slips in units of U = 2⁻¹⁰ m, values in units of 4 (a Tresca bound's traction unit).
     let (u, v) = (2f64.powi(-10), 4.0);
-    let scaled = FrictionCoefficient::Custom(user.clone()).nondimensional(u, v);
+    let scaled = FrictionCoefficient::Custom(user.clone()).nondimensional(u, 1.0, v);
     let FrictionCoefficient::Custom(c) = &scaled else {
         panic!("still a custom law");
     };
@@ -326,7 +326,9 @@ fn the_dimensionless_rewrite_sets_the_units_and_leaves_the_function_untouched() 
     // μ̂(r̂) = μ(r̂ U)/v.
     let r_hat = [0.0, 1.0, 3.5, 100.0];
     let mut mu_hat = [0.0; 4];
-    scaled.values(&r_hat, &mut mu_hat).unwrap();
+    scaled
+        .values(&r_hat, &[[0.0; 3]; 4], 2, &mut mu_hat)
+        .unwrap();
     for (r, m) in r_hat.iter().zip(mu_hat) {
         let expected = ((A - B) * (-BETA * r * u).exp() + B) / v;
         assert!(

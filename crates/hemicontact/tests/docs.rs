@@ -12,7 +12,10 @@
 //!   `SolverSettings::default()`;
 //! - every other default written as a TOML literal is the one the scenario loader applies
 //!   to the smallest example, which omits these keys;
-//! - the relative links of the README and of `docs/` point to files that exist.
+//! - the relative links of the README and of `docs/` point to files that exist;
+//! - the JSON Schema of the scenario file (`hemicontact schema`) has exactly the documented
+//!   keys, accepts every committed scenario and every example, and refuses edits the loader
+//!   refuses (checked by a small validator of the part of JSON Schema it uses).
 
 use hemicontact::contact::friction::DEFAULT_REGULARIZATION;
 use hemicontact::scenario::Scenario;
@@ -378,4 +381,255 @@ fn relative_links_of_the_documentation_exist() {
             }
         }
     }
+}
+
+/// The key paths of a JSON Schema (`a.b[].c` as in the key tables): every property, through
+/// `items` of arrays (`name[]`) and the branches of `anyOf`/`oneOf`. Returns (all paths,
+/// leaf paths: properties with no properties below them).
+fn schema_keys(
+    schema: &serde_json::Value,
+    prefix: &str,
+    all: &mut BTreeSet<String>,
+    leaves: &mut BTreeSet<String>,
+) {
+    let mut branches = vec![schema];
+    for key in ["anyOf", "oneOf"] {
+        if let Some(list) = schema[key].as_array() {
+            branches.extend(list.iter());
+        }
+    }
+    for branch in branches {
+        if !std::ptr::eq(branch, schema) {
+            schema_keys(branch, prefix, all, leaves);
+            continue;
+        }
+        if let Some(items) = branch.get("items") {
+            if items.get("properties").is_some() {
+                schema_keys(items, &format!("{prefix}[]"), all, leaves);
+            }
+        }
+        let Some(props) = branch["properties"].as_object() else {
+            continue;
+        };
+        for (name, sub) in props {
+            let path = if prefix.is_empty() {
+                name.clone()
+            } else {
+                format!("{prefix}.{name}")
+            };
+            all.insert(path.clone());
+            let mut below = BTreeSet::new();
+            schema_keys(sub, &path, all, &mut below);
+            if below.is_empty() && !has_properties(sub) {
+                leaves.insert(path);
+            }
+            leaves.extend(below);
+        }
+    }
+}
+
+/// Whether a schema describes a table (directly, through `items` or a branch).
+fn has_properties(schema: &serde_json::Value) -> bool {
+    schema.get("properties").is_some()
+        || schema.get("items").is_some_and(has_properties)
+        || ["anyOf", "oneOf"].iter().any(|k| {
+            schema[*k]
+                .as_array()
+                .is_some_and(|l| l.iter().any(has_properties))
+        })
+}
+
+#[allow(clippy::expect_used)]
+fn json_schema() -> serde_json::Value {
+    serde_json::from_str(hemicontact::scenario::JSON_SCHEMA).expect("the schema is JSON")
+}
+
+#[test]
+fn json_schema_has_the_documented_keys() {
+    let rows = key_rows(&read("docs/scenario.md"));
+    let documented: BTreeSet<String> = rows.iter().map(|r| r.key.clone()).collect();
+    let (mut all, mut leaves) = (BTreeSet::new(), BTreeSet::new());
+    schema_keys(&json_schema(), "", &mut all, &mut leaves);
+    assert!(
+        leaves.len() > 50,
+        "{} leaf keys in the schema",
+        leaves.len()
+    );
+    for key in &documented {
+        assert!(
+            all.contains(key),
+            "docs/scenario.md documents `{key}`, the JSON Schema has no such key"
+        );
+    }
+    for key in &leaves {
+        assert!(
+            documented.contains(key),
+            "the JSON Schema has `{key}`, docs/scenario.md does not document it"
+        );
+    }
+}
+
+/// Where `value` breaks `schema` (the subset of JSON Schema the scenario schema uses:
+/// type, enum, const, properties, additionalProperties, required, items, minItems,
+/// maxItems, anyOf, oneOf, minimum, maximum, exclusiveMinimum, exclusiveMaximum), or `None`.
+fn violation(schema: &serde_json::Value, value: &serde_json::Value, at: &str) -> Option<String> {
+    use serde_json::Value as J;
+    let fail = |why: String| Some(format!("{at}: {why} ({value})"));
+    if let Some(t) = schema["type"].as_str() {
+        let ok = match t {
+            "object" => value.is_object(),
+            "array" => value.is_array(),
+            "string" => value.is_string(),
+            "boolean" => value.is_boolean(),
+            "integer" => value.is_i64() || value.is_u64(),
+            "number" => value.is_number(),
+            other => panic!("type {other} not handled"),
+        };
+        if !ok {
+            return fail(format!("not a {t}"));
+        }
+    }
+    if let Some(e) = schema["enum"].as_array() {
+        if !e.contains(value) {
+            return fail(format!("not one of {e:?}"));
+        }
+    }
+    if let Some(c) = schema.get("const") {
+        if c != value {
+            return fail(format!("not {c}"));
+        }
+    }
+    if let Some(x) = value.as_f64() {
+        let bound = |k: &str| schema[k].as_f64();
+        if bound("minimum").is_some_and(|m| x < m)
+            || bound("maximum").is_some_and(|m| x > m)
+            || bound("exclusiveMinimum").is_some_and(|m| x <= m)
+            || bound("exclusiveMaximum").is_some_and(|m| x >= m)
+        {
+            return fail("out of range".into());
+        }
+    }
+    if let J::Object(map) = value {
+        if let Some(req) = schema["required"].as_array() {
+            for r in req {
+                if !r.as_str().is_some_and(|r| map.contains_key(r)) {
+                    return fail(format!("missing {r}"));
+                }
+            }
+        }
+        if let Some(props) = schema["properties"].as_object() {
+            for (k, v) in map {
+                match props.get(k) {
+                    Some(sub) => {
+                        if let Some(e) = violation(sub, v, &format!("{at}.{k}")) {
+                            return Some(e);
+                        }
+                    }
+                    None if schema["additionalProperties"] == J::Bool(false) => {
+                        return fail(format!("unknown key {k}"));
+                    }
+                    None => {}
+                }
+            }
+        }
+    }
+    if let J::Array(items) = value {
+        let n = items.len() as u64;
+        if schema["minItems"].as_u64().is_some_and(|m| n < m)
+            || schema["maxItems"].as_u64().is_some_and(|m| n > m)
+        {
+            return fail("wrong length".into());
+        }
+        if let Some(sub) = schema.get("items") {
+            for (k, item) in items.iter().enumerate() {
+                if let Some(e) = violation(sub, item, &format!("{at}[{k}]")) {
+                    return Some(e);
+                }
+            }
+        }
+    }
+    if let Some(list) = schema["anyOf"].as_array() {
+        if list.iter().all(|s| violation(s, value, at).is_some()) {
+            return fail("matches no branch of anyOf".into());
+        }
+    }
+    if let Some(list) = schema["oneOf"].as_array() {
+        let matching = list
+            .iter()
+            .filter(|s| violation(s, value, at).is_none())
+            .count();
+        if matching != 1 {
+            return fail(format!("matches {matching} branches of oneOf"));
+        }
+    }
+    None
+}
+
+/// A TOML text as the JSON value an editor checks against the schema.
+#[allow(clippy::expect_used)]
+fn as_json(text: &str) -> serde_json::Value {
+    let v: Value = toml::from_str(text).expect("TOML");
+    serde_json::to_value(v).expect("TOML as JSON")
+}
+
+#[test]
+fn json_schema_accepts_every_committed_scenario_and_example() {
+    let schema = json_schema();
+    let mut n = 0;
+    for entry in std::fs::read_dir(root().join("scenarios")).expect("scenarios/") {
+        let path = entry.expect("an entry").path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let text = std::fs::read_to_string(&path).expect("a scenario");
+            if let Some(e) = violation(&schema, &as_json(&text), "") {
+                panic!("{}: {e}", path.display());
+            }
+            n += 1;
+        }
+    }
+    assert!(n >= 8, "{n} committed scenarios");
+    for doc in DOCS_WITH_EXAMPLES {
+        for (line, text) in toml_blocks(&read(doc)) {
+            if let Some(e) = violation(&schema, &as_json(&text), "") {
+                panic!("{doc}, block at line {line}: {e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn json_schema_refuses_what_the_loader_refuses() {
+    let schema = json_schema();
+    let paper = read("scenarios/paper.toml");
+    let edits = [
+        ("young = 2000.0", "young = -1.0"),
+        ("young = 2000.0", "young = 2000.0\nyoungs = 1.0"),
+        ("bound = \"coulomb\"", "bound = \"amontons\""),
+        ("beta = 100.0", "beta = 100.0, c = 1.0"),
+        ("poisson = 0.3", "poisson = 0.5"),
+        ("kind = \"rectangle\"", "kind = \"circle\""),
+    ];
+    for (from, to) in edits {
+        let text = paper.replacen(from, to, 1);
+        assert!(
+            Scenario::from_str(&text, "edit")
+                .and_then(|s| s.into_problem().map(|_| ()))
+                .is_err(),
+            "the loader accepts {to}"
+        );
+        assert!(
+            violation(&schema, &as_json(&text), "").is_some(),
+            "the schema accepts {to}"
+        );
+    }
+    // The shorthand for a constant coefficient passes both.
+    let text = paper.replace(
+        "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }",
+        "mu = 0.3",
+    );
+    assert!(text.contains("mu = 0.3"));
+    Scenario::from_str(&text, "shorthand")
+        .unwrap()
+        .into_problem()
+        .unwrap();
+    assert_eq!(violation(&schema, &as_json(&text), ""), None);
 }

@@ -439,7 +439,7 @@ fn cube_with_all_exact_constraints_is_certified_and_symmetric() {
         "law = \"normal-compliance\"\nc_nu = 10000.0",
         "law = \"signorini\"",
     )
-    .replace("gap = 0.4", "gap = 0.05")
+    .replace("gap = 0.1", "gap = 0.05")
     .replace(
         "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }",
         "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }\nexact = true",
@@ -499,7 +499,7 @@ fn three_d_figure_is_a_front_view() {
     ))
     .unwrap()
     .replace("n = [16, 16, 16]", "n = [4, 4, 4]")
-    .replace("gap = 0.4", "gap = 0.05");
+    .replace("gap = 0.1", "gap = 0.05");
     let prob = problem(&text);
     let s = solve(&prob, &SolverSettings::default()).unwrap();
     assert!(s.report.converged);

@@ -36,36 +36,6 @@ const A: f64 = 0.02;
 const B: f64 = -0.01;
 const C: f64 = 0.005;
 
-/// The values of the cell array `name` of a `.vtu` written by [`solution_vtu`] (raw
-/// appended data: a little-endian u64 byte count, then little-endian f64 values).
-fn cell_array(bytes: &[u8], name: &str) -> Vec<f64> {
-    let text = String::from_utf8_lossy(bytes);
-    let key = format!("Name=\"{name}\"");
-    let at = text.find(&key).expect("array present");
-    let tag = &text[at..at + text[at..].find("/>").unwrap()];
-    let offset: usize = tag
-        .split("offset=\"")
-        .nth(1)
-        .unwrap()
-        .split('"')
-        .next()
-        .unwrap()
-        .parse()
-        .unwrap();
-    let marker = b"<AppendedData encoding=\"raw\">\n_";
-    let start = bytes
-        .windows(marker.len())
-        .position(|w| w == marker)
-        .unwrap()
-        + marker.len();
-    let block = &bytes[start + offset..];
-    let len = u64::from_le_bytes(block[..8].try_into().unwrap()) as usize;
-    block[8..8 + len]
-        .chunks(8)
-        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-        .collect()
-}
-
 /// Von Mises stress of a diagonal stress from its principal values.
 fn von_mises_principal(s: [f64; 3]) -> f64 {
     (0.5 * ((s[0] - s[1]).powi(2) + (s[1] - s[2]).powi(2) + (s[2] - s[0]).powi(2))).sqrt()
@@ -76,10 +46,12 @@ fn written_stress(text: &str) -> (Vec<f64>, Vec<f64>, usize) {
     let p = problem(text);
     let solution = hemicontact::solver::solve(&p, &SolverSettings::default()).unwrap();
     assert!(solution.report.converged, "{}", solution.report.message);
-    let bytes = solution_vtu(&p, &solution).to_bytes();
+    let bytes = solution_vtu(&p, &solution, "homogeneous", 1.0)
+        .unwrap()
+        .to_bytes();
     (
-        cell_array(&bytes, "stress"),
-        cell_array(&bytes, "von_mises"),
+        common::vtu::f64s(&bytes, "stress"),
+        common::vtu::f64s(&bytes, "von_mises"),
         p.mesh().n_cells(),
     )
 }

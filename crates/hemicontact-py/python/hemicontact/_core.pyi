@@ -38,7 +38,9 @@ class Scenario:
         source: str,
         mesh: Optional[Mesh] = None,
         dir: Optional[Union[str, "PathLike[str]"]] = None,
-        laws: Sequence[Tuple[int, Callable[..., Any], str]] = ...,
+        laws: Sequence[
+            Tuple[int, str, Callable[..., Any], Optional[Callable[..., Any]], str]
+        ] = ...,
     ) -> "Scenario": ...
     @staticmethod
     def paper(n: int, c_kappa: float) -> "Scenario": ...

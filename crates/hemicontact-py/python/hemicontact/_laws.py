@@ -1,44 +1,105 @@
 """User-defined laws written in Python: how a scenario dict carries them, and the adapter
 through which the solver calls them with numpy arrays.
 
-A friction coefficient μ(r) of the slip r (m) may be a callable where a scenario gives
-``mu``: ``{"friction": {"bound": "coulomb", "mu": f}}``. The solver calls ``f`` with a numpy
-array of the slips of all points of the contact part, once per outer iteration (and once for
-the certificate), never per point, and expects an array of the same shape (or a scalar) of
-values ≥ 0: dimensionless for a Coulomb bound, Pa for a Tresca bound.
+Three kinds, each in a ``[[contact]]`` entry of the dict:
+
+- a friction coefficient μ(r) of the slip r (m):
+  ``{"friction": {"bound": "coulomb", "mu": f}}`` (or ``"mu": {"law": "slip", "function":
+  f}``). ``f`` gets a 1-D array of slips, once per outer iteration.
+- a friction coefficient or Tresca bound μ(x) of the position x (m) of the contact point
+  in the reference configuration: ``"mu": {"law": "position", "function": f}``. ``f`` gets
+  an ``(n, d)`` array of positions, once per outer iteration.
+- a normal compliance p(δ) of the penetration δ = u_ν − g (m), with its derivative:
+  ``"normal": {"law": "compliance", "p": p, "dp": dp}``, in place of ``law``/``c_nu``.
+  ``p`` and ``dp`` get 1-D arrays of penetrations δ ≥ 0 at every energy evaluation.
+
+Each callable returns an array with one value per point (or a scalar): finite and ≥ 0;
+dimensionless for a Coulomb bound, Pa for a Tresca bound, Pa for ``p``, Pa/m for ``dp``.
 """
 
-from typing import Any, Callable, Dict, List, Tuple
+from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 
 from ._core import ScenarioError
 
-#: A law found in a scenario dict: (contact index, callable, the law's name in messages).
-Law = Tuple[int, Callable[..., Any], str]
+#: A law found in a scenario dict: (contact index, kind, callable, derivative or None,
+#: label). The kind is ``"slip"``, ``"position"`` or ``"compliance"``; the label names the
+#: callable and the part, e.g. ``weakening, part 'left'``.
+Law = Tuple[int, str, Callable[..., Any], Optional[Callable[..., Any]], str]
 
 
-def law_name(k: int, part: Any, f: Callable[..., Any]) -> str:
-    """The name of the friction coefficient of contact entry ``k`` in messages."""
-    fname = getattr(f, "__qualname__", None) or getattr(f, "__name__", None) or type(f).__name__
-    return f"contact[{k}].friction.mu ({fname}, part {part!r})"
+def _fname(f: Callable[..., Any]) -> str:
+    return getattr(f, "__qualname__", None) or getattr(f, "__name__", None) or type(f).__name__
+
+
+def law_name(k: int, kind: str, label: str) -> str:
+    """The name of a law in messages: its field path and label."""
+    field = "normal" if kind == "compliance" else "friction.mu"
+    return f"contact[{k}].{field} ({label})"
+
+
+def _friction_law(k: int, part: Any, mu: Any) -> Optional[Law]:
+    """The Python law of a ``mu`` value, if it is one."""
+    if callable(mu):
+        return (k, "slip", mu, None, f"{_fname(mu)}, part {part!r}")
+    if isinstance(mu, dict) and mu.get("law") in ("slip", "position"):
+        f = mu.get("function")
+        extra = sorted(set(mu) - {"law", "function"})
+        if not callable(f) or extra:
+            raise ScenarioError(
+                f"<dict>: field `contact[{k}].friction.mu` = {mu!r}: "
+                f'{{"law": "{mu["law"]}", "function": f}} with a callable f'
+            )
+        return (k, mu["law"], f, None, f"{_fname(f)}, part {part!r}")
+    return None
+
+
+def _normal_law(k: int, c: Dict[str, Any]) -> Law:
+    """The Python compliance law of the ``normal`` entry of contact entry ``c``."""
+    normal = c["normal"]
+    allowed = '{"law": "compliance", "p": p, "dp": dp} with callables p(δ) (Pa) and dp(δ) (Pa/m)'
+    if (
+        not isinstance(normal, dict)
+        or normal.get("law") != "compliance"
+        or set(normal) != {"law", "p", "dp"}
+        or not callable(normal["p"])
+        or not callable(normal["dp"])
+    ):
+        raise ScenarioError(f"<dict>: field `contact[{k}].normal` = {normal!r}: {allowed}")
+    for key in ("law", "c_nu"):
+        if key in c:
+            raise ScenarioError(
+                f"<dict>: field `contact[{k}].{key}` = {c[key]!r}: not with `normal` (the "
+                "normal law is the one `normal` gives)"
+            )
+    p = normal["p"]
+    return (k, "compliance", p, normal["dp"], f"{_fname(p)}, part {c.get('part')!r}")
 
 
 def extract(d: Dict[str, Any]) -> Tuple[Dict[str, Any], List[Law]]:
-    """The scenario dict ``d`` with every callable ``mu`` replaced by a placeholder law the
-    schema accepts, and the callables taken out."""
+    """The scenario dict ``d`` with every Python law replaced by a placeholder law the
+    schema accepts, and the laws taken out."""
     contact = d.get("contact")
     if not isinstance(contact, list):
         return d, []
     laws: List[Law] = []
     entries = []
     for k, c in enumerate(contact):
-        friction = c.get("friction") if isinstance(c, dict) else None
+        if not isinstance(c, dict):
+            entries.append(c)
+            continue
+        friction = c.get("friction")
         mu = friction.get("mu") if isinstance(friction, dict) else None
-        if callable(mu):
-            laws.append((k, mu, law_name(k, c.get("part"), mu)))
+        law = _friction_law(k, c.get("part"), mu)
+        if law is not None:
+            laws.append(law)
             c = dict(c)
             c["friction"] = dict(friction, mu={"law": "constant", "mu": 0.0})
+        if "normal" in c:
+            laws.append(_normal_law(k, c))
+            c = {key: v for key, v in c.items() if key != "normal"}
+            c.update(law="normal-compliance", c_nu=1.0)
         entries.append(c)
     if not laws:
         return d, []
@@ -49,33 +110,46 @@ def extract(d: Dict[str, Any]) -> Tuple[Dict[str, Any], List[Law]]:
 
 def restore(d: Dict[str, Any], laws: List[Law]) -> Dict[str, Any]:
     """The inverse of :func:`extract` on a dict of the schema."""
-    for k, f, _ in laws:
-        d["contact"][k]["friction"]["mu"] = f
+    for k, kind, f, df, _ in laws:
+        c = d["contact"][k]
+        if kind == "slip":
+            c["friction"]["mu"] = f
+        elif kind == "position":
+            c["friction"]["mu"] = {"law": "position", "function": f}
+        else:
+            c.pop("law", None)
+            c.pop("c_nu", None)
+            c["normal"] = {"law": "compliance", "p": f, "dp": df}
     return d
 
 
-def evaluate(f: Callable[..., Any], slips: bytes, name: str) -> bytes:
-    """μ at the slips (float64 bytes, m) by the user's callable ``f``, as float64 bytes.
-    An exception of ``f`` propagates as itself, with a note naming the law (Python ≥ 3.11);
-    a result of the wrong shape or type is a :class:`ScenarioError` naming the law."""
-    r = np.frombuffer(slips, dtype="<f8").copy()
+def evaluate(f: Callable[..., Any], data: bytes, dim: int, name: str, what: str) -> bytes:
+    """The user's callable ``f`` at the points of ``data`` (float64 bytes: slips or
+    penetrations (m) for ``dim == 0``, else positions (m), ``dim`` per point), as float64
+    bytes, one value per point. An exception of ``f`` propagates as itself, with a note
+    naming the law (Python ≥ 3.11); a result of the wrong shape or type is a
+    :class:`ScenarioError` naming the law. ``what`` names the argument in messages."""
+    x = np.frombuffer(data, dtype="<f8").copy()
+    if dim > 0:
+        x = x.reshape(-1, dim)
+    n = x.shape[0]
     try:
-        mu = f(r)
+        y = f(x)
     except Exception as e:
         if hasattr(e, "add_note"):
-            e.add_note(f"raised by the friction coefficient {name}")
+            e.add_note(f"raised by the law {name}")
         raise
     try:
-        values = np.asarray(mu, dtype=float)
+        values = np.asarray(y, dtype=float)
     except (TypeError, ValueError):
         raise ScenarioError(
-            f"{name}: returned a {type(mu).__name__}: an array of numbers, one per slip"
+            f"{name}: returned a {type(y).__name__}: an array of numbers, one per {what}"
         ) from None
     if values.shape == ():
-        values = np.full(r.shape, float(values))
-    if values.shape != r.shape:
+        values = np.full(n, float(values))
+    if values.shape != (n,):
         raise ScenarioError(
-            f"{name}: returned an array of shape {values.shape} for {r.shape[0]} slips: one "
-            "value per slip"
+            f"{name}: returned an array of shape {values.shape} for {n} {what}s: one value "
+            f"per {what}"
         )
     return np.ascontiguousarray(values, dtype="<f8").tobytes()

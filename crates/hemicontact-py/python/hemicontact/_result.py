@@ -29,7 +29,7 @@ class Result:
       ``force_normal``, ``force_tangential_1``, ``force_tangential_2``, ``normal_state``,
       ``friction_state``, ``normal_residual``, ``friction_residual``) and the vectors
       ``normal`` (outward unit normal), ``force`` (interface force on the body, N) and
-      ``friction_traction`` (Pa), K × 3;
+      ``friction_traction`` (tangential traction on the body, force / weight, Pa), K × 3;
     - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
       ``summary.json`` as a dict).

@@ -44,8 +44,10 @@ class Scenario:
         ``{"mesh": {"kind": "rectangle", "size": [4.0, 4.0], "n": [16, 16]},
         "material": {"young": 2000.0, "poisson": 0.3}, ...}``.
 
-        ``d["mesh"]`` may also be a :class:`Mesh` (a mesh built in memory), and the ``mu``
-        of a ``[contact.friction]`` table a Python callable μ(r) (see below). ``source``
+        ``d["mesh"]`` may also be a :class:`Mesh` (a mesh built in memory), the ``mu``
+        of a ``[contact.friction]`` table a Python callable μ(r) of the slip or
+        ``{"law": "position", "function": f}`` for μ(x) of the position, and a contact
+        entry may give ``"normal": {"law": "compliance", "p": p, "dp": dp}`` (see below). ``source``
         names the scenario in error messages; relative file paths (``mesh.file``) are
         resolved against ``base_dir`` (default: the working folder). Numpy arrays and
         scalars are accepted where lists and numbers are.
@@ -61,6 +63,26 @@ class Scenario:
         constant. An exception raised by ``f`` propagates as itself (with a note naming
         the law on Python ≥ 3.11); a NaN, negative or wrongly shaped result raises
         :class:`ScenarioError` naming the law and the slip.
+
+        **Friction varying along the interface.** ``"mu": {"law": "position", "function":
+        f}`` makes μ a function of the position x (m) of each contact point in the
+        reference configuration, independent of the slip: with ``bound = "tresca"`` a
+        friction bound F(x) in Pa. ``f`` gets an ``(n, d)`` array of the positions of all
+        points of the part, once per outer iteration, and returns ``n`` finite values ≥ 0;
+        it is checked at the part's nodes when the scenario is, and μ₀ of the uniqueness
+        check is its largest value there (its Lipschitz constant in the slip is 0).
+
+        **Normal compliance.** ``"normal": {"law": "compliance", "p": p, "dp": dp}`` in a
+        contact entry (instead of ``law`` and ``c_nu``) gives the contact pressure
+        p(δ) (Pa) of the penetration δ = u_ν − g (m) and its derivative dp(δ) (Pa/m); the
+        pressure is 0 where δ ≤ 0. The law must be monotone: when the scenario is checked,
+        p and dp are sampled at δ = 0 and 101 penetrations from 1e-10 to 1 times the body's
+        diameter, and p(0) = 0, finite values ≥ 0, p nondecreasing and dp equal to the
+        slope of p (to 1e-3) are required. The normal law is not frozen within an outer
+        iteration, so ``p`` is called at every energy evaluation (each Newton step and
+        line-search trial) with the penetrating points of the part and the 8 Gauss–Legendre
+        nodes of each [0, δ] (the energy ∫₀^δ p, exact for polynomial p of degree ≤ 15),
+        ``dp`` with the penetrating points when the Newton matrix is assembled.
 
         Raises :class:`ScenarioError` naming the field for unknown keys, wrong types or
         values out of range.
@@ -79,9 +101,7 @@ class Scenario:
         else:
             mesh = None
         base = os.fspath(base_dir) if base_dir is not None else None
-        native = _core.Scenario.from_dict(
-            value, source, native_mesh, base, [(k, f, name) for k, f, name in laws]
-        )
+        native = _core.Scenario.from_dict(value, source, native_mesh, base, laws)
         return cls(native, mesh, laws)
 
     def to_dict(self) -> Dict[str, Any]:

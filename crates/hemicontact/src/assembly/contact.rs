@@ -22,7 +22,7 @@
 
 use super::pattern::{SystemPattern, FIXED_SLOT};
 pub use crate::contact::friction::project_ball;
-use crate::contact::{ContactBoundary, ContactNodes, TangentialData};
+use crate::contact::{ContactBoundary, ContactNodes, NormalLaw, NormalResponse, TangentialData};
 use crate::error::{Error, Result};
 
 /// The per-point data of the contact terms held fixed over one convex problem: the friction
@@ -90,6 +90,10 @@ pub struct ContactAssembler<'a> {
     pub regularization_floor: f64,
     /// Augmented-Lagrangian penalty r_i per point (Pa/m) of the exact constraints.
     pub penalty: &'a [f64],
+    /// The responses of the points of user-defined compliance laws at the displacement
+    /// being assembled ([`ContactAssembler::normal_responses`]), one per point; empty when
+    /// no contact part has such a law.
+    pub responses: &'a [NormalResponse],
 }
 
 impl<'a> ContactAssembler<'a> {
@@ -103,10 +107,14 @@ impl<'a> ContactAssembler<'a> {
         let cb = &self.boundaries[self.nodes.boundary[i] as usize];
         let (u_nu, u_tau) = self.nodes.kinematics(self.dim, u, i);
         let slip = (u_tau[0] * u_tau[0] + u_tau[1] * u_tau[1]).sqrt();
-        let (law, gap) = cb
-            .normal
-            .effective(cb.gap, frozen.pressure[i], self.penalty[i]);
-        let pressure = law.pressure(u_nu, gap);
+        let pressure = if cb.normal.is_custom() {
+            self.custom_response(i).pressure
+        } else {
+            let (law, gap) = cb
+                .normal
+                .effective(cb.gap, frozen.pressure[i], self.penalty[i]);
+            law.pressure(u_nu, gap)
+        };
         PointState {
             u_nu,
             u_tau,
@@ -115,9 +123,71 @@ impl<'a> ContactAssembler<'a> {
         }
     }
 
-    /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` of every point at displacement `u` (0 at
-    /// frictionless points): the slips of all points, then one evaluation of each contact
-    /// part's law over the slips of that part's points
+    /// The response of point `i` of a user-defined compliance law from
+    /// [`ContactAssembler::responses`]; NaN if they were not computed (an error that shows).
+    #[inline]
+    fn custom_response(&self, i: usize) -> NormalResponse {
+        self.responses.get(i).copied().unwrap_or(NormalResponse {
+            energy: f64::NAN,
+            pressure: f64::NAN,
+            stiffness: f64::NAN,
+        })
+    }
+
+    /// Whether a contact part has a user-defined compliance law.
+    pub fn has_custom_normal(&self) -> bool {
+        self.boundaries.iter().any(|b| b.normal.is_custom())
+    }
+
+    /// The responses (energy, pressure and, if `stiffness`, the derivative) of the points of
+    /// the parts with a user-defined compliance law at displacement `u`, into `out` (resized
+    /// to one per point; zero elsewhere): one batch of the law per contact part
+    /// ([`crate::contact::CustomCompliance::responses`]). Pass the result as
+    /// [`ContactAssembler::responses`] to assemble at `u`. Nothing is done (and `out` is
+    /// left empty) when no part has such a law.
+    ///
+    /// # Errors
+    /// [`Error::Law`] naming the law (`contact[k].normal (name)`) and the penetration.
+    pub fn normal_responses(
+        &self,
+        u: &[f64],
+        stiffness: bool,
+        out: &mut Vec<NormalResponse>,
+    ) -> Result<()> {
+        out.clear();
+        if !self.has_custom_normal() {
+            return Ok(());
+        }
+        let n = self.nodes.len();
+        out.resize(n, NormalResponse::default());
+        let mut start = 0;
+        let mut penetration = Vec::new();
+        for run in self.nodes.boundary.chunk_by(|a, b| a == b) {
+            let range = start..start + run.len();
+            start = range.end;
+            let b = run[0] as usize;
+            let cb = &self.boundaries[b];
+            let NormalLaw::Custom(law) = &cb.normal else {
+                continue;
+            };
+            penetration.clear();
+            penetration.extend(
+                range
+                    .clone()
+                    .map(|i| self.nodes.kinematics(self.dim, u, i).0 - cb.gap),
+            );
+            law.responses(&penetration, stiffness, &mut out[range])
+                .map_err(|message| Error::Law {
+                    law: format!("contact[{b}].normal ({})", law.name),
+                    message,
+                })?;
+        }
+        Ok(())
+    }
+
+    /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` (or `μ(x_i)` for a law of the position)
+    /// of every point at displacement `u` (0 at frictionless points): the slips of all
+    /// points, then one evaluation of each contact part's law over that part's points
     /// ([`crate::contact::FrictionCoefficient::values`]). Allocates two vectors of the
     /// number of points; called once per outer iteration and once for the certificate.
     ///
@@ -142,8 +212,9 @@ impl<'a> ContactAssembler<'a> {
             let Some(fr) = &self.boundaries[b].friction else {
                 continue;
             };
+            let positions = &self.nodes.position[range.clone()];
             fr.mu
-                .values(&slips[range.clone()], &mut mu[range])
+                .values(&slips[range.clone()], positions, self.dim, &mut mu[range])
                 .map_err(|message| Error::Law {
                     law: format!("contact[{b}].friction.mu ({})", fr.mu.name()),
                     message,
@@ -160,15 +231,22 @@ impl<'a> ContactAssembler<'a> {
     /// the large penalty r, which would put a floor under the fixed-point residual.
     ///
     /// # Errors
-    /// As [`ContactAssembler::friction_coefficients`].
+    /// As [`ContactAssembler::friction_coefficients`] and
+    /// [`ContactAssembler::normal_responses`].
     pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> Result<FrictionData> {
         let n = self.nodes.len();
         let mu = self.friction_coefficients(u)?;
+        let mut responses = Vec::new();
+        self.normal_responses(u, false, &mut responses)?;
+        let at_u = ContactAssembler {
+            responses: &responses,
+            ..*self
+        };
         let mut data = FrictionData::zero(n);
         for i in 0..n {
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
             let Some(fr) = &cb.friction else { continue };
-            let s = self.state(u, i, current);
+            let s = at_u.state(u, i, current);
             let pressure = if cb.normal.is_exact() {
                 current.pressure[i]
             } else {
@@ -186,7 +264,8 @@ impl<'a> ContactAssembler<'a> {
         Ok(data)
     }
 
-    /// Contact energy at `u`; adds its gradient to `grad` (all DOFs, DOF order) and, if
+    /// Contact energy at `u` (the responses of user-defined compliance laws, if any, must
+    /// be those at `u`); adds its gradient to `grad` (all DOFs, DOF order) and, if
     /// `hess` is given, its Hessian to the upper-triangular values using the per-point node
     /// block slots `slots` (see [`contact_slots`]).
     pub fn assemble(
@@ -236,13 +315,20 @@ impl<'a> ContactAssembler<'a> {
         // Normal part: w P(u_ν), gradient w p ν, Hessian w p' ν νᵀ (for Signorini the
         // augmented Lagrangian, a compliance law at a shifted gap, minus λ²/2r).
         let r = self.penalty[i];
-        let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
-        let mut energy = w * law.energy(u_nu, gap);
+        let (mut energy, p, kn) = if cb.normal.is_custom() {
+            let c = self.custom_response(i);
+            (w * c.energy, c.pressure, c.stiffness)
+        } else {
+            let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+            (
+                w * law.energy(u_nu, gap),
+                law.pressure(u_nu, gap),
+                law.stiffness(u_nu, gap),
+            )
+        };
         if cb.normal.is_exact() {
             energy -= w * frozen.pressure[i] * frozen.pressure[i] / (2.0 * r);
         }
-        let p = law.pressure(u_nu, gap);
-        let kn = law.stiffness(u_nu, gap);
         // Tangential part: w times the friction law's term.
         let mut gt = [0.0; 2];
         let mut ht = [[0.0; 2]; 2];

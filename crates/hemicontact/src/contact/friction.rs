@@ -33,6 +33,7 @@
 //!   `proj_{B_F}(τ + rξ)` onto the ball of radius F; the multiplier update is
 //!   `τ ← proj_{B_F}(τ + r ξ)` ([`Friction::updated_traction`]).
 
+use super::field_law::CustomField;
 use super::slip_law::CustomCoefficient;
 use serde::{Deserialize, Serialize};
 
@@ -65,14 +66,21 @@ pub enum FrictionCoefficient {
     /// ([`super::slip_law`]); not representable in a scenario file.
     #[serde(skip)]
     Custom(CustomCoefficient),
+    /// A user-defined function of the position x of the contact point (reference
+    /// configuration), independent of the slip, evaluated in batches
+    /// ([`super::field_law`]); not representable in a scenario file.
+    #[serde(skip)]
+    Field(CustomField),
 }
 
 impl FrictionCoefficient {
-    /// μ(r). A custom law is called with this one slip (NaN if it fails); the solver uses
+    /// μ(r). A custom law is called with this one slip (NaN if it fails); a law of the
+    /// position has no value without a point (NaN). The solver uses
     /// [`FrictionCoefficient::values`].
     pub fn value(&self, r: f64) -> f64 {
         match self {
             FrictionCoefficient::Custom(law) => law.value(r),
+            FrictionCoefficient::Field(_) => f64::NAN,
             FrictionCoefficient::Constant { mu } => *mu,
             FrictionCoefficient::Exponential { a, b, beta } => (a - b) * (-beta * r).exp() + b,
             FrictionCoefficient::Table { points } => {
@@ -89,15 +97,23 @@ impl FrictionCoefficient {
         }
     }
 
-    /// `out[i] = μ(slips[i])` for all slips at once: the built-in laws point by point with
-    /// [`FrictionCoefficient::value`], a custom law by one call of its function.
+    /// `out[i] = μ(slips[i])` (at the point `positions[i]`, in `dim` dimensions) for all
+    /// points at once: the built-in laws point by point with [`FrictionCoefficient::value`],
+    /// a custom law by one call of its function, of the slips or of the positions.
     ///
     /// # Errors
     /// Only a custom law: its function's error, or a value not finite or negative, naming
-    /// the slip ([`CustomCoefficient::values`]).
-    pub fn values(&self, slips: &[f64], out: &mut [f64]) -> Result<(), String> {
+    /// the slip or the point ([`CustomCoefficient::values`], [`CustomField::values`]).
+    pub fn values(
+        &self,
+        slips: &[f64],
+        positions: &[[f64; 3]],
+        dim: usize,
+        out: &mut [f64],
+    ) -> Result<(), String> {
         match self {
             FrictionCoefficient::Custom(law) => law.values(slips, out),
+            FrictionCoefficient::Field(law) => law.values(positions, dim, out),
             _ => {
                 for (mu, &r) in out.iter_mut().zip(slips) {
                     *mu = self.value(r);
@@ -115,6 +131,7 @@ impl FrictionCoefficient {
             FrictionCoefficient::Exponential { .. } => "exponential",
             FrictionCoefficient::Table { .. } => "table",
             FrictionCoefficient::Custom(law) => &law.name,
+            FrictionCoefficient::Field(law) => &law.name,
         }
     }
 
@@ -124,17 +141,24 @@ impl FrictionCoefficient {
         matches!(self, FrictionCoefficient::Custom(_)) || self.lipschitz() > 0.0
     }
 
+    /// Whether μ is a function of the position ([`FrictionCoefficient::Field`]).
+    pub fn is_field(&self) -> bool {
+        matches!(self, FrictionCoefficient::Field(_))
+    }
+
     /// Whether `sup μ` and the Lipschitz constant are estimates from samples (a custom
     /// law) rather than exact.
     pub fn is_estimated(&self) -> bool {
         matches!(self, FrictionCoefficient::Custom(_))
     }
 
-    /// Upper bound μ₀ = sup μ; for a custom law an estimate from samples
-    /// ([`CustomCoefficient::sup`]).
+    /// Upper bound μ₀ = sup μ; for a custom law of the slip an estimate from samples
+    /// ([`CustomCoefficient::sup`]); NaN for a law of the position, whose supremum is its
+    /// largest value at the contact points (the uniqueness check evaluates it there).
     pub fn sup(&self) -> f64 {
         match self {
             FrictionCoefficient::Custom(law) => law.sup(),
+            FrictionCoefficient::Field(_) => f64::NAN,
             FrictionCoefficient::Constant { mu } => *mu,
             FrictionCoefficient::Exponential { a, b, .. } => a.max(*b),
             FrictionCoefficient::Table { points } => {
@@ -143,11 +167,12 @@ impl FrictionCoefficient {
         }
     }
 
-    /// Lipschitz constant L_μ; for a custom law an estimate from samples
-    /// ([`CustomCoefficient::lipschitz`]).
+    /// Lipschitz constant L_μ in the slip; for a custom law of the slip an estimate from
+    /// samples ([`CustomCoefficient::lipschitz`]); 0 for a law of the position.
     pub fn lipschitz(&self) -> f64 {
         match self {
             FrictionCoefficient::Custom(law) => law.lipschitz(),
+            FrictionCoefficient::Field(_) => 0.0,
             FrictionCoefficient::Constant { .. } => 0.0,
             FrictionCoefficient::Exponential { a, b, beta } => (a - b).abs() * beta,
             FrictionCoefficient::Table { points } => points
@@ -157,14 +182,18 @@ impl FrictionCoefficient {
         }
     }
 
-    /// The same law in dimensionless variables: slips in units of `displacement` (m) and
-    /// values in units of `value` (1 for a Coulomb-type coefficient, the traction unit for a
-    /// Tresca bound): `μ̂(r̂) = μ(U r̂)/value`, so β̂ = βU, table slips r/U and values
-    /// μ/value; a custom law gets these units, its function is untouched.
-    pub fn nondimensional(&self, displacement: f64, value: f64) -> Self {
+    /// The same law in dimensionless variables: slips in units of `displacement` (m),
+    /// positions in units of `length` (m) and values in units of `value` (1 for a
+    /// Coulomb-type coefficient, the traction unit for a Tresca bound):
+    /// `μ̂(r̂) = μ(U r̂)/value`, so β̂ = βU, table slips r/U and values μ/value; a custom law
+    /// gets these units, its function is untouched.
+    pub fn nondimensional(&self, displacement: f64, length: f64, value: f64) -> Self {
         match self {
             FrictionCoefficient::Custom(law) => {
                 FrictionCoefficient::Custom(law.nondimensional(displacement, value))
+            }
+            FrictionCoefficient::Field(law) => {
+                FrictionCoefficient::Field(law.nondimensional(length, value))
             }
             FrictionCoefficient::Constant { mu } => {
                 FrictionCoefficient::Constant { mu: mu / value }
@@ -192,6 +221,7 @@ impl FrictionCoefficient {
         let ok = |x: f64| x.is_finite() && x >= 0.0;
         match self {
             FrictionCoefficient::Custom(law) => law.validate(),
+            FrictionCoefficient::Field(law) => law.validate(),
             FrictionCoefficient::Constant { mu } if !ok(*mu) => {
                 Err(format!("mu = {mu}: a finite coefficient ≥ 0"))
             }
@@ -460,7 +490,11 @@ impl std::fmt::Display for FrictionPotential {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
             NormTreatment::Smoothed { regularization } => {
-                write!(f, " (norm smoothed, ρ_num = {regularization:e} U)")
+                write!(
+                    f,
+                    " (norm smoothed, ρ_num = {} U)",
+                    crate::display::significant(regularization)
+                )
             }
             NormTreatment::Exact => write!(f, " (exact stick/slip)"),
         };
@@ -474,13 +508,15 @@ impl std::fmt::Display for FrictionPotential {
                 unit,
                 treatment: t,
             } => {
-                write!(f, "nonconvex, a = {a}")?;
+                write!(f, "nonconvex, a = {}", crate::display::significant(a))?;
                 if unit != 1.0 {
-                    write!(f, ", slip unit {unit:e} m")?;
+                    write!(f, ", slip unit {} m", crate::display::significant(unit))?;
                 }
                 treatment(f, t)
             }
-            FrictionPotential::Regularized { rho } => write!(f, "regularized, ρ = {rho:e} m"),
+            FrictionPotential::Regularized { rho } => {
+                write!(f, "regularized, ρ = {} m", crate::display::significant(rho))
+            }
         }
     }
 }

@@ -1,5 +1,5 @@
 //! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`], with user-defined
-//! friction coefficients in [`slip_law`]) and the contact nodes with their lumped weights,
+//! friction coefficients of the slip in [`slip_law`] and of the position in [`field_law`]) and the contact nodes with their lumped weights,
 //! normals and tangents ([`nodes`]).
 //!
 //! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
@@ -8,11 +8,16 @@
 //! an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the
 //! body has normal part `σ_ν = −p(u_ν) ≤ 0` and tangential part `σ_τ ∈ −F ∂j(u_τ)`.
 
+pub mod compliance_law;
+mod describe;
+pub mod field_law;
 pub mod friction;
 pub mod nodes;
 pub mod normal;
 pub mod slip_law;
 
+pub use compliance_law::{ComplianceFunction, CustomCompliance, NormalResponse};
+pub use field_law::{CustomField, PositionFunction};
 pub use friction::{
     Friction, FrictionBound, FrictionCoefficient, FrictionPotential, NormTreatment, TangentialData,
     TangentialTerm,

@@ -50,6 +50,9 @@ pub struct ContactNodes {
     pub normal: Vec<[f64; 3]>,
     /// Orthonormal tangent basis (first d − 1 vectors used).
     pub tangent: Vec<[[f64; 3]; 2]>,
+    /// Position of the node in the reference configuration (m; unused coordinates 0), where
+    /// a friction law of the position is evaluated.
+    pub position: Vec<[f64; 3]>,
 }
 
 /// Angle between facet normals above which one contact boundary is split at a node into
@@ -123,6 +126,9 @@ impl ContactNodes {
                     out.weight.push(w);
                     out.normal.push(n);
                     out.tangent.push(tangent_basis(d, &n));
+                    let mut x = [0.0; 3];
+                    x[..d].copy_from_slice(mesh.node(v as usize));
+                    out.position.push(x);
                 }
             }
         }

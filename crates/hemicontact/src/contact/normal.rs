@@ -1,5 +1,9 @@
 //! Normal compliance: `−σ_ν = p(u_ν) = c_ν (u_ν − g)_+`, the reaction of
-//! deformable asperities, with energy `P(u_ν) = (c_ν/2)(u_ν − g)_+²`.
+//! deformable asperities, with energy `P(u_ν) = (c_ν/2)(u_ν − g)_+²`; a user-defined
+//! monotone compliance `p(u_ν − g)` ([`super::compliance_law`]); or the Signorini
+//! condition of a rigid foundation.
+
+use super::compliance_law::CustomCompliance;
 
 /// Normal compliance with stiffness `c_nu` (Pa/m, i.e. pressure per penetration).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,7 +38,7 @@ impl NormalCompliance {
 }
 
 /// The normal contact law of a contact boundary.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum NormalLaw {
     /// Normal compliance `p = c_ν (u_ν − g)_+` (deformable asperities).
     Compliance(NormalCompliance),
@@ -42,18 +46,30 @@ pub enum NormalLaw {
     /// the contact pressure p being the Lagrange multiplier of the constraint (imposed by
     /// the augmented Lagrangian of [`crate::solver::constraints`]).
     Signorini,
+    /// A user-defined monotone compliance `p(u_ν − g)` with its derivative, evaluated in
+    /// batches ([`super::compliance_law`]).
+    Custom(CustomCompliance),
 }
 
 impl NormalLaw {
-    /// The same law for dimensionless displacements and pressures: `ĉ_ν = c_ν / k` with the
-    /// stiffness unit `k` (Pa/m: the traction unit over the displacement unit).
-    pub fn nondimensional(&self, stiffness: f64) -> NormalLaw {
-        match *self {
+    /// The same law for dimensionless displacements and pressures, with the displacement
+    /// unit `displacement` (m) and the traction unit `traction` (Pa): `ĉ_ν = c_ν / k` with
+    /// the stiffness unit `k = traction/displacement` (Pa/m); a custom law gets the units.
+    pub fn nondimensional(&self, displacement: f64, traction: f64) -> NormalLaw {
+        match self {
             NormalLaw::Compliance(c) => NormalLaw::Compliance(NormalCompliance {
-                c_nu: c.c_nu / stiffness,
+                c_nu: c.c_nu / (traction / displacement),
             }),
             NormalLaw::Signorini => NormalLaw::Signorini,
+            NormalLaw::Custom(law) => NormalLaw::Custom(law.nondimensional(displacement, traction)),
         }
+    }
+
+    /// Whether the law is user-defined (its responses come from
+    /// [`crate::assembly::contact::ContactAssembler::normal_responses`]).
+    #[inline]
+    pub fn is_custom(&self) -> bool {
+        matches!(self, NormalLaw::Custom(_))
     }
 
     /// Whether the law is the exact (Signorini) constraint.
@@ -65,12 +81,14 @@ impl NormalLaw {
     /// The compliance law that the augmented Lagrangian term of a Signorini point with
     /// multiplier `lambda` (Pa) and penalty `r` (Pa/m) amounts to, with the gap it applies
     /// at: `(λ + r (u_ν − g))_+ = r (u_ν − (g − λ/r))_+`. For a compliance law, the law and
-    /// `gap` themselves.
+    /// `gap` themselves. A user-defined law has no such form (a stiffness of NaN): its
+    /// responses are computed in batches.
     #[inline]
     pub fn effective(&self, gap: f64, lambda: f64, r: f64) -> (NormalCompliance, f64) {
-        match *self {
-            NormalLaw::Compliance(c) => (c, gap),
+        match self {
+            NormalLaw::Compliance(c) => (*c, gap),
             NormalLaw::Signorini => (NormalCompliance { c_nu: r }, gap - lambda / r),
+            NormalLaw::Custom(_) => (NormalCompliance { c_nu: f64::NAN }, gap),
         }
     }
 }
@@ -80,7 +98,8 @@ impl NormalLaw {
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] for a compliance stiffness `c_nu` that is not finite and
-    /// positive.
+    /// positive. A user-defined law is sampled by [`crate::problem::Problem::validate`],
+    /// which knows the body's size.
     pub fn validate(&self) -> crate::Result<()> {
         match self {
             NormalLaw::Compliance(c) => crate::error::require(
@@ -89,7 +108,7 @@ impl NormalLaw {
                 c.c_nu,
                 "a normal compliance stiffness c_ν (Pa/m) > 0",
             ),
-            NormalLaw::Signorini => Ok(()),
+            NormalLaw::Signorini | NormalLaw::Custom(_) => Ok(()),
         }
     }
 }

@@ -1,13 +1,16 @@
-//! Output files, one writer per format: VTK UnstructuredGrid (`.vtu`), the contact table
-//! (`.csv`), JSON summaries, the tables of convergence studies, Gmsh meshes (`.msh`); the
-//! result files of a solution written together; atomic file writing, and result sets (the
-//! files of one run, put in place as a unit).
+//! Output files, one writer per format: VTK UnstructuredGrid (`.vtu`, its arrays
+//! zlib-compressed in VTK's block layout), ParaView collections of datasets (`.pvd`), the
+//! contact table (`.csv`), JSON summaries, the tables of convergence studies, Gmsh meshes
+//! (`.msh`); the result files of a solution written together; atomic file writing, and
+//! result sets (the files of one run, put in place as a unit).
 
 pub mod atomic;
 pub mod csv;
 pub mod msh;
+pub mod pvd;
 pub mod result_set;
 pub mod results;
 pub mod study_table;
 pub mod summary;
 pub mod vtu;
+pub mod zlib_blocks;

@@ -11,8 +11,9 @@ use crate::problem::Problem;
 use crate::solver::Solution;
 use std::path::PathBuf;
 
-/// Writes the result files of a solution into the sub-folder `folder` of the result set
-/// `set` (`""`: its root): `solution.vtu` (if `vtu`), `contact.csv` (if the problem has
+/// Writes the result files of a solution titled `title` into the sub-folder `folder` of the
+/// result set `set` (`""`: its root): `solution.vtu` (if `vtu`; the title and the load
+/// factor 1 in its `FieldData`), `contact.csv` (if the problem has
 /// contact), the `extra` files (name within the folder, content), and last, if `summary` is
 /// given, `summary.json`, whose `files` lists every file of the folder, itself included.
 /// Returns the final paths written.
@@ -24,6 +25,7 @@ pub fn write_results(
     folder: &str,
     problem: &Problem,
     solution: &Solution,
+    title: &str,
     summary: Option<&Summary>,
     vtu: bool,
     extra: &[(&str, Vec<u8>)],
@@ -39,7 +41,7 @@ pub fn write_results(
     if vtu {
         written.push(set.write(
             &name("solution.vtu"),
-            &solution_vtu(problem, solution).to_bytes(),
+            &solution_vtu(problem, solution, title, 1.0)?.to_bytes(),
         )?);
     }
     if !problem.contact.is_empty() {

@@ -1,12 +1,17 @@
-//! VTK XML UnstructuredGrid writer (`.vtu`), binary appended data (raw, little-endian,
-//! 64-bit block headers), readable by ParaView, VTK and meshio.
+//! VTK XML UnstructuredGrid writer (`.vtu`): binary appended data, zlib-compressed in
+//! blocks ([`super::zlib_blocks`], 64-bit block headers), readable by ParaView, VTK and
+//! meshio; the same input always gives the same bytes.
 //!
 //! Point coordinates are written with 3 components (z = 0 in 2D); vectors with 3 components;
-//! symmetric tensors as 9-component full matrices (row-major). [`solution_vtu`] fills one
-//! with the fields of a solution (`solution.vtu`).
+//! symmetric tensors as 9-component full matrices (row-major). Data about the whole file
+//! (title, time or load factor, program version, units) go to its `FieldData`: numbers as
+//! `Float64` arrays, text as `UInt8` arrays of its UTF-8 bytes followed by one NUL byte
+//! (meshio cannot read VTK's `String` arrays). [`solution_vtu`] fills a file with the fields
+//! of a solution (`solution.vtu`).
 
+use super::zlib_blocks;
 use crate::assembly::BulkAssembler;
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::material::Locking;
 use crate::mesh::Mesh;
 use crate::problem::Problem;
@@ -18,6 +23,26 @@ use std::path::Path;
 enum Data {
     F64(Vec<f64>),
     I32(Vec<i32>),
+    U8(Vec<u8>),
+}
+
+impl Data {
+    /// The VTK type name and the little-endian bytes.
+    fn encode(&self) -> (&'static str, Vec<u8>) {
+        match self {
+            Data::F64(v) => ("Float64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
+            Data::I32(v) => ("Int32", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
+            Data::U8(v) => ("UInt8", v.clone()),
+        }
+    }
+
+    fn len(&self) -> usize {
+        match self {
+            Data::F64(v) => v.len(),
+            Data::I32(v) => v.len(),
+            Data::U8(v) => v.len(),
+        }
+    }
 }
 
 struct Array {
@@ -26,9 +51,10 @@ struct Array {
     data: Data,
 }
 
-/// A `.vtu` file under construction: a mesh plus named point and cell arrays.
+/// A `.vtu` file under construction: a mesh plus named point, cell and field arrays.
 pub struct VtuWriter<'a> {
     mesh: &'a Mesh,
+    field: Vec<Array>,
     point: Vec<Array>,
     cell: Vec<Array>,
 }
@@ -38,9 +64,33 @@ impl<'a> VtuWriter<'a> {
     pub fn new(mesh: &'a Mesh) -> Self {
         VtuWriter {
             mesh,
+            field: Vec::new(),
             point: Vec::new(),
             cell: Vec::new(),
         }
+    }
+
+    /// Adds a `Float64` array of `FieldData` (data about the whole file, e.g. `TimeValue`).
+    pub fn field_f64(&mut self, name: &str, values: Vec<f64>) -> &mut Self {
+        self.field.push(Array {
+            name: name.into(),
+            components: 1,
+            data: Data::F64(values),
+        });
+        self
+    }
+
+    /// Adds a text to `FieldData`: a `UInt8` array of the UTF-8 bytes of `text` followed by
+    /// one NUL byte.
+    pub fn field_text(&mut self, name: &str, text: &str) -> &mut Self {
+        let mut bytes = text.as_bytes().to_vec();
+        bytes.push(0);
+        self.field.push(Array {
+            name: name.into(),
+            components: 1,
+            data: Data::U8(bytes),
+        });
+        self
     }
 
     /// Adds a point array with `components` values per node (node-major, length
@@ -104,35 +154,48 @@ impl<'a> VtuWriter<'a> {
         self
     }
 
-    /// Encodes the file.
+    /// Encodes the file: the XML header, then the appended data, every array compressed
+    /// by [`zlib_blocks::compress`].
     pub fn to_bytes(&self) -> Vec<u8> {
         let mesh = self.mesh;
         let d = mesh.dim();
-        let mut blocks: Vec<Vec<u8>> = Vec::new();
-        let mut xml = String::new();
-        let mut offset = 0usize;
-        let mut push_block = |bytes: Vec<u8>, blocks: &mut Vec<Vec<u8>>| -> usize {
-            let at = offset;
-            offset += 8 + bytes.len();
-            blocks.push(bytes);
+        let mut appended: Vec<u8> = Vec::new();
+        let mut push = |bytes: &[u8]| -> usize {
+            let at = appended.len();
+            appended.extend_from_slice(&zlib_blocks::compress(bytes));
             at
         };
-        let _ = write!(
-            xml,
+        let mut xml = String::from(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
-             byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n\
-             <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+             byte_order=\"LittleEndian\" header_type=\"UInt64\" \
+             compressor=\"vtkZLibDataCompressor\">\n<UnstructuredGrid>\n",
+        );
+        if !self.field.is_empty() {
+            xml.push_str("<FieldData>\n");
+            for a in &self.field {
+                let (ty, bytes) = a.data.encode();
+                let at = push(&bytes);
+                let _ = writeln!(
+                    xml,
+                    "<DataArray type=\"{ty}\" Name=\"{}\" NumberOfTuples=\"{}\" \
+                     format=\"appended\" offset=\"{at}\"/>",
+                    a.name,
+                    a.data.len()
+                );
+            }
+            xml.push_str("</FieldData>\n");
+        }
+        let _ = writeln!(
+            xml,
+            "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
             mesh.n_nodes(),
             mesh.n_cells()
         );
         for (tag, arrays) in [("PointData", &self.point), ("CellData", &self.cell)] {
             let _ = writeln!(xml, "<{tag}>");
             for a in arrays.iter() {
-                let (ty, bytes) = match &a.data {
-                    Data::F64(v) => ("Float64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
-                    Data::I32(v) => ("Int32", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
-                };
-                let at = push_block(bytes, &mut blocks);
+                let (ty, bytes) = a.data.encode();
+                let at = push(&bytes);
                 let _ = writeln!(
                     xml,
                     "<DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{}\" \
@@ -149,11 +212,11 @@ impl<'a> VtuWriter<'a> {
                 pts.extend_from_slice(&(if i < d { x[i] } else { 0.0 }).to_le_bytes());
             }
         }
-        let at = push_block(pts, &mut blocks);
+        let at = push(&pts);
         let _ = writeln!(
             xml,
-            "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" \
-             offset=\"{at}\"/>\n</Points>"
+            "<Points>\n<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" \
+             format=\"appended\" offset=\"{at}\"/>\n</Points>"
         );
         let conn: Vec<u8> = mesh
             .cells()
@@ -166,9 +229,9 @@ impl<'a> VtuWriter<'a> {
             .collect();
         let vtk_type: u8 = if d == 2 { 5 } else { 10 };
         let types = vec![vtk_type; mesh.n_cells()];
-        let a1 = push_block(conn, &mut blocks);
-        let a2 = push_block(offs, &mut blocks);
-        let a3 = push_block(types, &mut blocks);
+        let a1 = push(&conn);
+        let a2 = push(&offs);
+        let a3 = push(&types);
         let _ = write!(
             xml,
             "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{a1}\"/>\n\
@@ -177,10 +240,7 @@ impl<'a> VtuWriter<'a> {
              </Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_"
         );
         let mut out = xml.into_bytes();
-        for b in blocks {
-            out.extend_from_slice(&(b.len() as u64).to_le_bytes());
-            out.extend_from_slice(&b);
-        }
+        out.extend_from_slice(&appended);
         out.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
         out
     }
@@ -277,8 +337,43 @@ pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
     }
 }
 
-/// The `.vtu` content of a solution: displacement, reactions and contact data at points;
-/// strain, stress, von Mises stress, tr ε and locking activity per cell.
+/// The point and cell fields of `solution.vtu` with their units (2D forces are per unit
+/// thickness), in the order written; the text of the `units` entry of its `FieldData`.
+pub fn field_units(dim: usize) -> Vec<(&'static str, &'static str)> {
+    let force = if dim == 2 { "N/m" } else { "N" };
+    vec![
+        ("displacement", "m"),
+        ("reaction", force),
+        ("contact_normal_state", "code"),
+        ("contact_friction_state", "code"),
+        ("contact_pressure", "Pa"),
+        ("friction_traction", "Pa"),
+        ("slip", "m"),
+        ("interface_force", force),
+        ("strain", "1"),
+        ("stress", "Pa"),
+        ("von_mises", "Pa"),
+        ("trace_strain", "1"),
+        ("locking_active", "code"),
+        ("locking_q", "1 (strain; strain^2 for the Prager set)"),
+        ("locking_multiplier", "Pa"),
+    ]
+}
+
+/// The integer codes of the state fields of `solution.vtu`; the text of the `codes` entry
+/// of its `FieldData`, one line per field.
+pub const STATE_CODES: &str = "contact_normal_state: -1 not a contact node, 0 separated, \
+     1 contact (positive pressure)\n\
+     contact_friction_state: -1 not a contact node, 0 no friction force (frictionless, or \
+     Coulomb bound at a separated point), 1 stick, 2 slip\n\
+     locking_active: 0 free, 1 locking acts";
+
+/// The `.vtu` content of a solution titled `title` at the load factor `load_factor` (1 for
+/// a single solve): displacement, reactions and contact data at points; strain, stress,
+/// von Mises stress, tr ε and locking activity per cell; and in `FieldData` the `TITLE`,
+/// the load factor as `TimeValue` (ParaView's time), `hemicontact_version`, the `units` of
+/// every field ([`field_units`], one `name: unit` line each) and the state `codes`
+/// ([`STATE_CODES`]).
 ///
 /// `stress` is the full 3×3 tensor ([`crate::material::Material::stress_3x3`]): in 2D plane
 /// strain with `σ_zz = ∂W/∂ε_zz` (Hooke: `λ tr ε`) plus the zz part of the locking stress,
@@ -288,18 +383,33 @@ pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
 /// thickness strain ε_zz is not computed).
 ///
 /// Contact point data (for nodes that are not contact nodes: states −1, zeros elsewhere):
-/// `contact_state` (the normal state: 0 separated, 1 contact), `friction_state` (0 none,
-/// 1 stick, 2 slip), `contact_pressure`, `slip`,
-/// `interface_force` (the force of the foundation on the node, N), and the contact
-/// multipliers `contact_multiplier` (the pressure p = −σ_ν, for Signorini the multiplier of
-/// `u_ν ≤ g`) and `friction_traction` (−σ_τ, global coordinates). Where a node is several
-/// contact points (on two contact boundaries, or at a corner of one), the last point's
-/// values are shown and the forces are summed.
+/// `contact_normal_state` (0 separated, 1 contact), `contact_friction_state` (0 none,
+/// 1 stick, 2 slip), `contact_pressure` p = −σ_ν (Pa; for Signorini the multiplier of
+/// `u_ν ≤ g`), `slip` ‖u_τ‖, and, both as the action of the foundation on the body in
+/// global coordinates, the `friction_traction` σ_τ = R_τ/w (Pa, opposing the slip) and the
+/// nodal `interface_force` R (N, N/m in 2D; its normal part is about −w p ν). Where a node
+/// is several contact points (on two contact boundaries, or at a corner of one), the last
+/// point's values are shown and the forces are summed.
 /// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
 /// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
 /// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
 /// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
-pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<'a> {
+///
+/// # Errors
+/// [`Error::Invalid`] if `load_factor` is not finite.
+pub fn solution_vtu<'a>(
+    problem: &'a Problem,
+    solution: &Solution,
+    title: &str,
+    load_factor: f64,
+) -> Result<VtuWriter<'a>> {
+    if !load_factor.is_finite() {
+        return Err(Error::Invalid {
+            field: "solution.vtu: load factor".into(),
+            value: format!("{load_factor:?}"),
+            allowed: "a finite number (1 for a single solve)".into(),
+        });
+    }
     let mesh = &problem.mesh;
     let d = mesh.dim();
     let cells = cell_fields(problem, solution);
@@ -321,13 +431,21 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
             traction[3 * v + k] = c.friction_traction[k];
         }
     }
+    let units: String = field_units(d)
+        .iter()
+        .map(|(name, unit)| format!("{name}: {unit}\n"))
+        .collect();
     let mut w = VtuWriter::new(mesh);
-    w.point_f64("displacement", 3, pad_vector(d, &solution.u))
+    w.field_text("TITLE", title)
+        .field_f64("TimeValue", vec![load_factor])
+        .field_text("hemicontact_version", env!("CARGO_PKG_VERSION"))
+        .field_text("units", units.trim_end())
+        .field_text("codes", STATE_CODES)
+        .point_f64("displacement", 3, pad_vector(d, &solution.u))
         .point_f64("reaction", 3, pad_vector(d, &solution.reactions))
-        .point_i32("contact_state", normal_state)
-        .point_i32("friction_state", friction_state)
-        .point_f64("contact_pressure", 1, pressure.clone())
-        .point_f64("contact_multiplier", 1, pressure)
+        .point_i32("contact_normal_state", normal_state)
+        .point_i32("contact_friction_state", friction_state)
+        .point_f64("contact_pressure", 1, pressure)
         .point_f64("friction_traction", 3, traction)
         .point_f64("slip", 1, slip)
         .point_f64("interface_force", 3, force)
@@ -338,5 +456,5 @@ pub fn solution_vtu<'a>(problem: &'a Problem, solution: &Solution) -> VtuWriter<
         .cell_i32("locking_active", cells.locking_active)
         .cell_f64("locking_q", 1, cells.locking_q)
         .cell_f64("locking_multiplier", 1, cells.locking_multiplier);
-    w
+    Ok(w)
 }

@@ -41,7 +41,7 @@ pub struct PrepareOptions {
 
 impl LinearSolver {
     /// Number of equations from which `auto` chooses the iterative solver in 3D. Measured
-    /// on `scenarios/paper3d.toml` (README section "3D at scale", end-to-end solves on the
+    /// on `scenarios/paper3d-paper-gap.toml` (README section "3D at scale", end-to-end solves on the
     /// 2-core target, direct / iterative): 14 739 equations 0.99 s / 0.66 s, 46 875
     /// equations 8.2 s / 2.3 s, 104 544 equations 45 s / 5.3 s. Below 30 000 the gain is
     /// small and the direct solver is kept for its robustness (exact-constraint penalties

@@ -36,6 +36,27 @@ pub enum LockingSet {
     },
 }
 
+impl std::fmt::Display for LockingSet {
+    /// The set with its inequality and parameter (strains dimensionless), e.g. `limited
+    /// compressibility |tr ε| ≤ θ with θ = 0.16`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use crate::display::significant as s;
+        match *self {
+            LockingSet::LimitedCompressibility { theta } => {
+                write!(
+                    f,
+                    "limited compressibility |tr ε| ≤ θ with θ = {}",
+                    s(theta)
+                )
+            }
+            LockingSet::Prager { kappa } => {
+                write!(f, "Prager ½‖ε^D‖² ≤ κ² with κ = {}", s(kappa))
+            }
+            LockingSet::Ball { r } => write!(f, "ball ‖ε‖ ≤ r with r = {}", s(r)),
+        }
+    }
+}
+
 impl LockingSet {
     /// The same set for the dimensionless strain `ε̂ = ε/e` (e the strain unit), with the
     /// unit q of its function: `Q(e ε̂) = q Q̂(ε̂)`. Limited compressibility and the ball

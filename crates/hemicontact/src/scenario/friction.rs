@@ -59,10 +59,10 @@ impl Scenario {
         let law = match kind {
             PotentialKind::Norm => PotentialLaw::Norm {},
             PotentialKind::Nonconvex => PotentialLaw::Nonconvex {
-                a: self.required(&f("a"), fs.a, "a parameter a")?,
+                a: self.required(&f("a"), fs.a, "a parameter 0 < a < 1")?,
             },
             PotentialKind::Regularized => PotentialLaw::Regularized {
-                rho: self.required(&f("rho"), fs.rho, "a regularization length ρ (m)")?,
+                rho: self.required(&f("rho"), fs.rho, "a regularization length ρ > 0 (m)")?,
             },
         };
         Ok((law, f("")))

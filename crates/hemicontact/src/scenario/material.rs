@@ -133,14 +133,14 @@ impl Scenario {
                 theta: self.required(
                     "locking.theta",
                     l.theta,
-                    "a volumetric strain threshold θ",
+                    "a volumetric strain threshold θ > 0",
                 )?,
             }),
             LockingSetKind::Prager => Some(LockingSet::Prager {
-                kappa: self.required("locking.kappa", l.kappa, "a deviatoric threshold κ")?,
+                kappa: self.required("locking.kappa", l.kappa, "a deviatoric threshold κ > 0")?,
             }),
             LockingSetKind::Ball => Some(LockingSet::Ball {
-                r: self.required("locking.radius", l.radius, "a strain radius r")?,
+                r: self.required("locking.radius", l.radius, "a strain radius r > 0")?,
             }),
         };
         if l.treatment == LockingTreatment::Exact {

@@ -19,6 +19,13 @@ use crate::solver::SolverSettings;
 use schema::{NormalLawKind, OutputSpec, ScenarioFile};
 use std::path::{Path, PathBuf};
 
+/// A JSON Schema (draft 2020-12) of the scenario file, for editors that complete and check
+/// TOML against a schema (`hemicontact schema` prints it). It mirrors [`schema`] key for
+/// key, with the documented ranges as `minimum`/`maximum` and the choices as `enum`; a
+/// number for `mu` is the constant coefficient. Cross-key rules (e.g. `c_nu` only with
+/// `normal-compliance`) are checked when the scenario is read, not by the schema.
+pub const JSON_SCHEMA: &str = include_str!("scenario.schema.json");
+
 /// Largest scenario file [`Scenario::from_file`] reads (bytes): 1 MiB, far above any
 /// hand-written scenario (the examples are below 2 kB); meshes come from separate files.
 pub const MAX_SCENARIO_BYTES: u64 = 1 << 20;
@@ -46,6 +53,10 @@ pub struct Scenario {
     /// `mu` of `[[contact]]` entry k, which the file still gives (any valid law) so that
     /// the schema holds.
     pub given_friction: Vec<(usize, crate::contact::FrictionCoefficient)>,
+    /// Normal laws given in memory (user-defined compliance laws, e.g. Python callables
+    /// through [`crate::contact::CustomCompliance`]) by contact entry: each replaces the
+    /// normal law (`law`, `c_nu`) of `[[contact]]` entry k.
+    pub given_normal: Vec<(usize, NormalLaw)>,
 }
 
 impl Scenario {
@@ -111,6 +122,7 @@ impl Scenario {
             dir: None,
             given_mesh: None,
             given_friction: Vec::new(),
+            given_normal: Vec::new(),
         })
     }
 
@@ -158,8 +170,9 @@ impl Scenario {
     }
 
     /// A parameter the file must give; its range is checked by the library's laws.
-    fn required(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
-        v.ok_or_else(|| self.err(field, "missing", &format!("{what} > 0 (required)")))
+    /// `allowed` names the parameter with its range (e.g. `a parameter 0 < a < 1`).
+    fn required(&self, field: &str, v: Option<f64>, allowed: &str) -> Result<f64> {
+        v.ok_or_else(|| self.err(field, "missing", &format!("{allowed} (required)")))
     }
 
     fn positive(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64> {
@@ -185,28 +198,43 @@ impl Scenario {
                 ));
             }
         }
+        if let Some((k, law)) = self
+            .given_normal
+            .iter()
+            .find(|(k, _)| *k >= self.file.contact.len())
+        {
+            return Err(self.err(
+                &format!("contact[{k}].normal"),
+                format!("{law:?} (given in memory)"),
+                "a law for an existing [[contact]] entry",
+            ));
+        }
         let mut out = Vec::new();
         for (k, c) in self.file.contact.iter().enumerate() {
             let f = |name: &str| format!("contact[{k}].{name}");
             let part = self.part(mesh, &f("part"), &c.part)?;
-            let normal = match c.law {
-                NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
-                    c_nu: self.required(
-                        &f("c_nu"),
-                        c.c_nu,
-                        "a normal compliance stiffness c_ν (Pa/m)",
-                    )?,
-                }),
-                NormalLawKind::Signorini => {
-                    if let Some(c_nu) = c.c_nu {
-                        return Err(self.err(
+            let given = self.given_normal.iter().find(|(entry, _)| *entry == k);
+            let normal = match given {
+                Some((_, law)) => law.clone(),
+                None => match c.law {
+                    NormalLawKind::NormalCompliance => NormalLaw::Compliance(NormalCompliance {
+                        c_nu: self.required(
                             &f("c_nu"),
-                            c_nu,
-                            "no stiffness with law = \"signorini\" (a rigid foundation)",
-                        ));
+                            c.c_nu,
+                            "a normal compliance stiffness c_ν > 0 (Pa/m)",
+                        )?,
+                    }),
+                    NormalLawKind::Signorini => {
+                        if let Some(c_nu) = c.c_nu {
+                            return Err(self.err(
+                                &f("c_nu"),
+                                c_nu,
+                                "no stiffness with law = \"signorini\" (a rigid foundation)",
+                            ));
+                        }
+                        NormalLaw::Signorini
                     }
-                    NormalLaw::Signorini
-                }
+                },
             };
             let friction = match &c.friction {
                 None => None,

@@ -50,7 +50,7 @@
 //! # potential = { kind = "nonconvex", a = 0.5 }
 //! # potential = { kind = "regularized", rho = 1e-3 }   # m
 //! mu = { law = "exponential", a = 0.4, b = 0.1, beta = 100.0 }
-//! # mu = { law = "constant", mu = 0.3 }
+//! # mu = { law = "constant", mu = 0.3 }   # or just mu = 0.3
 //! # mu = { law = "table", points = [[0.0, 0.4], [0.01, 0.1]] }
 //! exact = false             # true: exact stick/slip (potentials norm and nonconvex)
 //! regularization = 1e-8     # else the norm is smoothed with ρ_num = regularization · U
@@ -355,6 +355,39 @@ impl<'de> Deserialize<'de> for PotentialSpec {
     }
 }
 
+/// Reads `mu`: a number is the constant coefficient (`mu = 0.3` is
+/// `mu = { law = "constant", mu = 0.3 }`), a table one of the laws of
+/// [`FrictionCoefficient`].
+fn coefficient_or_number<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<FrictionCoefficient, D::Error> {
+    use serde::de;
+    struct Visit;
+    impl<'de> de::Visitor<'de> for Visit {
+        type Value = FrictionCoefficient;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str(
+                "a friction coefficient: a number (a constant μ, e.g. mu = 0.3) or a table \
+                 { law = \"constant\", mu = … }, { law = \"exponential\", a = …, b = …, \
+                 beta = … } or { law = \"table\", points = [[r, μ], …] }",
+            )
+        }
+        fn visit_f64<E: de::Error>(self, mu: f64) -> Result<FrictionCoefficient, E> {
+            Ok(FrictionCoefficient::Constant { mu })
+        }
+        fn visit_i64<E: de::Error>(self, mu: i64) -> Result<FrictionCoefficient, E> {
+            Ok(FrictionCoefficient::Constant { mu: mu as f64 })
+        }
+        fn visit_u64<E: de::Error>(self, mu: u64) -> Result<FrictionCoefficient, E> {
+            Ok(FrictionCoefficient::Constant { mu: mu as f64 })
+        }
+        fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<FrictionCoefficient, A::Error> {
+            FrictionCoefficient::deserialize(de::value::MapAccessDeserializer::new(map))
+        }
+    }
+    deserializer.deserialize_any(Visit)
+}
+
 /// `[contact.friction]`.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -370,7 +403,9 @@ pub struct FrictionSpec {
     /// Deprecated: parameter ρ > 0 of `potential = "regularized"` (m).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rho: Option<f64>,
-    /// The coefficient μ(r).
+    /// The coefficient μ(r): a table `{ law = "…", … }`, or a bare number for a constant
+    /// (`mu = 0.3` reads as `{ law = "constant", mu = 0.3 }`).
+    #[serde(deserialize_with = "coefficient_or_number")]
     pub mu: FrictionCoefficient,
     /// Exact stick/slip (augmented Lagrangian) instead of the numerically regularized norm;
     /// potentials `norm` and `nonconvex` only. Default false.

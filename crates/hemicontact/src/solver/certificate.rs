@@ -145,8 +145,9 @@ pub struct ContactResult {
     pub force_tangential: [f64; 2],
     /// Interface force in global coordinates (N).
     pub force: [f64; 3],
-    /// Friction traction `−σ_τ = −R_τ / w` in global coordinates (Pa, N/m in 2D): the
-    /// friction multiplier of exact friction, recovered from equilibrium.
+    /// Friction traction `σ_τ = R_τ / w` in global coordinates (Pa): the tangential
+    /// traction the foundation exerts on the body (opposing the slip), recovered from
+    /// equilibrium, in the sign convention of the interface force `force`.
     pub friction_traction: [f64; 3],
     /// Normal contact state.
     pub normal_state: NormalState,
@@ -401,7 +402,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         let mut friction_traction = [0.0; 3];
         for a in 0..m {
             for k in 0..d {
-                friction_traction[k] -= ft[a] * t[a][k] / w;
+                friction_traction[k] += ft[a] * t[a][k] / w;
             }
         }
         scale = scale.max(w * s.pressure).max(w * bound);

@@ -29,7 +29,7 @@ pub use frozen::Frozen;
 pub use mixing::Mixing;
 pub use multipliers::{KktCertificate, Multipliers};
 pub use newton::NewtonSettings;
-pub use outer::{needs_outer_loop, Acceleration, OuterSettings, StopReason};
+pub use outer::{needs_outer_loop, Acceleration, OuterProgress, OuterSettings, StopReason};
 pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
 pub use system::{Evaluation, System};
 
@@ -181,6 +181,22 @@ pub fn solve_interruptible(
     u: Vec<f64>,
     stop: &AtomicBool,
 ) -> Result<Solution> {
+    solve_observed(problem, settings, u, stop, &|_| {})
+}
+
+/// [`solve_interruptible`] that calls `observe` once per outer iteration with its
+/// [`OuterProgress`] (iteration, residuals, Newton steps so far), for a progress display.
+/// The observer only reads: the solution is bitwise the same with any observer.
+///
+/// # Errors
+/// As [`solve_interruptible`].
+pub fn solve_observed(
+    problem: &Problem,
+    settings: &SolverSettings,
+    u: Vec<f64>,
+    stop: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
+) -> Result<Solution> {
     let start = Instant::now();
     // A `Problem` exists only validated; the settings are checked here.
     settings.validate()?;
@@ -193,6 +209,7 @@ pub fn solve_interruptible(
         u,
         scales.length / scales.displacement,
         stop,
+        observe,
     ) {
         Ok(s) => s,
         // Described again in the user's coordinates.
@@ -221,6 +238,7 @@ fn solve_dimensionless(
     mut u: Vec<f64>,
     length_unit: f64,
     stop: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
 ) -> Result<Solution> {
     let start = Instant::now();
     let mut system = System::new(problem, settings)?;
@@ -241,6 +259,7 @@ fn solve_dimensionless(
         &mut u,
         &mut report,
         stop,
+        observe,
     )?;
     report.converged = outcome.stop == outer::StopReason::Converged;
     report.message = outcome
@@ -250,8 +269,13 @@ fn solve_dimensionless(
     let (frozen, last) = (outcome.frozen, outcome.last);
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
+    if let Some(e) = eval.law_error.take() {
+        return Err(e);
+    }
     let reactions = system.reactions(&eval.grad);
-    let ca = system.contact_assembler(problem);
+    let mut ca = system.contact_assembler(problem);
+    // User-defined compliance laws: their responses at the answer, from the evaluation.
+    ca.responses = &eval.normal;
     // The friction coefficients at the answer, one evaluation per contact part.
     let mu = ca.friction_coefficients(&u)?;
     // The multipliers consistent with the last convex problem (its forces).

@@ -198,11 +198,42 @@ pub fn needs_outer_loop(problem: &Problem) -> bool {
             })
 }
 
+/// The state of a solve after one outer iteration, handed to an observer (see
+/// [`super::solve_observed`]) for a progress display. Plain numbers: observing a solve
+/// allocates nothing and changes nothing in it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OuterProgress {
+    /// Outer iteration k, from 0.
+    pub iteration: usize,
+    /// Relative change `‖u^k − u^{k−1}‖_E / ‖u^k‖_E` (∞ at the first iteration).
+    pub change: f64,
+    /// Relative fixed-point residual `‖G(z) − z‖ / ‖G(z)‖` of the frozen quantities.
+    pub fixed_point_residual: f64,
+    /// Newton steps of all outer iterations so far.
+    pub newton_steps: usize,
+    /// The outer tolerance that both the change and the fixed-point residual must reach.
+    pub tolerance: f64,
+}
+
+impl OuterProgress {
+    /// The residual of the stopping test: the larger of the relative change of u and the
+    /// fixed-point residual (the fixed-point residual alone at the first iteration, where
+    /// the change is undefined).
+    pub fn residual(&self) -> f64 {
+        if self.change.is_finite() {
+            self.change.max(self.fixed_point_residual)
+        } else {
+            self.fixed_point_residual
+        }
+    }
+}
+
 /// Runs the outer loop on `system` (evaluating into the work arrays `eval`) from `u` (whose prescribed DOFs hold the Dirichlet
 /// values): each iteration sets the continuation stage, minimizes the convex energy of the
 /// frozen quantities by Newton, measures the change of u and the fixed-point residual,
 /// applies the stopping test, and mixes the next frozen quantities. On return `u` is the
-/// last iterate and `report` holds every Newton and outer step.
+/// last iterate and `report` holds every Newton and outer step. `observe` is called once
+/// per completed outer iteration with its [`OuterProgress`].
 ///
 /// # Errors
 /// A Newton error before any step succeeded (the problem itself is at fault, e.g. rigid
@@ -218,6 +249,7 @@ pub fn run(
     u: &mut [f64],
     report: &mut SolveReport,
     interrupt: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
 ) -> Result<OuterOutcome> {
     let dim = problem.mesh.dim();
     let hooke = problem.material.elasticity.small_strain_hooke(dim);
@@ -263,6 +295,10 @@ pub fn run(
                 .with_stop(interrupt);
         let result = convex::minimize(&mut energy, tol, u, &mut record);
         report.add_newton(record);
+        // A user-defined compliance law that fails ends the solve with its error.
+        if let Some(e) = eval.law_error.take() {
+            return Err(e);
+        }
         last = match result {
             Ok(outcome) => outcome,
             // The load pulls a body off the contact carrying its free rigid motions: no
@@ -304,6 +340,13 @@ pub fn run(
             newton_converged: last.converged,
             mixing: Mixing::None,
         };
+        observe(&OuterProgress {
+            iteration: k,
+            change,
+            fixed_point_residual: fp_rel,
+            newton_steps: report.newton.len(),
+            tolerance: settings.outer.tolerance,
+        });
         if !last.converged && final_solve {
             step.mixing = Mixing::NewtonFailed;
             report.outer.push(step);

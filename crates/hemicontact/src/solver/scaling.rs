@@ -160,14 +160,14 @@ impl Scales {
                 .map(|c| ContactBoundary {
                     part: c.part,
                     gap: c.gap / u,
-                    normal: c.normal.nondimensional(t / u),
+                    normal: c.normal.nondimensional(u, t),
                     friction: c.friction.as_ref().map(|f| {
                         let value = match f.bound {
                             FrictionBound::Tresca => t,
                             FrictionBound::Coulomb => 1.0,
                         };
                         crate::contact::Friction {
-                            mu: f.mu.nondimensional(u, value),
+                            mu: f.mu.nondimensional(u, self.length, value),
                             potential: f.potential.nondimensional(u),
                             ..f.clone()
                         }

@@ -9,7 +9,7 @@ use super::frozen::Frozen;
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
-use crate::contact::ContactNodes;
+use crate::contact::{ContactNodes, NormalResponse};
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
@@ -67,7 +67,7 @@ pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
 
 /// The derivatives of the convexified energy at the last evaluation
 /// ([`System::evaluate`]): the work arrays of the Newton iteration, allocated once per solve.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Evaluation {
     /// Gradient of the total energy, DOF order (N).
     pub grad: Vec<f64>,
@@ -80,6 +80,12 @@ pub struct Evaluation {
     /// Shift α added to the Newton matrix on the bodies with free rigid motions (0 until
     /// the first Hessian; see [`crate::fem::rigid::NEWTON_SHIFT`]).
     pub rigid_shift: f64,
+    /// The responses of user-defined compliance laws at the last evaluation (empty without
+    /// such laws).
+    pub normal: Vec<NormalResponse>,
+    /// The error of a user-defined compliance law at the last evaluation, which then
+    /// returned a NaN energy; the outer loop ends the solve with it.
+    pub law_error: Option<crate::Error>,
 }
 
 impl Evaluation {
@@ -91,6 +97,8 @@ impl Evaluation {
             grad_bulk: vec![0.0; n],
             hess: vec![0.0; system.pattern.nnz()],
             rigid_shift: 0.0,
+            normal: Vec::new(),
+            law_error: None,
         }
     }
 }
@@ -183,6 +191,7 @@ impl System {
             boundaries: &problem.contact,
             regularization_floor: self.continuation.regularization_floor,
             penalty: self.continuation.penalties.contact(),
+            responses: &[],
         }
     }
 
@@ -197,7 +206,8 @@ impl System {
 
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
     /// frozen quantities `frozen`; the gradient goes to `out.grad` (and the bulk part minus
-    /// `f` to `out.grad_bulk`), and with `hessian` the Hessian to `out.hess`.
+    /// `f` to `out.grad_bulk`), and with `hessian` the Hessian to `out.hess`. A user-defined
+    /// compliance law that fails leaves its error in `out.law_error` and returns NaN.
     pub fn evaluate(
         &mut self,
         problem: &Problem,
@@ -235,13 +245,12 @@ impl System {
             work += f * x;
         }
         out.grad.copy_from_slice(&out.grad_bulk);
-        let contact = ContactAssembler {
-            dim: problem.mesh.dim(),
-            nodes: &self.contact,
-            boundaries: &problem.contact,
-            regularization_floor: self.continuation.regularization_floor,
-            penalty: self.continuation.penalties.contact(),
-        };
+        let mut contact = self.contact_assembler(problem);
+        if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
+            out.law_error.get_or_insert(e);
+            return f64::NAN;
+        }
+        contact.responses = &out.normal;
         let hc = if hessian {
             Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
         } else {

@@ -169,15 +169,17 @@ fn constants(problem: &Problem) -> Uniqueness {
     let frictions: Vec<_> = problem
         .contact
         .iter()
-        .filter_map(|c| c.friction.as_ref())
+        .filter_map(|c| c.friction.as_ref().map(|f| (c.part, f)))
         .collect();
-    let coulomb = frictions.iter().any(|f| f.bound == FrictionBound::Coulomb);
+    let coulomb = frictions
+        .iter()
+        .any(|(_, f)| f.bound == FrictionBound::Coulomb);
     let (mut mu0, mut l_mu, mut c_j, mut alpha_j, mut factor) =
         (0.0f64, 0.0f64, 0.0f64, 0.0f64, 0.0f64);
     let mut custom: Vec<&str> = frictions
         .iter()
-        .filter(|f| f.mu.is_estimated())
-        .map(|f| f.mu.name())
+        .filter(|(_, f)| f.mu.is_estimated())
+        .map(|(_, f)| f.mu.name())
         .collect();
     custom.dedup();
     let estimated = (!custom.is_empty()).then(|| {
@@ -187,9 +189,9 @@ fn constants(problem: &Problem) -> Uniqueness {
             custom.join(", ")
         )
     });
-    for f in &frictions {
+    for &(part, f) in &frictions {
         let (a, b, c, e) = (
-            f.mu.sup(),
+            sup_on_part(problem, part, &f.mu),
             f.mu.lipschitz(),
             f.potential.c_j(),
             f.potential.alpha_j(),
@@ -225,6 +227,22 @@ fn constants(problem: &Problem) -> Uniqueness {
         lhs: f64::NAN,
         margin: f64::NAN,
         holds: false,
+    }
+}
+
+/// `μ₀ = sup μ` of a contact part's coefficient: for a law of the position its largest value
+/// at the part's nodes (NaN if the function fails there), otherwise
+/// [`crate::contact::FrictionCoefficient::sup`].
+fn sup_on_part(problem: &Problem, part: usize, mu: &crate::contact::FrictionCoefficient) -> f64 {
+    if !mu.is_field() {
+        return mu.sup();
+    }
+    let positions = problem.part_positions(part);
+    let mut values = vec![0.0; positions.len()];
+    let slips = vec![0.0; positions.len()];
+    match mu.values(&slips, &positions, problem.mesh.dim(), &mut values) {
+        Ok(()) => values.iter().fold(0.0, |a: f64, &b| a.max(b)),
+        Err(_) => f64::NAN,
     }
 }
 

@@ -7,6 +7,7 @@
 
 pub mod fuzz;
 mod rng;
+pub mod vtu;
 
 #[allow(unused_imports)] // Not every test file draws random numbers.
 pub use rng::Rng;
