@@ -389,7 +389,13 @@ fn panel_layout(
     let mesh_drawn = key.mesh_drawn;
     let arrow_px = 0.08 * area[2];
     key.arrow_scale = if max_t > 0.0 { arrow_px / max_t } else { 0.0 };
-    let chosen = arrow_points(problem, solution, options.max_arrows, 8.0 / frame.scale);
+    let chosen = arrow_points(
+        problem,
+        solution,
+        &visible,
+        options.max_arrows,
+        8.0 / frame.scale,
+    );
     key.arrows = (0..solution.contact.len())
         .filter(|&k| shown(k) && chosen[k])
         .count();

@@ -19,11 +19,21 @@ pub fn magnification(size: f64, max_u: f64) -> f64 {
     round_down_125(0.1 * size / max_u).max(1.0)
 }
 
-/// The contact points that get an arrow: per contact boundary, of its points in contact,
-/// at most `cap` evenly spaced along it, and in 2D no more than one per `min_gap` (m) of
-/// the stretch they cover. Returns a flag per contact point.
-pub fn arrow_points(problem: &Problem, solution: &Solution, cap: usize, min_gap: f64) -> Vec<bool> {
-    let touching = |k: &usize| solution.contact[*k].normal_state == NormalState::Contact;
+/// The contact points that get an arrow: per contact boundary, of its points in contact
+/// at a `visible` node (a flag per mesh node), at most `cap` evenly spaced along it, and in
+/// 2D no more than one per `min_gap` (m) of the stretch they cover. Returns a flag per
+/// contact point.
+pub fn arrow_points(
+    problem: &Problem,
+    solution: &Solution,
+    visible: &[bool],
+    cap: usize,
+    min_gap: f64,
+) -> Vec<bool> {
+    let touching = |k: &usize| {
+        let c = &solution.contact[*k];
+        c.normal_state == NormalState::Contact && visible.get(c.node as usize) == Some(&true)
+    };
     let mut chosen = vec![false; solution.contact.len()];
     for b in 0..problem.contact.len() {
         let (rows, cap) = if problem.mesh.dim() == 2 {

@@ -90,13 +90,14 @@ fn arrows_are_thinned_to_the_cap_evenly() {
         .filter(|c| c.normal_state == crate::solver::NormalState::Contact)
         .count();
     assert!(touching > 2 * 3, "{touching} points in contact");
+    let all = vec![true; problem.mesh.n_nodes()];
     for cap in [3, 10, 40] {
-        let chosen = arrow_points(&problem, &solution, cap, 0.0);
+        let chosen = arrow_points(&problem, &solution, &all, cap, 0.0);
         let n = chosen.iter().filter(|&&c| c).count();
         assert_eq!(n, touching.min(cap * problem.contact.len()), "cap {cap}");
     }
     // One arrow per 1 m of contact at most: the contact zones are shorter than 4 m.
-    let n = arrow_points(&problem, &solution, 40, 1.0)
+    let n = arrow_points(&problem, &solution, &all, 40, 1.0)
         .iter()
         .filter(|&&c| c)
         .count();
