@@ -148,7 +148,7 @@ def main(argv=None) -> int:
         matplotlib.use("Agg")
         from hemicontact import plot
 
-        path = os.path.join(args.out, "interface.png")
+        path = os.path.join(args.out, "interface-matplotlib.png")  # beside the library's interface.png
         plot.interface(r).savefig(path, dpi=150, bbox_inches="tight")
         print("wrote", path)
     except ImportError:

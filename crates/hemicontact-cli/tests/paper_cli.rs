@@ -33,6 +33,8 @@ fn paper_command_writes_all_outputs() {
             "summary.json",
             "deformed.png",
             "deformed.svg",
+            "interface.png",
+            "interface.svg",
         ] {
             let p = dir.path().join(case).join(f);
             assert!(

@@ -271,8 +271,8 @@ fn failing_write_keeps_the_old_set_and_leaves_nothing_behind() {
     };
     assert_success(&paper("8").output().unwrap());
     let old = snapshot(&w.out());
-    // The paper example at n = 10 writes its two cases (every file below 110 kB), then
-    // the side-by-side comparison.png (about 140 kB). A file size limit of 120 kB makes that
+    // The paper example at n = 10 writes its two cases (every file below 135 kB), then
+    // the side-by-side comparison.png (about 185 kB). A file size limit of 160 kB makes that
     // last write fail with "file too large", as a full disk would, after most of the new
     // set was written (SIGXFSZ ignored, so the write returns the error instead of killing
     // the process).
@@ -280,7 +280,7 @@ fn failing_write_keeps_the_old_set_and_leaves_nothing_behind() {
         .current_dir(&w.dir)
         .arg("-c")
         .arg(format!(
-            "trap '' XFSZ; ulimit -f 120; exec '{}' paper --n 10 --out out",
+            "trap '' XFSZ; ulimit -f 160; exec '{}' paper --n 10 --out out",
             env!("CARGO_BIN_EXE_hemicontact")
         ))
         .output()

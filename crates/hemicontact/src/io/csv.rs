@@ -3,6 +3,17 @@
 use crate::problem::Problem;
 use crate::solver::Solution;
 
+/// A text field of a CSV row (RFC 4180): as is, or in double quotes with inner quotes
+/// doubled when it holds a comma, a quote or a line break (a scenario title such as
+/// `Paper example (…), C_kappa = 1e4`, a Gmsh part name).
+pub fn field(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\"")).into()
+    } else {
+        text.into()
+    }
+}
+
 /// The contact-node table: one row per contact point, comma-separated, with a header.
 ///
 /// Columns: node, boundary (part name), x, y, z, weight, u_nu, gap, u_tau_1, u_tau_2, slip,
@@ -18,7 +29,7 @@ pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
     for c in &solution.contact {
         let x = mesh.node(c.node as usize);
         let xyz: Vec<f64> = (0..3).map(|i| x.get(i).copied().unwrap_or(0.0)).collect();
-        let part = &mesh.part_names()[problem.contact[c.boundary].part];
+        let part = field(&mesh.part_names()[problem.contact[c.boundary].part]);
         out.push_str(&format!(
             "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{:e}\n",
             c.node,
@@ -44,4 +55,16 @@ pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
         ));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    /// Plain text stays as is; a comma, a quote or a line break is quoted (RFC 4180).
+    #[test]
+    fn fields_with_separators_are_quoted() {
+        assert_eq!(super::field("left"), "left");
+        assert_eq!(super::field("a, b"), "\"a, b\"");
+        assert_eq!(super::field("say \"hi\""), "\"say \"\"hi\"\"\"");
+        assert_eq!(super::field("two\nlines"), "\"two\nlines\"");
+    }
 }

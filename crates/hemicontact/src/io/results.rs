@@ -66,8 +66,10 @@ pub fn write_results(
 }
 
 /// The figures `hemicontact solve` writes beside the results of a solution titled `title`:
-/// the deformed mesh with its interface forces (`deformed.svg`, `deformed.png`). Empty
-/// without the cargo feature `plot`.
+/// the deformed mesh coloured by the von Mises stress, with its interface tractions
+/// (`deformed.svg`, `deformed.png`), and for a 2D problem with contact the contact
+/// quantities along each contact part (`interface.svg`, `interface.png`). Empty without
+/// the cargo feature `plot`.
 ///
 /// # Errors
 /// [`crate::Error::Io`] if the PNG cannot be encoded.
@@ -79,10 +81,15 @@ pub fn solution_figures(
     #[cfg(feature = "plot")]
     {
         let figure = crate::plot::deformed::figure(problem, solution, title);
-        Ok(vec![
+        let mut files = vec![
             ("deformed.svg", figure.to_svg().into_bytes()),
             ("deformed.png", figure.to_png()?),
-        ])
+        ];
+        if let Some(figure) = crate::plot::interface::figure(problem, solution, title) {
+            files.push(("interface.svg", figure.to_svg().into_bytes()));
+            files.push(("interface.png", figure.to_png()?));
+        }
+        Ok(files)
     }
     #[cfg(not(feature = "plot"))]
     {

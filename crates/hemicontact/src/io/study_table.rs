@@ -53,7 +53,7 @@ pub fn csv(studies: &[Study]) -> String {
             let o = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
             s.push_str(&format!(
                 "{},{},{:e},{:e},{},{:e},{},{},{},{},{},{:e}\n",
-                st.label,
+                super::csv::field(&st.label),
                 l.n,
                 l.h_area,
                 l.h_edge,

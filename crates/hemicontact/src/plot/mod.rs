@@ -1,12 +1,25 @@
 //! Figures as scenes of simple primitives, rendered to SVG (text) and PNG (tiny-skia, with
-//! an embedded 8×8 bitmap font, so no system fonts are needed).
+//! an embedded subset of DejaVu Sans, [`font`], so no system fonts are needed).
 //!
 //! A [`Figure`] is a list of [`Prim`]itives in pixel coordinates (origin top-left, y down).
-//! [`deformed`] builds the deformed-mesh figures of the paper (its Fig. 2 and Fig. 3),
-//! [`convergence`] the log–log convergence plot (its Fig. 4).
+//! [`deformed`] builds the deformed-mesh figures (one case, or several side by side),
+//! [`interface`] the contact quantities along each contact part against the arc length,
+//! [`convergence`] the log–log convergence plot. [`layout`] holds the shared layout rules
+//! (round numbers, ticks, fitted titles, label boxes), [`field`] the colour fields and
+//! their colour bar, [`legend`] the legends set below a panel, [`scales`] the scales of the
+//! deformed drawing (magnification, arrows).
 
+pub mod axes;
 pub mod convergence;
 pub mod deformed;
+pub mod field;
+pub mod font;
+pub mod interface;
+pub mod layout;
+pub mod legend;
+pub mod scales;
+#[cfg(test)]
+mod tests;
 
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
@@ -49,10 +62,19 @@ pub enum Prim {
         /// Dashed.
         dashed: bool,
     },
-    /// A filled polygon.
+    /// A filled polygon (outlined by a 0.5 px line of its colour, so that adjacent polygons
+    /// show no seams).
     Polygon {
         /// Vertices.
         points: Vec<[f64; 2]>,
+        /// Fill colour.
+        fill: Rgb,
+    },
+    /// Several filled polygons of one colour (cells of a colour field), each outlined by a
+    /// 0.5 px line of the colour like [`Prim::Polygon`].
+    Polygons {
+        /// The polygons' vertices.
+        rings: Vec<Vec<[f64; 2]>>,
         /// Fill colour.
         fill: Rgb,
     },
@@ -76,13 +98,13 @@ pub enum Prim {
         /// Fill colour.
         fill: Rgb,
     },
-    /// A text label (height ≈ `size` px).
+    /// A text label in DejaVu Sans.
     Text {
         /// Anchor position (baseline).
         pos: [f64; 2],
-        /// The text (ASCII; other characters are drawn as `?` in PNG).
+        /// The text (characters outside the embedded font are drawn as its empty box).
         text: String,
-        /// Height (px); the PNG font scales the 8×8 glyphs by `round(size / 8)`.
+        /// Font size (px): the em square of the font.
         size: f64,
         /// Anchor.
         anchor: Anchor,
@@ -178,9 +200,24 @@ impl Figure {
                         .collect();
                     let _ = writeln!(
                         s,
-                        "<polygon points=\"{}\" fill=\"{}\"/>",
+                        "<polygon points=\"{}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
                         pts.join(" "),
-                        hex(*fill)
+                        c = hex(*fill)
+                    );
+                }
+                Prim::Polygons { rings, fill } => {
+                    let mut d = String::with_capacity(32 * rings.len());
+                    for ring in rings {
+                        for (k, p) in ring.iter().enumerate() {
+                            let c = if k == 0 { 'M' } else { 'L' };
+                            let _ = write!(d, "{c}{:.1} {:.1}", p[0], p[1]);
+                        }
+                        d.push('Z');
+                    }
+                    let _ = writeln!(
+                        s,
+                        "<path d=\"{d}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
+                        c = hex(*fill)
                     );
                 }
                 Prim::Arrow {
@@ -234,10 +271,11 @@ impl Figure {
                     };
                     let _ = writeln!(
                         s,
-                        "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"sans-serif\" font-size=\"{size}\" \
+                        "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"{}\" font-size=\"{size:.1}\" \
                          text-anchor=\"{a}\" fill=\"{}\">{}</text>",
                         pos[0],
                         pos[1],
+                        font::SVG_FONT_FAMILY,
                         hex(*color),
                         xml_escape(text)
                     );
@@ -311,6 +349,31 @@ impl Figure {
                 Prim::Polygon { points, fill } => {
                     if let Some(path) = polygon_path(points, true) {
                         pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
+                        // A hairline of the fill colour closes the anti-aliased seams
+                        // between adjacent polygons (cells of a colour field).
+                        let stroke = Stroke {
+                            width: 0.5,
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*fill), &stroke, id, None);
+                    }
+                }
+                Prim::Polygons { rings, fill } => {
+                    let mut pb = PathBuilder::new();
+                    for ring in rings.iter().filter(|r| !r.is_empty()) {
+                        pb.move_to(f(ring[0][0]), f(ring[0][1]));
+                        for q in &ring[1..] {
+                            pb.line_to(f(q[0]), f(q[1]));
+                        }
+                        pb.close();
+                    }
+                    if let Some(path) = pb.finish() {
+                        pm.fill_path(&path, &paint_of(*fill), FillRule::Winding, id, None);
+                        let stroke = Stroke {
+                            width: 0.5,
+                            ..Stroke::default()
+                        };
+                        pm.stroke_path(&path, &paint_of(*fill), &stroke, id, None);
                     }
                 }
                 Prim::Arrow {
@@ -386,10 +449,10 @@ fn polygon_path(points: &[[f64; 2]], close: bool) -> Option<tiny_skia::Path> {
     pb.finish()
 }
 
-/// Width in pixels of `text` at height `size` as drawn in the PNG (the SVG font is about
-/// as wide).
+/// Width in pixels of `text` at font size `size` (px), from the embedded font's advance
+/// widths ([`font::text_width`]).
 pub fn text_width(text: &str, size: f64) -> f64 {
-    8.0 * (size / 8.0).round().max(1.0) * text.chars().count() as f64
+    font::text_width(text, size)
 }
 
 /// The three corners of an arrow head of length `len` at `to`.
@@ -407,7 +470,7 @@ fn arrow_head(from: [f64; 2], to: [f64; 2], len: f64) -> [[f64; 2]; 3] {
     ]
 }
 
-/// Draws ASCII text with the embedded 8×8 bitmap font, scaled to about `size` px.
+/// Draws `text` with the embedded font: glyph outlines filled with anti-aliasing.
 fn draw_text(
     pm: &mut tiny_skia::Pixmap,
     pos: [f64; 2],
@@ -416,42 +479,22 @@ fn draw_text(
     anchor: Anchor,
     color: Rgb,
 ) {
-    use font8x8::UnicodeFonts;
-    let scale = (size / 8.0).round().max(1.0) as i64;
-    let advance = 8 * scale;
-    let width = advance * text.chars().count() as i64;
+    let width = text_width(text, size);
     let x0 = match anchor {
-        Anchor::Start => pos[0] as i64,
-        Anchor::Middle => pos[0] as i64 - width / 2,
-        Anchor::End => pos[0] as i64 - width,
+        Anchor::Start => pos[0],
+        Anchor::Middle => pos[0] - width / 2.0,
+        Anchor::End => pos[0] - width,
     };
-    let y0 = pos[1] as i64 - 7 * scale;
-    let (w, h) = (pm.width() as i64, pm.height() as i64);
-    let data = pm.data_mut();
-    for (k, ch) in text.chars().enumerate() {
-        let glyph = font8x8::BASIC_FONTS
-            .get(ch)
-            .or_else(|| font8x8::BASIC_FONTS.get('?'))
-            .unwrap_or([0; 8]);
-        for (row, bits) in glyph.iter().enumerate() {
-            for col in 0..8 {
-                if bits & (1 << col) == 0 {
-                    continue;
-                }
-                for sy in 0..scale {
-                    for sx in 0..scale {
-                        let x = x0 + k as i64 * advance + col * scale + sx;
-                        let y = y0 + row as i64 * scale + sy;
-                        if x >= 0 && y >= 0 && x < w && y < h {
-                            let i = 4 * (y * w + x) as usize;
-                            data[i] = color[0];
-                            data[i + 1] = color[1];
-                            data[i + 2] = color[2];
-                            data[i + 3] = 255;
-                        }
-                    }
-                }
-            }
-        }
+    if let Some(path) = font::text_path(text, [x0, pos[1]], size) {
+        let mut paint = tiny_skia::Paint::default();
+        paint.set_color_rgba8(color[0], color[1], color[2], 255);
+        paint.anti_alias = true;
+        pm.fill_path(
+            &path,
+            &paint,
+            tiny_skia::FillRule::Winding,
+            tiny_skia::Transform::identity(),
+            None,
+        );
     }
 }
