@@ -6,6 +6,7 @@
 use crate::console::significant_seconds;
 use crate::{Case, Outcome, RunContext};
 use anyhow::{Context, Result};
+use hemicontact::display::significant;
 use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
 use hemicontact::io::vtu::solution_vtu;
@@ -55,7 +56,7 @@ pub fn solve_path(
             progress.phase(format_args!(
                 "step {}/{n} (load factor {}): {} outer iterations / {} Newton steps in {} s{}",
                 s.step,
-                s.factor,
+                significant(s.factor),
                 r.outer.len(),
                 r.newton.len(),
                 significant_seconds(r.timings.total),
@@ -84,7 +85,7 @@ pub fn solve_path(
             &scenario.source,
         );
         summary.notes = notes.clone();
-        let step_title = format!("{title}, load factor {}", s.factor);
+        let step_title = format!("{title}, load factor {}", significant(s.factor));
         let mut extra = Vec::new();
         if output.vtu {
             extra.push((

@@ -115,7 +115,10 @@ pub fn load_path(py: Python<'_>, scenario: &NativeScenario) -> PyResult<Vec<Nati
             );
             summary.notes = notes.clone();
             NativeSolution {
-                title: format!("{title}, load factor {}", step.factor),
+                title: format!(
+                    "{title}, load factor {}",
+                    hemicontact::display::significant(step.factor)
+                ),
                 output: s.output().clone(),
                 problem: step.problem,
                 solution: step.solution,
