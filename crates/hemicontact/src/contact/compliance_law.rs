@@ -188,14 +188,13 @@ impl CustomCompliance {
     /// # Errors
     /// A message naming the first sample where a check fails, or a function's error.
     pub fn validate(&self, length: f64) -> Result<(), String> {
-        for (name, x) in [
-            ("displacement_unit", self.displacement_unit),
-            ("pressure_unit", self.pressure_unit),
-        ] {
-            if !(x.is_finite() && x > 0.0) {
-                return Err(format!("{name} = {x}: a finite unit > 0"));
-            }
-        }
+        super::slip_law::check_units(
+            &self.name,
+            &[
+                ("displacement_unit", self.displacement_unit),
+                ("pressure_unit", self.pressure_unit),
+            ],
+        )?;
         let mut x: Vec<f64> = vec![0.0];
         x.extend(
             (0..=100)

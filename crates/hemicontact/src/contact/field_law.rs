@@ -104,18 +104,13 @@ impl CustomField {
     /// # Errors
     /// A message naming the unit that is not finite and > 0.
     pub fn validate(&self) -> Result<(), String> {
-        for (name, x) in [
-            ("length_unit", self.length_unit),
-            ("value_unit", self.value_unit),
-        ] {
-            if !(x.is_finite() && x > 0.0) {
-                return Err(format!(
-                    "{name} = {x} of `{}`: a finite unit > 0",
-                    self.name
-                ));
-            }
-        }
-        Ok(())
+        super::slip_law::check_units(
+            &self.name,
+            &[
+                ("length_unit", self.length_unit),
+                ("value_unit", self.value_unit),
+            ],
+        )
     }
 }
 

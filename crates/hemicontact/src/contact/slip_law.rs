@@ -165,23 +165,31 @@ impl CustomCoefficient {
     /// A message naming the law and the first sampled slip where μ is not finite or
     /// negative, or the function's error.
     pub fn validate(&self) -> Result<(), String> {
-        for (name, x) in [
-            ("slip_unit", self.slip_unit),
-            ("value_unit", self.value_unit),
-        ] {
-            if !(x.is_finite() && x > 0.0) {
-                return Err(format!(
-                    "{name} = {x} of `{}`: a finite unit > 0",
-                    self.name
-                ));
-            }
-        }
+        check_units(
+            &self.name,
+            &[
+                ("slip_unit", self.slip_unit),
+                ("value_unit", self.value_unit),
+            ],
+        )?;
         self.samples().map(|_| ()).map_err(|e| {
             format!(
                 "custom law `{}` sampled at 0 and 1e-10 … 100 m: {e}",
                 self.name
             )
         })
+    }
+}
+
+/// Checks the units of the dimensionless rewrite of the user-defined law `law`: each
+/// `(name, value)` finite and > 0.
+///
+/// # Errors
+/// A message naming the first unit that is not.
+pub(crate) fn check_units(law: &str, units: &[(&str, f64)]) -> Result<(), String> {
+    match units.iter().find(|(_, x)| !(x.is_finite() && *x > 0.0)) {
+        Some((name, x)) => Err(format!("{name} = {x} of `{law}`: a finite unit > 0")),
+        None => Ok(()),
     }
 }
 
