@@ -1,6 +1,7 @@
 //! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`], with user-defined
 //! friction coefficients of the slip in [`slip_law`] and of the position in [`field_law`]) and the contact nodes with their lumped weights,
-//! normals and tangents ([`nodes`]).
+//! normals and tangents ([`nodes`]), and the gap and normal of rigid obstacles of given
+//! shape by closest-point projection ([`obstacle`]).
 //!
 //! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
 //! normal displacement and `g ≥ 0` the initial gap to the foundation, so `u_ν − g > 0` is a
@@ -14,6 +15,7 @@ pub mod field_law;
 pub mod friction;
 pub mod nodes;
 pub mod normal;
+pub mod obstacle;
 pub mod slip_law;
 
 pub use compliance_law::{ComplianceFunction, CustomCompliance, NormalResponse};
