@@ -77,6 +77,9 @@ def test_the_gil_is_released_during_a_solve():
 CTRL_C = r"""
 import os, signal, threading, time
 import hemicontact as hc
+# Python's own Ctrl-C handler, as in an interactive interpreter: a process started in the
+# background by a non-interactive shell inherits SIGINT ignored, and Python then installs none.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 threading.Timer({delay}, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 t = time.perf_counter()
 try:
