@@ -6,9 +6,9 @@
 //! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa);
 //! - displacement `U`: the largest displacement the data can cause — the largest prescribed
 //!   displacement, `|f_N| L / S` for the largest traction and `|f_0| L² / S` for the body
-//!   force, and against rigid obstacles the largest component of their translations and the
-//!   deepest initial penetration `−g_i` of their contact points, up to `L` (m); `L` when
-//!   there is no load at all.
+//!   force, and the deepest initial penetration `−g_i` of a contact point into a rigid
+//!   obstacle, up to `L` (m) (a displacement-driven indentation; a translation along the
+//!   obstacle's surface drives nothing); `L` when there is no load at all.
 //!
 //! Each scale is rounded to a power of two, so that scaling is exact in floating point:
 //! a problem and the same problem with every stiffness and load multiplied by 2^k give
@@ -81,9 +81,6 @@ impl Scales {
         displacement =
             displacement.max(max_abs(&problem.body_force[..dim]) / stress * length * length);
         if problem.contact.iter().any(|c| c.obstacle.is_some()) {
-            for c in problem.contact.iter().filter_map(|c| c.obstacle.as_ref()) {
-                displacement = displacement.max(max_abs(c.spec.translation(dim)?.as_slice()));
-            }
             let points = problem.contact_nodes()?;
             let penetration = points.gap.iter().fold(0.0f64, |m, g| m.max(-g));
             displacement = displacement.max(penetration.min(length));
