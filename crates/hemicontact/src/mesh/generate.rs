@@ -89,7 +89,8 @@ pub fn smallest_relative_cell(r: f64, n: usize) -> f64 {
 pub fn check_progression(r: f64, n: usize) -> std::result::Result<(), String> {
     let [lo, hi] = PROGRESSION_RANGE;
     let allowed = format!(
-        "a finite ratio from {lo:e} to {hi:e} whose smallest cell is at least          {MIN_RELATIVE_CELL:e} of the side"
+        "a finite ratio from {lo:e} to {hi:e} whose smallest cell is at least \
+         {MIN_RELATIVE_CELL:e} of the side"
     );
     if !(r.is_finite() && (lo..=hi).contains(&r)) {
         return Err(allowed);
@@ -97,7 +98,7 @@ pub fn check_progression(r: f64, n: usize) -> std::result::Result<(), String> {
     let smallest = smallest_relative_cell(r, n.max(1));
     if smallest < MIN_RELATIVE_CELL {
         return Err(format!(
-            "{allowed} (with {n} cells its smallest cell is {smallest:e} of the side)"
+            "{allowed} (with {n} cells its smallest cell is {smallest:.1e} of the side)"
         ));
     }
     Ok(())
