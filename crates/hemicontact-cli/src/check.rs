@@ -23,7 +23,7 @@ pub fn check(ctx: &RunContext, file: &Path) -> Result<()> {
     print_notes(c, &notes);
     // Rigid motions not blocked by a Dirichlet condition that contact carries (those it
     // does not carry were refused above).
-    for motion in problem.rigid_motions().describe_all() {
+    for motion in problem.rigid_motions()?.describe_all() {
         say!(c, "free rigid motion carried by contact: {motion}");
     }
     let iterative =
@@ -95,12 +95,20 @@ fn print_problem(c: &Console, problem: &Problem, settings: &SolverSettings, sour
         _ => say!(c, "locking    none"),
     }
     for (k, contact) in problem.contact().iter().enumerate() {
-        say!(
-            c,
-            "contact[{k}] part `{}`: gap {} m",
-            mesh.part_names()[contact.part],
-            significant(contact.gap),
-        );
+        match &contact.obstacle {
+            None => say!(
+                c,
+                "contact[{k}] part `{}`: gap {} m",
+                mesh.part_names()[contact.part],
+                significant(contact.gap),
+            ),
+            Some(o) => say!(
+                c,
+                "contact[{k}] part `{}`: {}",
+                mesh.part_names()[contact.part],
+                o.spec
+            ),
+        }
         say!(c, "  normal   {}", contact.normal);
         match &contact.friction {
             None => say!(c, "  friction none (frictionless)"),
@@ -111,7 +119,11 @@ fn print_problem(c: &Console, problem: &Problem, settings: &SolverSettings, sour
             }
         }
     }
-    say!(c, "contact points {}", problem.contact_nodes().len());
+    say!(
+        c,
+        "contact points {}",
+        problem.contact_nodes().map_or(0, |p| p.len())
+    );
     say!(c, "boundary parts:");
     for (p, name) in mesh.part_names().iter().enumerate() {
         let facets = mesh.part_facets(p).count();

@@ -346,7 +346,7 @@ fn problem_size(problem: &Problem) -> String {
         mesh.n_cells(),
         problem.dof_map().n_dofs()
     );
-    let points = problem.contact_nodes().len();
+    let points = problem.contact_nodes().map_or(0, |p| p.len());
     if points > 0 {
         text.push_str(&format!(", {points} contact points"));
     }

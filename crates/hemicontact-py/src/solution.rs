@@ -239,12 +239,12 @@ impl NativeSolution {
     fn contact_columns<'py>(
         &self,
         py: Python<'py>,
-    ) -> (
+    ) -> PyResult<(
         Vec<(&'static str, usize, Bound<'py, PyBytes>)>,
         Vec<(&'static str, Vec<String>)>,
-    ) {
+    )> {
         let mesh = self.problem.mesh();
-        let nodes = self.problem.contact_nodes();
+        let nodes = self.problem.contact_nodes().map_err(to_py)?;
         let rows = &self.solution.contact;
         let column = |f: &dyn Fn(usize) -> f64| -> Vec<f64> { (0..rows.len()).map(f).collect() };
         let coord = |k: usize| {
@@ -316,7 +316,7 @@ impl NativeSolution {
             .into_iter()
             .map(|(name, k, v)| (name, k, f64_bytes(py, &v)))
             .collect();
-        (numeric, text)
+        Ok((numeric, text))
     }
 
     /// The load factor λ of this solve (1 for a plain solve).

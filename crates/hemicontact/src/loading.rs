@@ -2,7 +2,8 @@
 //!
 //! Step k solves the problem whose loads (surface tractions `f_N`, body force `f_0`) and
 //! prescribed displacements (Dirichlet values) are those of the problem times `λ_k`
-//! ([`Problem::with_load_factor`]); gaps and laws are not scaled. The model is static and
+//! ([`Problem::with_load_factor`]), and so are the translations of rigid obstacles;
+//! gaps and laws are not scaled. The model is static and
 //! without history, so each step is a solution of its own problem: the path only supplies
 //! starting points. Step k starts from the displacement of step k − 1 (the first from the
 //! prescribed displacement, as [`crate::solver::solve`]); the prescribed DOFs take the new
@@ -24,7 +25,9 @@ pub const MAX_STEPS: usize = 10_000;
 impl Problem {
     /// This problem with every load and prescribed displacement multiplied by the load
     /// factor `factor` (dimensionless): surface tractions `λ f_N`, body force `λ f_0`,
-    /// Dirichlet values `λ u_D`. Gaps, laws and supports are unchanged. `factor = 1` gives
+    /// Dirichlet values `λ u_D`, and the translation `λ t` of each rigid obstacle (whose
+    /// gaps and normals are projected anew at its new position). Gaps, shapes, laws and
+    /// supports are unchanged. `factor = 1` gives
     /// a problem bitwise equal to this one.
     ///
     /// # Errors
@@ -44,6 +47,9 @@ impl Problem {
             t.value = t.value.map(|x| factor * x);
         }
         p.body_force = p.body_force.map(|x| factor * x);
+        for c in &mut p.contact {
+            c.obstacle = c.obstacle.as_ref().map(|o| o.with_load_factor(factor));
+        }
         Ok(p)
     }
 }

@@ -220,6 +220,11 @@ impl Problem {
             let field = format!("contact[{k}]");
             self.check_part(&format!("{field}.part"), c.part)?;
             c.validate().map_err(|e| e.within(&field))?;
+            if let Some(o) = &c.obstacle {
+                o.spec
+                    .validate(dim)
+                    .map_err(|e| e.within(&format!("{field}.obstacle")))?;
+            }
             if let crate::contact::NormalLaw::Custom(law) = &c.normal {
                 law.validate(self.diameter())
                     .map_err(|message| Error::Law {
@@ -240,7 +245,7 @@ impl Problem {
             }
         }
         self.check_contradictions()?;
-        self.rigid_motions().check("problem")?;
+        self.rigid_motions()?.check("problem")?;
         Ok(())
     }
 
@@ -368,15 +373,18 @@ impl Problem {
 
     /// The rigid motions of each mesh component that the Dirichlet conditions leave free,
     /// and those of them that no contact point carries (see [`crate::fem::rigid`]).
-    pub fn rigid_motions(&self) -> RigidMotions {
+    ///
+    /// # Errors
+    /// Those of [`Problem::contact_nodes`].
+    pub fn rigid_motions(&self) -> Result<RigidMotions> {
         let dofs = self.dof_map();
         let frictional: Vec<bool> = self.contact.iter().map(|c| c.friction.is_some()).collect();
-        RigidMotions::new(
+        Ok(RigidMotions::new(
             &self.mesh,
             |k| dofs.is_fixed(k),
-            &self.contact_nodes(),
+            &self.contact_nodes()?,
             &frictional,
-        )
+        ))
     }
 
     /// The DOF map with the Dirichlet DOFs eliminated.
@@ -444,7 +452,9 @@ impl Problem {
                 ));
             }
         }
-        let points = self.contact_nodes();
+        let Ok(points) = self.contact_nodes() else {
+            return notes;
+        };
         for (b, c) in self.contact.iter().enumerate() {
             let nodes: Vec<u32> = (0..points.len())
                 .filter(|&i| points.boundary[i] as usize == b)
@@ -467,7 +477,11 @@ impl Problem {
     }
 
     /// The contact points of the problem.
-    pub fn contact_nodes(&self) -> ContactNodes {
+    ///
+    /// # Errors
+    /// Those of [`ContactNodes::new`]: an invalid obstacle, or a node whose closest point on
+    /// its obstacle is not unique.
+    pub fn contact_nodes(&self) -> Result<ContactNodes> {
         ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())
     }
 

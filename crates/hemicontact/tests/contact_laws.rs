@@ -733,7 +733,7 @@ fn assembled_contact_terms_2d_match_finite_differences() {
         .unwrap()
         .into_problem()
         .unwrap();
-    let nodes = problem.contact_nodes();
+    let nodes = problem.contact_nodes().unwrap();
     let d = problem.mesh().dim();
     assert_eq!(d, 2);
     // right: y = 1, 2 (the bottom corner is on Γ_D); top: x = 0, 1, 2; left: y = 1, 2.
@@ -800,6 +800,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 0,
             gap: 0.001,
+            obstacle: None,
             normal: NormalLaw::Compliance(NormalCompliance { c_nu: 1e4 }),
             friction: Some(Friction {
                 bound: FrictionBound::Tresca,
@@ -812,6 +813,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 1,
             gap: 0.0,
+            obstacle: None,
             normal: NormalLaw::Compliance(NormalCompliance { c_nu: 5e3 }),
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
@@ -826,6 +828,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 2,
             gap: 0.0005,
+            obstacle: None,
             normal: NormalLaw::Compliance(NormalCompliance { c_nu: 2e4 }),
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
@@ -836,6 +839,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 3,
             gap: 0.0,
+            obstacle: None,
             normal: NormalLaw::Compliance(NormalCompliance { c_nu: 1e4 }),
             friction: None,
         },
@@ -844,6 +848,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 4,
             gap: 0.001,
+            obstacle: None,
             normal: NormalLaw::Signorini,
             friction: Some(Friction {
                 bound: FrictionBound::Tresca,
@@ -856,6 +861,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 5,
             gap: 0.0,
+            obstacle: None,
             normal: NormalLaw::Signorini,
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
@@ -870,6 +876,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         ContactBoundary {
             part: 6,
             gap: 0.0005,
+            obstacle: None,
             normal: NormalLaw::Compliance(NormalCompliance { c_nu: 2e4 }),
             friction: Some(Friction {
                 bound: FrictionBound::Coulomb,
@@ -916,6 +923,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         nodes.boundary.push(b);
         nodes.weight.push(rng.uniform(0.1, 1.0));
         nodes.normal.push(n);
+        nodes.gap.push(boundaries[b as usize].gap);
         nodes.tangent.push(t);
     }
     let penalty = vec![500.0; nodes.len()];

@@ -183,7 +183,7 @@ fn the_law_is_called_once_per_part_per_outer_iteration_with_all_the_parts_points
     assert_eq!(law.calls.load(Ordering::SeqCst), parts * (1 + outer + 1));
     // Each call receives all the points of one part: the 2D side of 16 squares has 16
     // nodes above the clamped bottom corner, each one contact point.
-    let points = custom.contact_nodes();
+    let points = custom.contact_nodes().unwrap();
     for b in 0..parts {
         let n = points.boundary.iter().filter(|&&x| x as usize == b).count();
         assert_eq!(n, 16);

@@ -674,7 +674,7 @@ fn contact_sharing_nodes_with_dirichlet_gives_a_note() {
     // That node is not a contact node.
     let left = problem.mesh().part_index("left").unwrap();
     assert_eq!(
-        problem.contact_nodes().len(),
+        problem.contact_nodes().unwrap().len(),
         problem.mesh().part_nodes(left).len() - 1
     );
 }

@@ -73,6 +73,7 @@ fn friction(potential: FrictionPotential) -> ContactBoundary {
     ContactBoundary {
         part: 0,
         gap: 0.0,
+        obstacle: None,
         normal: NormalLaw::Compliance(NormalCompliance { c_nu: 10.0 }),
         friction: Some(Friction {
             bound: FrictionBound::Coulomb,

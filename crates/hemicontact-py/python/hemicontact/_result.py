@@ -15,6 +15,15 @@ def _f64(b: bytes, *shape: int) -> np.ndarray:
     return np.frombuffer(b, dtype="<f8").reshape(shape)
 
 
+def _totals(t: Dict[str, Any]) -> Dict[str, Any]:
+    """One entry of ``summary.json``'s ``contact_totals`` with its vectors as arrays."""
+    out = dict(t)
+    for key in ("force", "force_tangential", "max_pressure_at"):
+        if out[key] is not None:
+            out[key] = np.array(out[key], dtype=float)
+    return out
+
+
 class Result:
     """The result of a solve. Arrays are numpy arrays in SI units.
 
@@ -30,6 +39,16 @@ class Result:
       ``friction_state``, ``normal_residual``, ``friction_residual``) and the vectors
       ``normal`` (outward unit normal), ``force`` (interface force on the body, N) and
       ``friction_traction`` (tangential traction on the body, force / weight, Pa), K × 3;
+    - ``contact_totals``: one dict per contact boundary (``[[contact]]`` entry, in order),
+      the ``contact_totals`` of ``summary.json``: ``part``; the counts ``points``,
+      ``n_contact``, ``n_stick``, ``n_slip``; ``force`` (Σ_i R_i, the resultant interface
+      force on the body, N; N/m in 2D), ``force_normal`` (Σ_i R_i·ν_i, negative when
+      pressed) and ``force_tangential`` (the resultant of the tangential parts);
+      ``contact_measure`` (Σ w_i over the points in contact: contact length in m in 2D,
+      area in m² in 3D, the lumped nodal measure, accurate to about one element size);
+      ``max_pressure`` (Pa, 0 without contact), ``max_pressure_node`` and
+      ``max_pressure_at`` (its reference coordinates, m; both ``None`` without contact).
+      The vectors are numpy arrays of d components;
     - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
       ``summary.json`` as a dict);
@@ -54,6 +73,9 @@ class Result:
             "newton": report["newton"],
         }
         self.timings: Dict[str, Any] = report["timings"]
+        self.contact_totals: List[Dict[str, Any]] = [
+            _totals(t) for t in self.summary["contact_totals"]
+        ]
         d = self.dim
         self.points = _f64(native.points(), -1, d)
         self.cells = np.frombuffer(native.cells(), dtype="<i8").reshape(-1, d + 1)

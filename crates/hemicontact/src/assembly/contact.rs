@@ -110,9 +110,9 @@ impl<'a> ContactAssembler<'a> {
         let pressure = if cb.normal.is_custom() {
             self.custom_response(i).pressure
         } else {
-            let (law, gap) = cb
-                .normal
-                .effective(cb.gap, frozen.pressure[i], self.penalty[i]);
+            let (law, gap) =
+                cb.normal
+                    .effective(self.nodes.gap[i], frozen.pressure[i], self.penalty[i]);
             law.pressure(u_nu, gap)
         };
         PointState {
@@ -174,7 +174,7 @@ impl<'a> ContactAssembler<'a> {
             penetration.extend(
                 range
                     .clone()
-                    .map(|i| self.nodes.kinematics(self.dim, u, i).0 - cb.gap),
+                    .map(|i| self.nodes.kinematics(self.dim, u, i).0 - self.nodes.gap[i]),
             );
             law.responses(&penetration, stiffness, &mut out[range])
                 .map_err(|message| Error::Law {
@@ -319,7 +319,9 @@ impl<'a> ContactAssembler<'a> {
             let c = self.custom_response(i);
             (w * c.energy, c.pressure, c.stiffness)
         } else {
-            let (law, gap) = cb.normal.effective(cb.gap, frozen.pressure[i], r);
+            let (law, gap) = cb
+                .normal
+                .effective(self.nodes.gap[i], frozen.pressure[i], r);
             (
                 w * law.energy(u_nu, gap),
                 law.pressure(u_nu, gap),

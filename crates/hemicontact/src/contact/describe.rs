@@ -144,3 +144,51 @@ mod tests {
         assert!(!format!("{mu:?}").is_empty());
     }
 }
+
+impl fmt::Display for super::obstacle::ObstacleSpec {
+    /// E.g. `rigid circle, centre (5, 14.99) m, radius 10 m, translated by (0, −0.02) m`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use super::obstacle::Obstacle;
+        let v = |x: &[f64]| {
+            let c: Vec<String> = x.iter().map(|&c| s(c)).collect();
+            format!("({})", c.join(", "))
+        };
+        match &self.shape {
+            Obstacle::Plane { point, normal } => write!(
+                f,
+                "rigid plane through {} m, normal {} (towards the body)",
+                v(point),
+                v(normal)
+            )?,
+            Obstacle::Circle { center, radius } | Obstacle::Sphere { center, radius } => write!(
+                f,
+                "rigid {}, centre {} m, radius {} m",
+                self.shape.kind(),
+                v(center),
+                s(*radius)
+            )?,
+            Obstacle::Cylinder {
+                point,
+                axis,
+                radius,
+            } => write!(
+                f,
+                "rigid cylinder, axis through {} m along {}, radius {} m",
+                v(point),
+                v(axis),
+                s(*radius)
+            )?,
+            Obstacle::Paraboloid { apex, axis, radius } => write!(
+                f,
+                "rigid paraboloid z = r²/(2R), apex {} m, axis {} (into the indenter), R = {} m",
+                v(apex),
+                v(axis),
+                s(*radius)
+            )?,
+        }
+        match &self.displacement {
+            Some(t) => write!(f, ", translated by {} m", v(t)),
+            None => Ok(()),
+        }
+    }
+}

@@ -4,9 +4,10 @@
 //! shape by closest-point projection ([`obstacle`]).
 //!
 //! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
-//! normal displacement and `g ≥ 0` the initial gap to the foundation, so `u_ν − g > 0` is a
-//! penetration. The tangential displacement `u_τ = u − u_ν ν` is stored in the coordinates of
-//! an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the
+//! normal displacement and `g` the initial gap to the foundation (`g ≥ 0` for a flat
+//! foundation; of either sign against an obstacle, negative where the obstacle starts out
+//! pressed into the body), so `u_ν − g > 0` is a penetration. The tangential displacement
+//! `u_τ = u − u_ν ν` is stored in the coordinates of an orthonormal tangent basis (1 component in 2D, 2 in 3D). The interface force on the
 //! body has normal part `σ_ν = −p(u_ν) ≤ 0` and tangential part `σ_τ ∈ −F ∂j(u_τ)`.
 
 pub mod compliance_law;
@@ -26,15 +27,23 @@ pub use friction::{
 };
 pub use nodes::ContactNodes;
 pub use normal::{NormalCompliance, NormalLaw};
+pub use obstacle::{ContactObstacle, Obstacle, ObstacleSpec};
 pub use slip_law::{CustomCoefficient, SlipFunction};
 
 /// One contact boundary: a part of the mesh facing a rigid foundation, with its laws.
+///
+/// The foundation is either flat, the boundary itself shifted along its outward normal by
+/// `gap` (`obstacle` is `None`), or a rigid obstacle of given shape (`gap` must then be 0),
+/// whose closest-point projection gives each contact point its own gap and normal (see
+/// [`obstacle`] and [`nodes`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactBoundary {
     /// Boundary part index (see [`crate::mesh::Mesh::part_names`]).
     pub part: usize,
-    /// Initial gap g ≥ 0 along the normal (m).
+    /// Initial gap g ≥ 0 along the normal to a flat foundation (m); 0 with an obstacle.
     pub gap: f64,
+    /// The rigid obstacle the part faces, or `None` for the flat foundation at `gap`.
+    pub obstacle: Option<ContactObstacle>,
     /// Normal law: normal compliance or the Signorini constraint.
     pub normal: NormalLaw,
     /// Friction law, or `None` for frictionless contact.
@@ -46,14 +55,23 @@ impl ContactBoundary {
     /// [`crate::problem::Problem`] can check against its mesh).
     ///
     /// # Errors
-    /// [`crate::Error::Invalid`] naming the parameter: `gap` finite and ≥ 0, and the ranges
-    /// of [`NormalLaw::validate`] and [`Friction::validate`] (under `friction.`).
+    /// [`crate::Error::Invalid`] naming the parameter: `gap` finite and ≥ 0 (0 with an
+    /// obstacle), and the ranges of [`NormalLaw::validate`] and [`Friction::validate`]
+    /// (under `friction.`). The obstacle's shape is checked by
+    /// [`crate::problem::Problem::validate`], which knows the dimension.
     pub fn validate(&self) -> crate::Result<()> {
         crate::error::require(
             self.gap.is_finite() && self.gap >= 0.0,
             "gap",
             self.gap,
             "a gap g ≥ 0 (m)",
+        )?;
+        crate::error::require(
+            self.obstacle.is_none() || self.gap == 0.0,
+            "gap",
+            self.gap,
+            "no gap with an obstacle (0): the obstacle's shape and position give the gap at \
+             each point",
         )?;
         self.normal.validate()?;
         match &self.friction {

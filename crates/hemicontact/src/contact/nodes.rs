@@ -32,8 +32,17 @@
 //!
 //! Points are ordered by boundary, then by node number, then (at a corner) by the first
 //! facet of each group.
+//!
+//! # Obstacles
+//!
+//! A boundary facing a rigid obstacle ([`super::obstacle`]) has one point per node, with
+//! the weight of all its facets: the obstacle, not the boundary's facets, gives the
+//! direction of contact. Its normal is `ν_i = −n_i`, with `n_i` the obstacle's outward
+//! normal at the closest point `P(X_i)` of the node's reference position `X_i`, and its
+//! gap is the signed distance `g_i = g(X_i)` (negative where the obstacle starts out inside
+//! the body). A flat foundation gives every point of its boundary the same gap `g`.
 
-use super::ContactBoundary;
+use super::{ContactBoundary, ContactObstacle};
 use crate::fem::simplex::cross;
 use crate::mesh::Mesh;
 
@@ -46,8 +55,12 @@ pub struct ContactNodes {
     pub boundary: Vec<u16>,
     /// Lumped weight w_i (m² in 3D, m in 2D).
     pub weight: Vec<f64>,
-    /// Outward unit normal ν_i.
+    /// Unit normal ν_i of contact (outward from the body): the boundary's averaged normal,
+    /// or against an obstacle the opposite of the obstacle's normal.
     pub normal: Vec<[f64; 3]>,
+    /// Initial gap g_i along ν_i (m; the solver's displacement unit in its dimensionless
+    /// problem): the boundary's `gap`, or the signed distance to the obstacle.
+    pub gap: Vec<f64>,
     /// Orthonormal tangent basis (first d − 1 vectors used).
     pub tangent: Vec<[[f64; 3]; 2]>,
     /// Position of the node in the reference configuration (m; unused coordinates 0), where
@@ -62,7 +75,16 @@ pub const CORNER_ANGLE_DEG: f64 = 30.0;
 impl ContactNodes {
     /// Builds the contact points of `boundaries` on `mesh`, skipping nodes where
     /// `excluded[node]` is true (nodes with all components prescribed).
-    pub fn new(mesh: &Mesh, boundaries: &[ContactBoundary], excluded: &[bool]) -> Self {
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] under `contact[b].obstacle` if an obstacle is invalid for
+    /// the mesh's dimension or the closest point of a node on it is not unique (the error
+    /// names the node and its position).
+    pub fn new(
+        mesh: &Mesh,
+        boundaries: &[ContactBoundary],
+        excluded: &[bool],
+    ) -> crate::Result<Self> {
         let d = mesh.dim();
         let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
         let mut out = ContactNodes::default();
@@ -78,6 +100,11 @@ impl ContactNodes {
                 .flat_map(|(k, f)| mesh.facet(f).iter().map(move |&v| (v, k as u32)))
                 .collect();
             incidence.sort_unstable();
+            if let Some(obstacle) = &cb.obstacle {
+                obstacle_points(&mut out, mesh, b, obstacle, &facets, &incidence, excluded)
+                    .map_err(|e| e.within(&format!("contact[{b}].obstacle")))?;
+                continue;
+            }
             let mut group = Vec::new();
             let mut stack = Vec::new();
             for around in incidence.chunk_by(|a, b| a.0 == b.0) {
@@ -125,6 +152,7 @@ impl ContactNodes {
                     out.boundary.push(b as u16);
                     out.weight.push(w);
                     out.normal.push(n);
+                    out.gap.push(cb.gap);
                     out.tangent.push(tangent_basis(d, &n));
                     let mut x = [0.0; 3];
                     x[..d].copy_from_slice(mesh.node(v as usize));
@@ -132,7 +160,7 @@ impl ContactNodes {
                 }
             }
         }
-        out
+        Ok(out)
     }
 
     /// Number of contact points.
@@ -158,6 +186,59 @@ impl ContactNodes {
         }
         (dot(&self.normal[i]), xi)
     }
+}
+
+/// Appends the points of boundary `b` facing `obstacle`: one per node of `incidence`
+/// (sorted (node, facet) pairs) not `excluded`, weighted by all its facets, with the gap and
+/// the reversed normal of its closest-point projection (see the module documentation).
+fn obstacle_points(
+    out: &mut ContactNodes,
+    mesh: &Mesh,
+    b: usize,
+    obstacle: &ContactObstacle,
+    facets: &[(f64, [f64; 3])],
+    incidence: &[(u32, u32)],
+    excluded: &[bool],
+) -> crate::Result<()> {
+    let d = mesh.dim();
+    for around in incidence.chunk_by(|a, b| a.0 == b.0) {
+        let v = around[0].0;
+        if excluded[v as usize] {
+            continue;
+        }
+        let mut x = [0.0; 3];
+        x[..d].copy_from_slice(mesh.node(v as usize));
+        let projection = obstacle.project(x, d).map_err(|e| match e {
+            crate::Error::Invalid {
+                field,
+                value,
+                allowed,
+            } if field == "position" => crate::Error::Invalid {
+                field: String::new(),
+                value: format!("node {v} at {value}"),
+                allowed: format!(
+                    "an obstacle on which every contact node has a unique \
+                                      closest point: {allowed}"
+                ),
+            },
+            e => e,
+        })?;
+        let n = projection.normal.map(|c| -c);
+        out.node.push(v);
+        out.boundary.push(b as u16);
+        out.weight.push(
+            around
+                .iter()
+                .map(|&(_, f)| facets[f as usize].0)
+                .sum::<f64>()
+                / d as f64,
+        );
+        out.normal.push(n);
+        out.gap.push(projection.gap);
+        out.tangent.push(tangent_basis(d, &n));
+        out.position.push(x);
+    }
+    Ok(())
 }
 
 /// Orthonormal tangent basis of the unit normal `n`; see the module documentation.

@@ -341,6 +341,64 @@ impl ObstacleSpec {
     }
 }
 
+/// The rigid obstacle of a contact boundary as the solver evaluates it: an
+/// [`ObstacleSpec`] (in metres) with the units of the positions it is given and of the gaps
+/// it returns. Both units are 1 m in the user's problem; the solver's dimensionless problem
+/// ([`crate::solver::scaling`]) gives positions in units of its length scale and takes gaps
+/// in units of its displacement scale: `ĝ(x̂) = g(x̂ · length_unit) / gap_unit`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactObstacle {
+    /// The obstacle, lengths in m.
+    pub spec: ObstacleSpec,
+    /// Unit of the positions given to [`ContactObstacle::project`] (m).
+    pub length_unit: f64,
+    /// Unit of the gaps it returns (m).
+    pub gap_unit: f64,
+}
+
+impl ContactObstacle {
+    /// The obstacle `spec` in the user's units (both units 1 m).
+    pub fn new(spec: ObstacleSpec) -> Self {
+        ContactObstacle {
+            spec,
+            length_unit: 1.0,
+            gap_unit: 1.0,
+        }
+    }
+
+    /// The same obstacle for positions in units of `length` (m) and gaps in units of
+    /// `displacement` (m).
+    pub fn nondimensional(&self, length: f64, displacement: f64) -> Self {
+        ContactObstacle {
+            spec: self.spec.clone(),
+            length_unit: self.length_unit * length,
+            gap_unit: self.gap_unit * displacement,
+        }
+    }
+
+    /// The obstacle with its translation multiplied by the load factor `lambda`.
+    pub fn with_load_factor(&self, lambda: f64) -> Self {
+        let mut out = self.clone();
+        if let Some(t) = out.spec.displacement.as_mut() {
+            t.iter_mut().for_each(|x| *x *= lambda);
+        }
+        out
+    }
+
+    /// The projection of `x` (in units of `length_unit`) onto the obstacle
+    /// ([`ObstacleSpec::project`]): the gap in units of `gap_unit`, the unit normal, and the
+    /// closest point in units of `length_unit`.
+    ///
+    /// # Errors
+    /// Those of [`ObstacleSpec::project`], the point named in metres.
+    pub fn project(&self, x: [f64; 3], dim: usize) -> Result<Projection> {
+        let mut p = self.spec.project(x.map(|c| c * self.length_unit), dim)?;
+        p.gap /= self.gap_unit;
+        p.point = p.point.map(|c| c / self.length_unit);
+        Ok(p)
+    }
+}
+
 impl Shape {
     /// The projection of `y` (third coordinate 0 in 2D), or `None` if the closest point is
     /// not unique.

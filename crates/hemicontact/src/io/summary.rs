@@ -56,6 +56,10 @@ pub struct Summary {
     pub contact_stick: usize,
     /// Number of slipping contact points (friction state `slip`).
     pub contact_slip: usize,
+    /// Totals over each contact boundary, in the order of the scenario's `[[contact]]`
+    /// entries: resultant interface force, counts, contact length or area, peak pressure
+    /// ([`super::contact_totals::contact_totals`]).
+    pub contact_totals: Vec<super::contact_totals::ContactTotals>,
     /// Number of cells where the locking penalty acts (Q(ε) > 0).
     pub locked_cells: usize,
     /// Largest |tr ε| over the cells.
@@ -131,6 +135,7 @@ impl Summary {
             contact_active: cert.n_contact,
             contact_stick: cert.n_stick,
             contact_slip: cert.n_slip,
+            contact_totals: super::contact_totals::contact_totals(problem, &solution.contact),
             locked_cells,
             max_abs_trace_strain,
             uniqueness: crate::solver::uniqueness::evaluate(problem, settings),

@@ -301,29 +301,43 @@ fn panel_layout(
         }
     }
     // Foundations: contact facets shifted by the magnified gap along their normals (in 3D
-    // the facets seen edge-on).
+    // the facets seen edge-on). Against an obstacle each node moves by its own gap along its
+    // own normal, which at true scale puts it on its closest point of the obstacle.
+    let points = problem.contact_nodes().unwrap_or_default();
+    let mut shift = vec![[0.0; 2]; mesh.n_nodes()];
     let mut foundation = Vec::new();
-    for cb in &problem.contact {
+    for (b, cb) in problem.contact.iter().enumerate() {
+        if cb.obstacle.is_some() {
+            for i in (0..points.len()).filter(|&i| points.boundary[i] as usize == b) {
+                let (g, n) = (points.gap[i], points.normal[i]);
+                shift[points.node[i] as usize] = [m * g * n[0], m * g * n[iy]];
+            }
+        }
         for f in mesh.part_facets(cb.part) {
             let (_, nrm) = mesh.facet_measure_normal(f);
             if d == 3 && nrm[1].abs() > 0.5 {
                 continue;
             }
             let v = mesh.facet(f);
-            let sh = [m * cb.gap * nrm[0], m * cb.gap * nrm[iy]];
+            let sh = |node: u32| match cb.obstacle {
+                Some(_) => shift[node as usize],
+                None => [m * cb.gap * nrm[0], m * cb.gap * nrm[iy]],
+            };
             for k in 0..v.len() {
                 if d == 2 && k == 1 {
                     break;
                 }
-                let (a, b) = (
-                    pos(v[k] as usize, 0.0),
-                    pos(v[(k + 1) % v.len()] as usize, 0.0),
-                );
-                foundation.push(([a[0] + sh[0], a[1] + sh[1]], [b[0] + sh[0], b[1] + sh[1]]));
+                let (va, vb) = (v[k], v[(k + 1) % v.len()]);
+                let (a, b) = (pos(va as usize, 0.0), pos(vb as usize, 0.0));
+                let (sa, sb) = (sh(va), sh(vb));
+                foundation.push(([a[0] + sa[0], a[1] + sa[1]], [b[0] + sb[0], b[1] + sb[1]]));
             }
         }
     }
-    let gaps = problem.contact.iter().any(|cb| cb.gap != 0.0);
+    let gaps = problem
+        .contact
+        .iter()
+        .any(|cb| cb.gap != 0.0 || cb.obstacle.is_some());
     let spacing = contact_spacing(problem, solution);
     let mut lo = [blo[0], blo[iy]];
     let mut hi = [bhi[0], bhi[iy]];

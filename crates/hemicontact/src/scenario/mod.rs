@@ -240,9 +240,11 @@ impl Scenario {
                 None => None,
                 Some(fs) => Some(self.build_friction(k, fs)?),
             };
+            let obstacle = c.obstacle.clone().map(crate::contact::ContactObstacle::new);
             out.push(ContactBoundary {
                 part,
                 gap: c.gap,
+                obstacle,
                 normal,
                 friction,
             });

@@ -284,9 +284,13 @@ pub enum NormalLawKind {
 pub struct ContactSpec {
     /// Boundary part name (Γ_C).
     pub part: String,
-    /// Initial gap g ≥ 0 (m).
+    /// Initial gap g ≥ 0 (m) to a flat foundation; 0 (absent) with an obstacle.
     #[serde(default)]
     pub gap: f64,
+    /// A rigid obstacle of given shape instead of the flat foundation, e.g.
+    /// `obstacle = { kind = "circle", center = [0.0, 1.0], radius = 1.0 }`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<crate::contact::ObstacleSpec>,
     /// Normal law.
     #[serde(default)]
     pub law: NormalLawKind,

@@ -412,7 +412,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             boundary: ca.nodes.boundary[i] as usize,
             weight: w,
             u_nu: s.u_nu,
-            gap: cb.gap - s.u_nu,
+            gap: ca.nodes.gap[i] - s.u_nu,
             u_tau: s.u_tau,
             slip: s.slip,
             pressure: s.pressure,

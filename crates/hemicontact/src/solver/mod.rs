@@ -217,14 +217,14 @@ pub fn solve_observed(
             return Err(crate::Error::ContactLost {
                 motions: format!(
                     "{} (the body moved by more than its size)",
-                    problem.rigid_motions().describe_all().join("; ")
+                    problem.rigid_motions()?.describe_all().join("; ")
                 ),
             })
         }
         Err(e) => return Err(e),
     };
     let mut solution = scales.dimensional(solution);
-    solution.report.free_rigid_motions = problem.rigid_motions().describe_all();
+    solution.report.free_rigid_motions = problem.rigid_motions()?.describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
     Ok(solution)
 }

@@ -131,7 +131,7 @@ impl Multipliers {
         };
         let (mut max_pressure, mut min_pressure) = (0.0f64, f64::INFINITY);
         for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
-            let gap = ca.boundaries[ca.nodes.boundary[i] as usize].gap;
+            let gap = ca.nodes.gap[i];
             let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
             let p = self.pressure[i];
             kkt.n_constraints.1 += 1;
@@ -142,7 +142,7 @@ impl Multipliers {
         if max_pressure > 0.0 {
             kkt.contact_min_multiplier = min_pressure / max_pressure;
             for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
-                let gap = ca.boundaries[ca.nodes.boundary[i] as usize].gap;
+                let gap = ca.nodes.gap[i];
                 let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
                 kkt.contact_complementarity = kkt
                     .contact_complementarity

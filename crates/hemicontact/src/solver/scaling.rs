@@ -6,7 +6,9 @@
 //! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa);
 //! - displacement `U`: the largest displacement the data can cause — the largest prescribed
 //!   displacement, `|f_N| L / S` for the largest traction and `|f_0| L² / S` for the body
-//!   force (m); `L` when there is no load at all.
+//!   force, and the deepest initial penetration `−g_i` of a contact point into a rigid
+//!   obstacle, up to `L` (m) (a displacement-driven indentation; a translation along the
+//!   obstacle's surface drives nothing); `L` when there is no load at all.
 //!
 //! Each scale is rounded to a power of two, so that scaling is exact in floating point:
 //! a problem and the same problem with every stiffness and load multiplied by 2^k give
@@ -58,7 +60,7 @@ impl Scales {
     /// # Errors
     /// [`Error::Breakdown`] if a scale is zero or not finite, that is if the loads and the
     /// stiffness are so far apart that the displacements they cause cannot be represented
-    /// (beyond about 10^±300).
+    /// (beyond about 10^±300); the errors of [`Problem::contact_nodes`] for an obstacle.
     pub fn of(problem: &Problem) -> Result<Scales> {
         let dim = problem.mesh.dim();
         let length = problem.diameter();
@@ -78,6 +80,11 @@ impl Scales {
         }
         displacement =
             displacement.max(max_abs(&problem.body_force[..dim]) / stress * length * length);
+        if problem.contact.iter().any(|c| c.obstacle.is_some()) {
+            let points = problem.contact_nodes()?;
+            let penetration = points.gap.iter().fold(0.0f64, |m, g| m.max(-g));
+            displacement = displacement.max(penetration.min(length));
+        }
         if displacement == 0.0 {
             displacement = length;
         }
@@ -160,6 +167,10 @@ impl Scales {
                 .map(|c| ContactBoundary {
                     part: c.part,
                     gap: c.gap / u,
+                    obstacle: c
+                        .obstacle
+                        .as_ref()
+                        .map(|o| o.nondimensional(self.length, u)),
                     normal: c.normal.nondimensional(u, t),
                     friction: c.friction.as_ref().map(|f| {
                         let value = match f.bound {

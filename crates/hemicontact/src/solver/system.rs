@@ -136,7 +136,7 @@ impl System {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
-        let contact = problem.contact_nodes();
+        let contact = problem.contact_nodes()?;
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let t1 = Instant::now();
@@ -156,7 +156,7 @@ impl System {
                 .fold(0.0f64, |m, x| m.max(x.abs()));
             (h.lambda + 2.0 * h.mu) * u_d * problem.diameter().powi(d as i32 - 2)
         };
-        let rigid = problem.rigid_motions();
+        let rigid = problem.rigid_motions()?;
         let rigid_slots = rigid
             .shifted_dofs()
             .into_iter()

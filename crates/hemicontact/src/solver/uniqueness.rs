@@ -204,7 +204,7 @@ fn constants(problem: &Problem) -> Uniqueness {
     }
     // Free rigid motions (carried by contact): the elastic energy alone does not control
     // the trace, the constant is infinite.
-    let rigid = !coulomb && problem.rigid_motions().any_free();
+    let rigid = !coulomb && problem.rigid_motions().is_ok_and(|r| r.any_free());
     let note = if coulomb {
         Some("Theorem 4 covers Tresca-type friction bounds F = μ(‖u_τ‖); a Coulomb-type bound F = μ p(u_ν) is not covered".to_string())
     } else if rigid {
