@@ -28,9 +28,10 @@ use std::time::Instant;
 pub struct Level {
     /// Squares along x.
     pub n: usize,
-    /// Element area (the paper's h; the element volume in 3D).
+    /// Element area (the paper's h; the element volume in 3D); on a graded mesh the mean
+    /// over the cells.
     pub h_area: f64,
-    /// Element edge (square side along x).
+    /// Element edge (square side along x); on a graded mesh the mean, side / n.
     pub h_edge: f64,
     /// Number of DOFs.
     pub dofs: usize,
@@ -240,7 +241,8 @@ pub fn run_observed(
             energy_norm(&reference.mesh, &hooke, &diff) / reference_norm.max(f64::MIN_POSITIVE);
         let (lo, hi) = problem.mesh.bounding_box();
         let h_edge = (hi[0] - lo[0]) / n as f64;
-        // Element measure (area in 2D, volume in 3D): all cells of a generated mesh are equal.
+        // Element measure (area in 2D, volume in 3D): all cells of a uniform generated mesh
+        // are equal; on a graded one this is the mean, which refinement scales the same way.
         let h_area = problem.mesh.measure() / problem.mesh.n_cells() as f64;
         let (order_area, order_edge) = match levels.last() {
             Some(p) => (

@@ -607,6 +607,10 @@ fn json_schema_refuses_what_the_loader_refuses() {
         ("beta = 100.0", "beta = 100.0, c = 1.0"),
         ("poisson = 0.3", "poisson = 0.5"),
         ("kind = \"rectangle\"", "kind = \"circle\""),
+        (
+            "kind = \"rectangle\"",
+            "kind = \"rectangle\"\nprogression = [1.0, 0.0]",
+        ),
     ];
     for (from, to) in edits {
         let text = paper.replacen(from, to, 1);

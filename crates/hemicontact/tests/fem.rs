@@ -222,6 +222,7 @@ fn test_meshes() -> Vec<(Mesh, [f64; 2], [f64; 2])> {
             size,
             n,
             pattern,
+            progression: [1.0; 2],
         })
         .unwrap();
         let mut rng = Rng::new(13);

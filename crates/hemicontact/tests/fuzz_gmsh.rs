@@ -100,6 +100,7 @@ fn seeds() -> &'static [Vec<u8>] {
             size: [2.0, 1.0],
             n: [3, 2],
             pattern: CutPattern::Uniform,
+            progression: [1.0; 2],
         })
         .unwrap();
         let b = cuboid(&BoxSpec {
@@ -107,6 +108,7 @@ fn seeds() -> &'static [Vec<u8>] {
             size: [1.0, 2.0, 1.0],
             n: [1, 2, 1],
             pattern: CutPattern::Uniform,
+            progression: [1.0; 3],
         })
         .unwrap();
         for mesh in [&r, &b] {

@@ -426,6 +426,7 @@ fn rectangle_8x8() -> Mesh {
         size: [4.0, 4.0],
         n: [8, 8],
         pattern: CutPattern::Symmetric,
+        progression: [1.0; 2],
     })
     .unwrap()
 }
@@ -436,6 +437,7 @@ fn cuboid_3x3x3() -> Mesh {
         size: [1.0, 1.0, 1.0],
         n: [3, 3, 3],
         pattern: CutPattern::Uniform,
+        progression: [1.0; 3],
     })
     .unwrap()
 }
@@ -702,6 +704,7 @@ fn many_physical_groups_per_entity_are_read_in_linear_time() {
         size: [1.0, 1.0],
         n: [2000, 1],
         pattern: CutPattern::Uniform,
+        progression: [1.0; 2],
     })
     .unwrap();
     let text = String::from_utf8(write_msh(&mesh, MshEncoding::Ascii)).unwrap();

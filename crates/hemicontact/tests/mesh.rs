@@ -34,6 +34,7 @@ fn generated_rectangles_tile_the_domain() {
             size,
             n,
             pattern,
+            progression: [1.0; 2],
         })
         .unwrap();
         let (lx, ly) = (size[0], size[1]);
@@ -97,6 +98,7 @@ fn cut_patterns_are_nested_and_symmetric_pattern_is_mirror_symmetric() {
                 size: [4.0, 4.0],
                 n: [n, n],
                 pattern,
+                progression: [1.0; 2],
             })
             .unwrap()
         };
@@ -118,6 +120,7 @@ fn cut_patterns_are_nested_and_symmetric_pattern_is_mirror_symmetric() {
         size: [4.0, 2.0],
         n: [6, 3],
         pattern: CutPattern::Symmetric,
+        progression: [1.0; 2],
     })
     .unwrap();
     let key = |pts: [[f64; 2]; 3]| {
@@ -276,6 +279,7 @@ fn symmetric_pattern_needs_even_nx() {
         size: [1.0, 1.0],
         n: [5, 4],
         pattern: CutPattern::Symmetric,
+        progression: [1.0; 2],
     };
     let msg = mesh_error(rectangle(&r));
     assert!(msg.contains('5') && msg.contains("even"), "{msg}");

@@ -353,6 +353,7 @@ fn good_meshes_far_from_the_origin_pass_the_divergence_check() {
             size: [1.0, 0.5],
             n: [40, 20],
             pattern,
+            progression: [1.0; 2],
         })
         .unwrap();
         assert!((m.measure() - 0.5).abs() < 1e-6);
@@ -362,6 +363,7 @@ fn good_meshes_far_from_the_origin_pass_the_divergence_check() {
         size: [0.3, 0.2, 0.1],
         n: [6, 4, 2],
         pattern: CutPattern::Uniform,
+        progression: [1.0; 3],
     })
     .unwrap();
     assert!((m.measure() - 0.006).abs() < 1e-6);

@@ -28,6 +28,7 @@ fn square() -> Mesh {
         size: [1.0, 1.0],
         n: [2, 2],
         pattern: CutPattern::Uniform,
+        progression: [1.0; 2],
     })
     .unwrap()
 }

@@ -184,6 +184,7 @@ mod tests {
             size: [2.0, 1.0],
             n: [2 * n, n],
             pattern,
+            progression: [1.0; 2],
         })
         .unwrap()
     }

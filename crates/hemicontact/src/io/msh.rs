@@ -13,6 +13,7 @@
 //!     size: [2.0, 1.0],
 //!     n: [4, 2],
 //!     pattern: CutPattern::Uniform,
+//!     progression: [1.0; 2],
 //! })
 //! .unwrap();
 //! let bytes = write_msh(&mesh, MshEncoding::Binary);

@@ -1,7 +1,7 @@
 //! Built-in mesh generators.
 //!
-//! [`rectangle`] cuts `[x0, x0+lx] × [y0, y0+ly]` into `nx × ny` equal squares (rectangles)
-//! and each into two triangles. Nodes are numbered row by row, `n = j (nx+1) + i`. The four
+//! [`rectangle`] cuts `[x0, x0+lx] × [y0, y0+ly]` into `nx × ny` rectangles and each into
+//! two triangles. Nodes are numbered row by row, `n = j (nx+1) + i`. The four
 //! sides are the boundary parts `bottom`, `right`, `top`, `left` (in this order).
 //!
 //! The cut pattern decides the diagonal of each square:
@@ -15,6 +15,19 @@
 //!                                         |/ |/ | \| \|
 //!                                         +--+--+--+--+
 //! ```
+//!
+//! Along each axis the cells are equal (progression 1) or graded by a geometric
+//! progression `r` (as Gmsh's transfinite `Using Progression r`): the cell sizes are
+//! `h_k = h_0 r^k`, `k = 0 … n−1`, summing to the side length `L`, so node `i` sits at
+//!
+//! ```text
+//!   x_i = x0 + L (r^i − 1) / (r^n − 1)      (r ≠ 1),      x_i = x0 + L i / n      (r = 1).
+//! ```
+//!
+//! `r > 1` refines towards the origin side (`x = x0`), `r < 1` towards the far side; see
+//! [`axis_nodes`]. The symmetric cut pattern needs progression 1 along x: a graded x axis
+//! has no mirror symmetry about its centre, so the pair is refused rather than silently
+//! giving a pattern that only looks symmetric by index.
 
 use super::Mesh;
 use crate::error::{Error, Result};
@@ -40,17 +53,108 @@ pub struct Rectangle {
     pub n: [usize; 2],
     /// Diagonal pattern.
     pub pattern: CutPattern,
+    /// Ratio of consecutive cell sizes along x and y, from the origin side to the far side
+    /// (dimensionless; `1` for equal cells); see [`axis_nodes`].
+    pub progression: [f64; 2],
 }
 
 /// Largest number of subdivisions per side accepted by the generator (a 4096 × 4096 mesh
 /// has 33 million triangles; larger requests are almost certainly typos).
 pub const MAX_SUBDIVISIONS: usize = 4096;
 
+/// Smallest and largest progression ratio accepted by the generators (dimensionless).
+pub const PROGRESSION_RANGE: [f64; 2] = [1e-3, 1e3];
+
+/// Smallest cell of a graded axis accepted by the generators, as a fraction of the side.
+pub const MIN_RELATIVE_CELL: f64 = 1e-9;
+
+/// The smallest cell of `n` cells graded by the progression `r`, as a fraction of the
+/// side: `(q − 1)/(q^n − 1)` with `q = max(r, 1/r)` (`1/n` for `r = 1`), computed as
+/// `expm1(a)/expm1(n a)`, `a = |ln r|`, which stays accurate for `r` near 1 and gives 0
+/// instead of overflowing for very large `q^n`.
+pub fn smallest_relative_cell(r: f64, n: usize) -> f64 {
+    if r == 1.0 {
+        return 1.0 / n as f64;
+    }
+    let a = r.ln().abs();
+    a.exp_m1() / (n as f64 * a).exp_m1()
+}
+
+/// Checks the progression `r` of an axis of `n` cells: `Ok` if it is finite, within
+/// [`PROGRESSION_RANGE`] and its smallest cell is at least [`MIN_RELATIVE_CELL`] of the
+/// side; otherwise `Err` with a description of what is allowed.
+///
+/// # Errors
+/// The description of the allowed values (for the caller to name its field in).
+pub fn check_progression(r: f64, n: usize) -> std::result::Result<(), String> {
+    let [lo, hi] = PROGRESSION_RANGE;
+    let allowed = format!(
+        "a finite ratio from {lo:e} to {hi:e} whose smallest cell is at least \
+         {MIN_RELATIVE_CELL:e} of the side"
+    );
+    if !(r.is_finite() && (lo..=hi).contains(&r)) {
+        return Err(allowed);
+    }
+    let smallest = smallest_relative_cell(r, n.max(1));
+    if smallest < MIN_RELATIVE_CELL {
+        return Err(format!(
+            "{allowed} (with {n} cells its smallest cell is {smallest:.1e} of the side)"
+        ));
+    }
+    Ok(())
+}
+
+/// Node coordinates `x_0 … x_n` of an axis from `x0` of length `length` (m) cut into `n`
+/// cells graded by the progression `r` (cell sizes `h_k = h_0 r^k`):
+/// `x_i = x0 + L (r^i − 1)/(r^n − 1)`, evaluated as `x0 + L expm1(i ln r)/expm1(n ln r)`
+/// (no cancellation for `r` near 1). For `r = 1` it is `x0 + L (i/n)`, the expression of
+/// the uniform grid, bitwise. The ends are exact: `x_0 = x0`, `x_n = x0 + L`. The caller
+/// checks `r` ([`check_progression`]) and `n ≥ 1`.
+pub fn axis_nodes(x0: f64, length: f64, n: usize, r: f64) -> Vec<f64> {
+    if r == 1.0 {
+        // Exact at the ends: i == n gives x0 + L, not a rounded sum.
+        return (0..=n)
+            .map(|i| x0 + length * (i as f64 / n as f64))
+            .collect();
+    }
+    let a = r.ln();
+    let total = (n as f64 * a).exp_m1();
+    (0..=n)
+        .map(|i| match i {
+            0 => x0,
+            _ if i == n => x0 + length,
+            _ => x0 + length * ((i as f64 * a).exp_m1() / total),
+        })
+        .collect()
+}
+
+/// Checks the progressions of a generated mesh: each with [`check_progression`], and
+/// progression 1 along x with the symmetric pattern.
+fn check_progressions(progression: &[f64], n: &[usize], pattern: CutPattern) -> Result<()> {
+    for (axis, (&r, &cells)) in progression.iter().zip(n).enumerate() {
+        if let Err(allowed) = check_progression(r, cells) {
+            return Err(Error::Mesh(format!(
+                "the progression along {} must be {allowed}, got {r}",
+                ["x", "y", "z"][axis]
+            )));
+        }
+    }
+    if pattern == CutPattern::Symmetric && progression[0] != 1.0 {
+        return Err(Error::Mesh(format!(
+            "the symmetric cut pattern needs progression 1 along x (a graded x axis is not \
+             mirror-symmetric about its centre), got {}; use the uniform pattern",
+            progression[0]
+        )));
+    }
+    Ok(())
+}
+
 /// Generates the rectangle mesh described by `r`; see the module documentation.
 ///
 /// # Errors
 /// [`Error::Mesh`] if a side length is not positive and finite, a subdivision count is zero
-/// or above [`MAX_SUBDIVISIONS`], or the symmetric pattern is asked for an odd `nx`.
+/// or above [`MAX_SUBDIVISIONS`], a progression fails [`check_progression`], or the
+/// symmetric pattern is asked for an odd `nx` or a progression other than 1 along x.
 pub fn rectangle(r: &Rectangle) -> Result<Mesh> {
     let [nx, ny] = r.n;
     let [lx, ly] = r.size;
@@ -72,13 +176,15 @@ pub fn rectangle(r: &Rectangle) -> Result<Mesh> {
             "the symmetric cut pattern needs an even number of squares along x, got {nx}"
         )));
     }
+    check_progressions(&r.progression, &r.n, r.pattern)?;
     let id = |i: usize, j: usize| (j * (nx + 1) + i) as u32;
+    let xs = axis_nodes(r.origin[0], lx, nx, r.progression[0]);
+    let ys = axis_nodes(r.origin[1], ly, ny, r.progression[1]);
     let mut coords = Vec::with_capacity(2 * (nx + 1) * (ny + 1));
-    for j in 0..=ny {
-        for i in 0..=nx {
-            // Exact at the ends: i == nx gives x0 + lx, not a rounded sum.
-            coords.push(r.origin[0] + lx * (i as f64 / nx as f64));
-            coords.push(r.origin[1] + ly * (j as f64 / ny as f64));
+    for &y in &ys {
+        for &x in &xs {
+            coords.push(x);
+            coords.push(y);
         }
     }
     let mut cells = Vec::with_capacity(6 * nx * ny);
@@ -132,6 +238,7 @@ mod tests {
                 size: [4.0, 3.0],
                 n: [6, 5],
                 pattern,
+                progression: [1.0; 2],
             };
             let m = rectangle(&r).unwrap();
             assert_eq!(m.n_nodes(), 7 * 6);
@@ -149,6 +256,7 @@ mod tests {
             size: [4.0, 4.0],
             n: [8, 8],
             pattern: CutPattern::Symmetric,
+            progression: [1.0; 2],
         };
         let m = rectangle(&r).unwrap();
         // Every cell's mirror image (x → 4 − x) is a cell of the mesh.
@@ -180,6 +288,7 @@ mod tests {
             size: [1.0, 1.0],
             n: [3, 2],
             pattern: CutPattern::Symmetric,
+            progression: [1.0; 2],
         };
         assert!(matches!(rectangle(&r), Err(Error::Mesh(_))));
     }
@@ -197,6 +306,9 @@ pub struct BoxSpec {
     /// Pattern: `Uniform` (every cube split the same way) or `Symmetric` (mirrored about
     /// the plane `x = x0 + lx/2`).
     pub pattern: CutPattern,
+    /// Ratio of consecutive cell sizes along x, y and z, from the origin side to the far
+    /// side (dimensionless; `1` for equal cells); see [`axis_nodes`].
+    pub progression: [f64; 3],
 }
 
 /// Generates the box mesh described by `b`: `nx × ny × nz` cuboids, each cut into 6
@@ -208,8 +320,9 @@ pub struct BoxSpec {
 /// `left` (x = x0), `right`, `front` (y = y0), `back`, `bottom` (z = z0), `top`.
 ///
 /// # Errors
-/// [`Error::Mesh`] on non-positive sides, subdivisions out of `1 ..= MAX_SUBDIVISIONS`, or
-/// the symmetric pattern with an odd `nx`.
+/// [`Error::Mesh`] on non-positive sides, subdivisions out of `1 ..= MAX_SUBDIVISIONS`, a
+/// progression failing [`check_progression`], or the symmetric pattern with an odd `nx` or
+/// a progression other than 1 along x.
 pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
     let [nx, ny, nz] = b.n;
     if b.size.iter().any(|&s| !(s.is_finite() && s > 0.0))
@@ -231,6 +344,7 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
             "the symmetric cut pattern needs an even number of cubes along x, got {nx}"
         )));
     }
+    check_progressions(&b.progression, &b.n, b.pattern)?;
     // Node indices are u32 and the 6 tetrahedra per cube must be addressable: refuse
     // sizes beyond that before allocating anything.
     let nodes = (nx as u64 + 1) * (ny as u64 + 1) * (nz as u64 + 1);
@@ -250,12 +364,12 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
             "a box mesh of {nodes} nodes and {tets} tetrahedra"
         )));
     }
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                coords.push(b.origin[0] + b.size[0] * (i as f64 / nx as f64));
-                coords.push(b.origin[1] + b.size[1] * (j as f64 / ny as f64));
-                coords.push(b.origin[2] + b.size[2] * (k as f64 / nz as f64));
+    let [xs, ys, zs] =
+        [0, 1, 2].map(|a| axis_nodes(b.origin[a], b.size[a], b.n[a], b.progression[a]));
+    for &z in &zs {
+        for &y in &ys {
+            for &x in &xs {
+                coords.extend_from_slice(&[x, y, z]);
             }
         }
     }
@@ -344,6 +458,7 @@ mod box_tests {
                 size: [4.0, 2.0, 3.0],
                 n: [4, 2, 3],
                 pattern,
+                progression: [1.0; 3],
             };
             let m = cuboid(&b).unwrap();
             assert_eq!(m.n_nodes(), 5 * 3 * 4);

@@ -12,6 +12,13 @@ impl Scenario {
     /// The same scenario with `n` squares along x (and proportionally many along y), for
     /// mesh-refinement studies.
     ///
+    /// A graded mesh (`mesh.progression`) keeps its total grading `R = r^cells` on every
+    /// axis: all counts scale by `n/n_x` (`n_x` the current count along x), so each ratio
+    /// `r` becomes `r^(n_x/n)`. Every mesh then samples the same map
+    /// `ξ ↦ x0 + L (R^ξ − 1)/(R − 1)` at `ξ = i/cells`, and refining by an integer factor `s`
+    /// splits each cell into `s` (nested meshes, as convergence studies need): doubling `n`
+    /// takes `r` to `√r`.
+    ///
     /// # Errors
     /// [`Error::Scenario`] if the mesh is read from a file (it cannot be refined), if `n` is
     /// zero or the y count would not be an integer.
@@ -67,6 +74,13 @@ impl Scenario {
         let mut out = self.clone();
         if let Some(spec) = out.file.mesh.as_mut() {
             spec.n = Some(scaled);
+            // Same total grading r^cells on every axis (all counts scale by n / nx).
+            let exponent = nx as f64 / n as f64;
+            if let Some(ratios) = spec.progression.as_mut() {
+                for r in ratios.iter_mut().filter(|r| **r != 1.0) {
+                    *r = r.powf(exponent);
+                }
+            }
         }
         Ok(out)
     }
@@ -123,13 +137,14 @@ impl Scenario {
             ("mesh.size", m.size.is_some()),
             ("mesh.n", m.n.is_some()),
             ("mesh.pattern", m.pattern.is_some()),
+            ("mesh.progression", m.progression.is_some()),
         ];
         if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
             return Err(self.err(
                 field,
                 "given",
-                "nothing with kind = \"gmsh\": the mesh comes from mesh.file (origin, size, n \
-                 and pattern are for generated meshes)",
+                "nothing with kind = \"gmsh\": the mesh comes from mesh.file (origin, size, n, \
+                 pattern and progression are for generated meshes)",
             ));
         }
         let Some(file) = &m.file else {
@@ -260,6 +275,7 @@ impl Scenario {
                 "an even number with pattern = \"symmetric\" (mirror symmetry about the centre plane)",
             ));
         }
+        let progression = self.progression(m, counts)?;
         if let Some(limit) = self.memory_limit {
             // The free equations are known only with the boundary conditions: a lower bound
             // here, before anything is allocated, the estimate itself in
@@ -293,6 +309,7 @@ impl Scenario {
                 size: [size[0], size[1]],
                 n: [n(0), n(1)],
                 pattern: m.pattern(),
+                progression: [progression[0], progression[1]],
             })
         } else {
             generate::cuboid(&generate::BoxSpec {
@@ -300,6 +317,7 @@ impl Scenario {
                 size: [size[0], size[1], size[2]],
                 n: [n(0), n(1), n(2)],
                 pattern: m.pattern(),
+                progression,
             })
         };
         // A generated mesh can only be invalid through the numbers of [mesh]: name them.
@@ -311,6 +329,38 @@ impl Scenario {
             ),
             other => other,
         })
+    }
+
+    /// The progression ratios of a generated `[mesh]` with `counts` cells per axis (all 1 if
+    /// `mesh.progression` is absent), checked with [`generate::check_progression`] and
+    /// against the symmetric pattern, which needs 1 along x.
+    fn progression(&self, m: &MeshSpec, counts: &[u64]) -> Result<[f64; 3]> {
+        let mut out = [1.0; 3];
+        let Some(ratios) = &m.progression else {
+            return Ok(out);
+        };
+        let dim = counts.len();
+        if ratios.len() != dim {
+            return Err(self.err(
+                "mesh.progression",
+                format!("{ratios:?}"),
+                &format!("{dim} ratios, one per axis"),
+            ));
+        }
+        for (k, (&r, &n)) in ratios.iter().zip(counts).enumerate() {
+            generate::check_progression(r, n as usize)
+                .map_err(|allowed| self.err(&format!("mesh.progression[{k}]"), r, &allowed))?;
+            out[k] = r;
+        }
+        if m.pattern() == generate::CutPattern::Symmetric && out[0] != 1.0 {
+            return Err(self.err(
+                "mesh.progression[0]",
+                out[0],
+                "1 with pattern = \"symmetric\" (the default; a graded x axis is not \
+                 mirror-symmetric about its centre): set pattern = \"uniform\" to grade along x",
+            ));
+        }
+        Ok(out)
     }
 
     /// Checks the estimated memory of a solve of `problem` against

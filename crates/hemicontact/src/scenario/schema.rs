@@ -9,10 +9,12 @@
 //! size = [4.0, 4.0]         # m
 //! n = [16, 16]              # squares per side, each cut into two triangles
 //! pattern = "symmetric"     # or "uniform" (default "symmetric")
+//! # progression = [1.0, 1.0]  # ratio of consecutive cell sizes per axis, from the origin
+//! #                         # side (default all 1: equal cells; x ≠ 1 needs "uniform")
 //! # kind = "gmsh"           # a Gmsh 4.1 file (ASCII or binary) instead of a generator:
 //! # file = "meshes/half-disc.msh"   # relative to the scenario file's folder; parts are the
 //! #                         # physical groups of dimension d − 1 (see mesh::gmsh); no
-//! #                         # origin/size/n/pattern
+//! #                         # origin/size/n/pattern/progression
 //!
 //! [material]
 //! model = "hooke"           # (default)
@@ -140,8 +142,9 @@ pub enum MeshKind {
 
 /// `[mesh]`.
 ///
-/// The generators (`rectangle`, `box`) require `size` and `n` and accept `origin` and
-/// `pattern`; `gmsh` requires `file` and accepts none of the generator fields.
+/// The generators (`rectangle`, `box`) require `size` and `n` and accept `origin`,
+/// `pattern` and `progression`; `gmsh` requires `file` and accepts none of the generator
+/// fields.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
@@ -162,6 +165,11 @@ pub struct MeshSpec {
     /// Generators: diagonal pattern (default `symmetric`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pattern: Option<CutPattern>,
+    /// Generators: ratio of consecutive cell sizes along each axis, from the origin side to
+    /// the far side (dimensionless; default 1: equal cells); see
+    /// [`crate::mesh::generate::axis_nodes`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub progression: Option<Vec<f64>>,
 }
 
 impl MeshSpec {
