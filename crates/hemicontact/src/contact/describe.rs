@@ -100,51 +100,6 @@ impl fmt::Display for NormalLaw {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn laws_name_themselves_with_rounded_parameters() {
-        let mu = FrictionCoefficient::Exponential {
-            a: 0.4,
-            b: 0.1,
-            beta: 100.0,
-        };
-        assert_eq!(
-            mu.to_string(),
-            "exponential slip weakening μ(r) = (a − b) e^(−βr) + b with a = 0.4, b = 0.1, \
-             β = 100 1/m"
-        );
-        let mu = FrictionCoefficient::Constant {
-            mu: 0.1 + 0.2, // 0.30000000000000004
-        };
-        assert_eq!(mu.to_string(), "constant μ = 0.3");
-        let table = FrictionCoefficient::Table {
-            points: vec![[0.0, 0.4], [0.01, 0.1]],
-        };
-        assert_eq!(
-            table.to_string(),
-            "piecewise linear μ(r) through 2 points (r in m, μ) (0, 0.4), (0.01, 0.1), \
-             constant beyond the last"
-        );
-        let long = FrictionCoefficient::Table {
-            points: (0..10).map(|k| [k as f64, 0.5]).collect(),
-        };
-        let text = long.to_string();
-        assert!(
-            text.contains("10 points") && text.contains("…, (9, 0.5)"),
-            "{text}"
-        );
-        let law = NormalLaw::Compliance(super::super::NormalCompliance { c_nu: 1e4 });
-        assert_eq!(
-            law.to_string(),
-            "normal compliance p = c_ν (u_ν − g)_+ with c_ν = 10000 Pa/m"
-        );
-        assert!(!format!("{mu:?}").is_empty());
-    }
-}
-
 impl fmt::Display for super::obstacle::ObstacleSpec {
     /// E.g. `rigid circle, centre (5, 14.99) m, radius 10 m, translated by (0, −0.02) m`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -190,5 +145,50 @@ impl fmt::Display for super::obstacle::ObstacleSpec {
             Some(t) => write!(f, ", translated by {} m", v(t)),
             None => Ok(()),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn laws_name_themselves_with_rounded_parameters() {
+        let mu = FrictionCoefficient::Exponential {
+            a: 0.4,
+            b: 0.1,
+            beta: 100.0,
+        };
+        assert_eq!(
+            mu.to_string(),
+            "exponential slip weakening μ(r) = (a − b) e^(−βr) + b with a = 0.4, b = 0.1, \
+             β = 100 1/m"
+        );
+        let mu = FrictionCoefficient::Constant {
+            mu: 0.1 + 0.2, // 0.30000000000000004
+        };
+        assert_eq!(mu.to_string(), "constant μ = 0.3");
+        let table = FrictionCoefficient::Table {
+            points: vec![[0.0, 0.4], [0.01, 0.1]],
+        };
+        assert_eq!(
+            table.to_string(),
+            "piecewise linear μ(r) through 2 points (r in m, μ) (0, 0.4), (0.01, 0.1), \
+             constant beyond the last"
+        );
+        let long = FrictionCoefficient::Table {
+            points: (0..10).map(|k| [k as f64, 0.5]).collect(),
+        };
+        let text = long.to_string();
+        assert!(
+            text.contains("10 points") && text.contains("…, (9, 0.5)"),
+            "{text}"
+        );
+        let law = NormalLaw::Compliance(super::super::NormalCompliance { c_nu: 1e4 });
+        assert_eq!(
+            law.to_string(),
+            "normal compliance p = c_ν (u_ν − g)_+ with c_ν = 10000 Pa/m"
+        );
+        assert!(!format!("{mu:?}").is_empty());
     }
 }
