@@ -17,9 +17,11 @@ Usage (needs the hemicontact Python package, numpy and matplotlib)::
 
     python scripts/hertz.py [--levels2d 32 64 128 256] [--levels3d 8 16 32]
                             [--no-friction] [--out out/hertz]
+    python scripts/hertz.py --sensitivity 38
 
 Writes ``table.md`` (the table printed), ``pressure-2d.png`` and ``pressure-3d.png`` to
-the output folder.
+the output folder; with ``--sensitivity N``, ``sensitivity.md``: the 3D set-up's departure
+from Hertz against the block size and the indenter radius, at N³ cells.
 """
 
 import argparse
@@ -130,37 +132,41 @@ def run_case(name, path, levels, friction):
     return dim, exact, rows
 
 
-def order(e0, e1, h0, h1):
-    if e0 <= 0 or e1 <= 0 or h0 == h1:
-        return float("nan")
-    return math.log(e0 / e1) / math.log(h0 / h1)
+def orders(values):
+    """Observed orders of convergence from successive differences of nested levels (each
+    halving the cells): log₂(|v_{k−1} − v_{k−2}| / |v_k − v_{k−1}|), blank for the first two
+    levels. They measure the convergence to the discrete model's limit, whatever that
+    limit's distance to Hertz."""
+    out = [float("nan")] * len(values)
+    for k in range(2, len(values)):
+        d0, d1 = abs(values[k - 1] - values[k - 2]), abs(values[k] - values[k - 1])
+        if d0 > 0 and d1 > 0:
+            out[k] = math.log2(d0 / d1)
+    return out
 
 
 def table(dim, exact, rows):
     a0, f0, p0 = exact
     force_label = "F (N/m)" if dim == 2 else "F (N)"
     lines = [
-        f"| case | n | DOFs | h at a | a | a − a_H | {force_label} | F/F_H − 1 | p₀ | "
+        f"| case | n | DOFs | h at a | a | a − a_H | {force_label} | F/F_H − 1 | order F | p₀ | "
         "p₀/p₀_H − 1 | order p₀ | stick/slip | time (s) |",
-        "|---|---|---|---|---|---|---|---|---|---|---|---|---|",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
-    previous = None
-    for row in rows:
-        ep = abs(row["peak"] / p0 - 1.0)
-        o = (
-            order(previous[0], ep, previous[1], row["h"])
-            if previous is not None and previous[2] == row["case"]
-            else float("nan")
-        )
-        previous = (ep, row["h"], row["case"])
-        lines.append(
-            f"| {row['case']} | {row['n']} | {row['dofs']} | {row['h']:.4f} | "
-            f"{row['a']:.4f} | {row['a'] - a0:+.4f} | {row['force']:.5g} | "
-            f"{row['force'] / f0 - 1.0:+.2%} | {row['peak']:.4f} | "
-            f"{row['peak'] / p0 - 1.0:+.2%} | "
-            f"{'' if math.isnan(o) else f'{o:.2f}'} | {row['stick']}/{row['slip']} | "
-            f"{row['time']:.2f} |"
-        )
+    fmt = lambda x: "" if math.isnan(x) else f"{x:.2f}"
+    for case in dict.fromkeys(row["case"] for row in rows):
+        own = [row for row in rows if row["case"] == case]
+        order_p = orders([row["peak"] for row in own])
+        # In 2D the force is the applied load: no order.
+        order_f = orders([row["force"] for row in own]) if dim == 3 else [float("nan")] * len(own)
+        for row, of, op in zip(own, order_f, order_p):
+            lines.append(
+                f"| {row['case']} | {row['n']} | {row['dofs']} | {row['h']:.4f} | "
+                f"{row['a']:.4f} | {row['a'] - a0:+.4f} | {row['force']:.5g} | "
+                f"{row['force'] / f0 - 1.0:+.2%} | {fmt(of)} | {row['peak']:.4f} | "
+                f"{row['peak'] / p0 - 1.0:+.2%} | {fmt(op)} | {row['stick']}/{row['slip']} | "
+                f"{row['time']:.2f} |"
+            )
     head = (
         f"Hertz ({dim}D): a_H = {a0:.5f} m, F_H = {f0:.6g}, p₀_H = {p0:.6g} Pa"
         + (" (F is the applied load)" if dim == 2 else "")
@@ -208,15 +214,68 @@ def figure(dim, exact, rows, path):
     plt.close(fig)
 
 
+def sensitivity(n, out):
+    """The 3D set-up's departure from Hertz against the block size L (a/L) and the
+    indenter radius R (a/R), at fixed a = √(Rd) = 0.1 m, on n³-cell meshes graded to a
+    first cell of about 0.006 m (L = 4) or 0.01 m (L = 1)."""
+    path = ROOT / "scenarios" / "hertz3d.toml"
+    base = tomllib.loads(path.read_text())
+    base.pop("output", None)
+    lines = [
+        "| L (m) | R (m) | d (m) | a/L | a/R | DOFs | h at a | a − a_H | F/F_H − 1 | "
+        "p₀/p₀_H − 1 | time (s) |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
+    for size, radius, depth, ratio in ((1.0, 0.5, 0.02, 1.065), (4.0, 0.5, 0.02, 1.123),
+                                       (4.0, 5.0, 0.002, 1.123)):
+        data = dict(base)
+        mesh = dict(base["mesh"])
+        mesh.update(
+            origin=[0.0, 0.0, -size],
+            size=[size] * 3,
+            n=[n] * 3,
+            progression=[ratio, ratio, 1.0 / ratio],
+        )
+        data["mesh"] = mesh
+        contact = dict(base["contact"][0])
+        contact["obstacle"] = dict(contact["obstacle"], radius=radius,
+                                   displacement=[0.0, 0.0, -depth])
+        data["contact"] = [contact]
+        exact = hertz(data, 3)
+        start = time.perf_counter()
+        result = hc.solve(hc.Scenario.from_dict(data, source=str(path)))
+        wall = time.perf_counter() - start
+        a, force, peak, h, _, _, _ = measure(result, 3)
+        lines.append(
+            f"| {size:g} | {radius:g} | {depth:g} | {exact[0] / size:.3f} | "
+            f"{exact[0] / radius:.2f} | {result.summary['sizes']['dofs']} | {h:.4f} | "
+            f"{a - exact[0]:+.4f} | {force / exact[1] - 1:+.2%} | {peak / exact[2] - 1:+.2%} | "
+            f"{wall:.1f} |"
+        )
+        print(lines[-1], file=sys.stderr)
+    text = "\n".join(lines) + "\n"
+    (out / "sensitivity.md").write_text(text)
+    return text
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--levels2d", type=int, nargs="*", default=[32, 64, 128, 256])
     parser.add_argument("--levels3d", type=int, nargs="*", default=[8, 16, 32])
     parser.add_argument("--no-friction", action="store_true")
     parser.add_argument("--out", default="out/hertz")
+    parser.add_argument(
+        "--sensitivity",
+        type=int,
+        metavar="N",
+        help="only the 3D set-up against block size and indenter radius, on N³ cells",
+    )
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.sensitivity:
+        print(sensitivity(args.sensitivity, out))
+        return
     text = []
     for dim, levels in ((2, args.levels2d), (3, args.levels3d)):
         if not levels:

@@ -37,7 +37,8 @@ class Result:
       ``gap``, ``u_tau_1``, ``u_tau_2``, ``slip``, ``pressure``, ``bound``,
       ``force_normal``, ``force_tangential_1``, ``force_tangential_2``, ``normal_state``,
       ``friction_state``, ``normal_residual``, ``friction_residual``) and the vectors
-      ``normal`` (outward unit normal), ``force`` (interface force on the body, N) and
+      ``normal`` (the unit contact normal, columns ``nu_x``, ``nu_y``, ``nu_z``), ``force``
+      (interface force on the body, N) and
       ``friction_traction`` (tangential traction on the body, force / weight, Pa), K × 3;
     - ``contact_totals``: one dict per contact boundary (``[[contact]]`` entry, in order),
       the ``contact_totals`` of ``summary.json``: ``part``; the counts ``points``,
