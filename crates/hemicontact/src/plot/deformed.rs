@@ -302,7 +302,17 @@ fn panel_layout(
     }
     // Foundations: contact facets shifted by the magnified gap along their normals (in 3D
     // the facets seen edge-on). Against an obstacle each node moves by its own gap along its
-    // own normal, which at true scale puts it on its closest point of the obstacle.
+    // own normal, which at true scale puts it on its closest point of the obstacle: drawn
+    // are the edges of the part's facets in the plane of the drawing (in 3D, those on the
+    // face nearest the viewer) whose points fall within the body's box widened by a fifth
+    // of its size (far from the body the magnified gaps would distort the shape).
+    let near = |p: [f64; 2]| {
+        let margin = 0.2 * size;
+        p[0] >= blo[0] - margin
+            && p[0] <= bhi[0] + margin
+            && p[1] >= blo[iy] - margin
+            && p[1] <= bhi[iy] + margin
+    };
     let points = problem.contact_nodes().unwrap_or_default();
     let mut shift = vec![[0.0; 2]; mesh.n_nodes()];
     let mut foundation = Vec::new();
@@ -330,7 +340,14 @@ fn panel_layout(
                 let (va, vb) = (v[k], v[(k + 1) % v.len()]);
                 let (a, b) = (pos(va as usize, 0.0), pos(vb as usize, 0.0));
                 let (sa, sb) = (sh(va), sh(vb));
-                foundation.push(([a[0] + sa[0], a[1] + sa[1]], [b[0] + sb[0], b[1] + sb[1]]));
+                let segment = ([a[0] + sa[0], a[1] + sa[1]], [b[0] + sb[0], b[1] + sb[1]]);
+                if cb.obstacle.is_some() {
+                    let front = |v: u32| d == 2 || mesh.node(v as usize)[1] == blo[1];
+                    if !(front(va) && front(vb) && near(segment.0) && near(segment.1)) {
+                        continue;
+                    }
+                }
+                foundation.push(segment);
             }
         }
     }
@@ -384,25 +401,38 @@ fn panel_layout(
         mesh_drawn: true,
         cells: if d == 2 { mesh.n_cells() } else { facing.len() },
     };
-    let probe = flow(
-        &entries(solution, &key),
-        x0 + 16.0,
-        x0 + w - 16.0,
-        0.0,
-        12.0,
-    );
+    // The arrows' scale depends on the width only, and its legend entry on the scale.
+    let arrow_px = 0.08 * area_w;
+    key.arrow_scale = if max_t > 0.0 { arrow_px / max_t } else { 0.0 };
+    // Whether the mesh is drawn is known only once the frame is: the legend is set both
+    // ways (the text of the boundary entry differs) and the taller one is kept.
+    let probe = [true, false]
+        .map(|drawn| {
+            let key = Key {
+                mesh_drawn: drawn,
+                ..key
+            };
+            flow(
+                &entries(solution, &key),
+                x0 + 16.0,
+                x0 + w - 16.0,
+                0.0,
+                12.0,
+            )
+            .bottom
+        })
+        .into_iter()
+        .fold(0.0, f64::max);
     let area = [
         x0 + 70.0,
         y0 + title_h + axes::ABOVE,
         area_w,
-        h - title_h - axes::ABOVE - axes::BELOW - probe.bottom - 14.0,
+        h - title_h - axes::ABOVE - axes::BELOW - probe - 14.0,
     ];
     let frame = Frame::new(lo, hi, area);
     let px = |p: [f64; 2]| frame.px(p);
     key.mesh_drawn = mesh_drawn(mesh, frame.scale, d);
     let mesh_drawn = key.mesh_drawn;
-    let arrow_px = 0.08 * area[2];
-    key.arrow_scale = if max_t > 0.0 { arrow_px / max_t } else { 0.0 };
     let chosen = arrow_points(
         problem,
         solution,
