@@ -102,7 +102,7 @@ fn arrays(xml: &str, section: &str) -> Vec<(String, usize)> {
         .collect()
 }
 
-const POINT_FIELDS: [(&str, usize); 8] = [
+const POINT_FIELDS: [(&str, usize); 9] = [
     ("displacement", 3),
     ("reaction", 3),
     ("contact_normal_state", 1),
@@ -111,6 +111,7 @@ const POINT_FIELDS: [(&str, usize); 8] = [
     ("friction_traction", 3),
     ("slip", 1),
     ("interface_force", 3),
+    ("contact_normal", 3),
 ];
 const CELL_FIELDS: [(&str, usize); 7] = [
     ("strain", 9),
@@ -221,9 +222,12 @@ fn friction_traction_and_interface_force_both_act_on_the_body() {
     let traction = f64s(&bytes, "friction_traction");
     let force = f64s(&bytes, "interface_force");
     let state = i32s(&bytes, "contact_friction_state");
+    let normal = f64s(&bytes, "contact_normal");
     let mut sliding = 0;
     for c in &solution.contact {
         let v = c.node as usize;
+        // The bottom's outward normal.
+        assert_eq!(&normal[3 * v..3 * v + 3], &[0.0, -1.0, 0.0], "node {v}");
         assert!(c.pressure > 0.0, "node {v} is pressed");
         assert!(force[3 * v + 1] > 0.0, "node {v}: the foundation pushes up");
         if c.friction_state == FrictionState::Slip {

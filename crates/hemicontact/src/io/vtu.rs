@@ -350,6 +350,7 @@ pub fn field_units(dim: usize) -> Vec<(&'static str, &'static str)> {
         ("friction_traction", "Pa"),
         ("slip", "m"),
         ("interface_force", force),
+        ("contact_normal", "1"),
         ("strain", "1"),
         ("stress", "Pa"),
         ("von_mises", "Pa"),
@@ -387,7 +388,9 @@ pub const STATE_CODES: &str = "contact_normal_state: -1 not a contact node, 0 se
 /// 1 stick, 2 slip), `contact_pressure` p = −σ_ν (Pa; for Signorini the multiplier of
 /// `u_ν ≤ g`), `slip` ‖u_τ‖, and, both as the action of the foundation on the body in
 /// global coordinates, the `friction_traction` σ_τ = R_τ/w (Pa, opposing the slip) and the
-/// nodal `interface_force` R (N, N/m in 2D; its normal part is about −w p ν). Where a node
+/// nodal `interface_force` R (N, N/m in 2D; its normal part is about −w p ν), and the unit
+/// `contact_normal` ν of the point (outward from the body; against a rigid obstacle the
+/// opposite of the obstacle's normal at the node's closest point). Where a node
 /// is several contact points (on two contact boundaries, or at a corner of one), the last
 /// point's values are shown and the forces are summed.
 /// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
@@ -396,7 +399,8 @@ pub const STATE_CODES: &str = "contact_normal_state: -1 not a contact node, 0 se
 /// locking: its penalty approximation `C_κ Q_+`). The stress includes the locking stress.
 ///
 /// # Errors
-/// [`Error::Invalid`] if `load_factor` is not finite.
+/// [`Error::Invalid`] if `load_factor` is not finite; the errors of
+/// [`Problem::contact_nodes`] (none for a problem that was solved).
 pub fn solution_vtu<'a>(
     problem: &'a Problem,
     solution: &Solution,
@@ -420,8 +424,11 @@ pub fn solution_vtu<'a>(
     let mut slip = vec![0.0; n];
     let mut force = vec![0.0; 3 * n];
     let mut traction = vec![0.0; 3 * n];
-    for c in &solution.contact {
+    let mut normal = vec![0.0; 3 * n];
+    let points = problem.contact_nodes()?;
+    for (c, nu) in solution.contact.iter().zip(&points.normal) {
         let v = c.node as usize;
+        normal[3 * v..3 * v + 3].copy_from_slice(nu);
         normal_state[v] = c.normal_state.code();
         friction_state[v] = c.friction_state.code();
         pressure[v] = c.pressure;
@@ -449,6 +456,7 @@ pub fn solution_vtu<'a>(
         .point_f64("friction_traction", 3, traction)
         .point_f64("slip", 1, slip)
         .point_f64("interface_force", 3, force)
+        .point_f64("contact_normal", 3, normal)
         .cell_f64("strain", 9, cells.strain)
         .cell_f64("stress", 9, cells.stress)
         .cell_f64("von_mises", 1, cells.von_mises)
