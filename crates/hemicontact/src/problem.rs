@@ -523,6 +523,28 @@ impl Problem {
         u
     }
 
+    /// The largest prescribed motion (m): the largest component of a Dirichlet value and of
+    /// the translation of an obstacle on a part with friction (which drags the body along:
+    /// the slip is relative to the obstacle). The displacement these data can cause, for the
+    /// displacement scale and the force floor of the solver.
+    pub fn largest_prescribed_motion(&self) -> f64 {
+        let d = self.mesh.dim();
+        let mut m = 0.0f64;
+        for b in &self.dirichlet {
+            for i in 0..d {
+                if b.components[i] {
+                    m = m.max(b.value[i].abs());
+                }
+            }
+        }
+        for c in self.contact.iter().filter(|c| c.friction.is_some()) {
+            if let Some(t) = c.obstacle.as_ref().and_then(|o| o.translation(d).ok()) {
+                m = t[..d].iter().fold(m, |m, x| m.max(x.abs()));
+            }
+        }
+        m
+    }
+
     /// The consistent external force vector `f` (DOF order, length `d · n_nodes`).
     pub fn external_forces(&self) -> Vec<f64> {
         let d = self.mesh.dim();

@@ -41,6 +41,17 @@
 //! normal at the closest point `P(X_i)` of the node's reference position `X_i`, and its
 //! gap is the signed distance `g_i = g(X_i)` (negative where the obstacle starts out inside
 //! the body). A flat foundation gives every point of its boundary the same gap `g`.
+//!
+//! # Slip relative to the foundation
+//!
+//! Friction resists the motion of the body *relative to the foundation's material point*.
+//! A flat foundation is at rest; an obstacle translated rigidly by `t` carries its material
+//! points with it, so the slip of point i is `u_τ − t_τ`, with `t_τ` the tangential part of
+//! `t` at the point: its tangential coordinates `t·τ_a` are stored per point
+//! ([`ContactNodes::foundation_motion`]) and subtracted by [`ContactNodes::kinematics`],
+//! which every friction term, label, certificate and output reads. Moving the obstacle by
+//! `t` is then the same problem as moving every support by `−t` (Galilean invariance), with
+//! `u` shifted by `t`.
 
 use super::{ContactBoundary, ContactObstacle};
 use crate::fem::simplex::cross;
@@ -63,6 +74,11 @@ pub struct ContactNodes {
     pub gap: Vec<f64>,
     /// Orthonormal tangent basis (first d − 1 vectors used).
     pub tangent: Vec<[[f64; 3]; 2]>,
+    /// Tangential coordinates `t·τ_a` of the displacement of the foundation's material
+    /// point (m; the solver's displacement unit in its dimensionless problem): the rigid
+    /// translation t of an obstacle, zero for a flat foundation. The slip is measured
+    /// relative to it (see the module documentation).
+    pub foundation_motion: Vec<[f64; 2]>,
     /// Position of the node in the reference configuration (m; unused coordinates 0), where
     /// a friction law of the position is evaluated.
     pub position: Vec<[f64; 3]>,
@@ -154,6 +170,7 @@ impl ContactNodes {
                     out.normal.push(n);
                     out.gap.push(cb.gap);
                     out.tangent.push(tangent_basis(d, &n));
+                    out.foundation_motion.push([0.0; 2]);
                     let mut x = [0.0; 3];
                     x[..d].copy_from_slice(mesh.node(v as usize));
                     out.position.push(x);
@@ -173,8 +190,9 @@ impl ContactNodes {
         self.node.is_empty()
     }
 
-    /// Normal displacement `u_ν = u·ν` and tangential coordinates `ξ_a = u·τ_a` of point `i`
-    /// for the displacement `u` (DOF order).
+    /// Normal displacement `u_ν = u·ν` and tangential coordinates of the slip
+    /// `ξ_a = u·τ_a − t_a` of point `i` for the displacement `u` (DOF order), relative to
+    /// the foundation's material point ([`ContactNodes::foundation_motion`] `t_a`).
     #[inline]
     pub fn kinematics(&self, dim: usize, u: &[f64], i: usize) -> (f64, [f64; 2]) {
         let v = self.node[i] as usize;
@@ -182,7 +200,7 @@ impl ContactNodes {
         let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
         let mut xi = [0.0; 2];
         for (a, t) in self.tangent[i].iter().enumerate().take(dim - 1) {
-            xi[a] = dot(t);
+            xi[a] = dot(t) - self.foundation_motion[i][a];
         }
         (dot(&self.normal[i]), xi)
     }
@@ -190,7 +208,8 @@ impl ContactNodes {
 
 /// Appends the points of boundary `b` facing `obstacle`: one per node of `incidence`
 /// (sorted (node, facet) pairs) not `excluded`, weighted by all its facets, with the gap and
-/// the reversed normal of its closest-point projection (see the module documentation).
+/// the reversed normal of its closest-point projection and the tangential part of the
+/// obstacle's translation (see the module documentation).
 fn obstacle_points(
     out: &mut ContactNodes,
     mesh: &Mesh,
@@ -201,6 +220,7 @@ fn obstacle_points(
     excluded: &[bool],
 ) -> crate::Result<()> {
     let d = mesh.dim();
+    let translation = obstacle.translation(d)?;
     for around in incidence.chunk_by(|a, b| a.0 == b.0) {
         let v = around[0].0;
         if excluded[v as usize] {
@@ -224,6 +244,11 @@ fn obstacle_points(
             e => e,
         })?;
         let n = projection.normal.map(|c| -c);
+        let tangent = tangent_basis(d, &n);
+        let mut motion = [0.0; 2];
+        for (m, t) in motion.iter_mut().zip(&tangent).take(d - 1) {
+            *m = (0..d).map(|k| t[k] * translation[k]).sum();
+        }
         out.node.push(v);
         out.boundary.push(b as u16);
         out.weight.push(
@@ -235,7 +260,8 @@ fn obstacle_points(
         );
         out.normal.push(n);
         out.gap.push(projection.gap);
-        out.tangent.push(tangent_basis(d, &n));
+        out.tangent.push(tangent);
+        out.foundation_motion.push(motion);
         out.position.push(x);
     }
     Ok(())

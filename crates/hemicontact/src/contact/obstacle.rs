@@ -376,6 +376,15 @@ impl ContactObstacle {
         }
     }
 
+    /// The rigid translation t of the obstacle in units of `gap_unit` (the displacement
+    /// unit; padded to 3 coordinates, zero if absent).
+    ///
+    /// # Errors
+    /// Those of [`ObstacleSpec::translation`].
+    pub fn translation(&self, dim: usize) -> Result<[f64; 3]> {
+        Ok(self.spec.translation(dim)?.map(|c| c / self.gap_unit))
+    }
+
     /// The obstacle with its translation multiplied by the load factor `lambda`.
     pub fn with_load_factor(&self, lambda: f64) -> Self {
         let mut out = self.clone();

@@ -5,10 +5,12 @@
 //! - length `L`: the diameter of the mesh's bounding box (m);
 //! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa);
 //! - displacement `U`: the largest displacement the data can cause — the largest prescribed
-//!   displacement, `|f_N| L / S` for the largest traction and `|f_0| L² / S` for the body
-//!   force, and the deepest initial penetration `−g_i` of a contact point into a rigid
-//!   obstacle, up to `L` (m) (a displacement-driven indentation; a translation along the
-//!   obstacle's surface drives nothing); `L` when there is no load at all.
+//!   displacement, the largest translation of an obstacle with friction (which drags the
+//!   body, [`Problem::largest_prescribed_motion`]), `|f_N| L / S` for the largest traction
+//!   and `|f_0| L² / S` for the body force, and the deepest initial penetration `−g_i` of a
+//!   contact point into a rigid obstacle, up to `L` (m) (a displacement-driven indentation;
+//!   without friction, a translation along the obstacle's surface drives nothing); `L` when
+//!   there is no load at all.
 //!
 //! Each scale is rounded to a power of two, so that scaling is exact in floating point:
 //! a problem and the same problem with every stiffness and load multiplied by 2^k give
@@ -67,14 +69,7 @@ impl Scales {
         let hooke = problem.material.elasticity.small_strain_hooke(dim);
         let stress = hooke.lambda + 2.0 * hooke.mu;
         let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let mut displacement = 0.0f64;
-        for b in &problem.dirichlet {
-            for i in 0..dim {
-                if b.components[i] {
-                    displacement = displacement.max(b.value[i].abs());
-                }
-            }
-        }
+        let mut displacement = problem.largest_prescribed_motion();
         for t in &problem.tractions {
             displacement = displacement.max(max_abs(&t.value[..dim]) / stress * length);
         }

@@ -37,7 +37,8 @@ pub struct System {
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
     /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
-    /// P-wave modulus): the floor of the force scales of the Newton criterion and the
+    /// P-wave modulus; u_D includes the translations of obstacles with friction, see
+    /// [`Problem::largest_prescribed_motion`]): the floor of the force scales of the Newton criterion and the
     /// certificate, so that a displacement-driven solution without stress (a prescribed
     /// rigid motion) is measured against the forces its data could cause, not against
     /// zero.
@@ -150,10 +151,7 @@ impl System {
         let force_floor = {
             let d = problem.mesh.dim();
             let h = problem.material.elasticity.small_strain_hooke(d);
-            let u_d = problem
-                .prescribed_displacement()
-                .iter()
-                .fold(0.0f64, |m, x| m.max(x.abs()));
+            let u_d = problem.largest_prescribed_motion();
             (h.lambda + 2.0 * h.mu) * u_d * problem.diameter().powi(d as i32 - 2)
         };
         let rigid = problem.rigid_motions()?;
