@@ -287,6 +287,8 @@ impl NativeSolution {
                 1,
                 column(&|i| rows[i].friction_residual),
             ),
+            ("force_scale", 1, column(&|i| rows[i].force_scale)),
+            ("slip_scale", 1, column(&|i| rows[i].slip_scale)),
             ("normal", 3, vector(&|i| nodes.normal[i])),
             ("force", 3, vector(&|i| rows[i].force)),
             (

@@ -528,7 +528,9 @@ fn regularized_norm_derivatives() {
 // ContactAssembler::assemble
 // ---------------------------------------------------------------------------------------
 
-const RHO_NUM: f64 = 1e-3;
+/// Elastic stiffness per unit area k_i of every point (Pa/m): with a smoothed norm of
+/// regularization ε, the interface compliance ε/k.
+const STIFFNESS: f64 = 1e3;
 
 /// Energy and gradient (all DOFs) of the contact terms.
 fn energy_grad(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64]) -> (f64, Vec<f64>) {
@@ -542,8 +544,9 @@ fn energy(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64]) -> f64 {
 }
 
 /// Whether every contact point is at least `margin` away from its kinks: `u_ν = g` (for a
-/// Signorini point the augmented Lagrangian's `u_ν = g − λ/r`), and for exact friction the
-/// stick/slip switch `‖τ + r u_τ‖ = F`.
+/// Signorini point the augmented Lagrangian's `u_ν = g − λ/r`), and for friction through a
+/// multiplier the stick/slip switch `‖z‖ = F`, `z = r'ξ + (r'/r)τ`, `r' = r/(1 + rc)` (c the
+/// compliance of the elastic slip, 0 when exact).
 fn off_kink(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64], margin: f64) -> bool {
     let m = asm.dim - 1;
     (0..asm.nodes.len()).all(|i| {
@@ -554,13 +557,17 @@ fn off_kink(asm: &ContactAssembler<'_>, frozen: &Frozen, u: &[f64], margin: f64)
             .effective(cb.gap, frozen.multipliers.pressure[i], r);
         let (u_nu, xi) = asm.nodes.kinematics(asm.dim, u, i);
         let tau = frozen.multipliers.traction[i];
+        let c = cb
+            .friction
+            .as_ref()
+            .and_then(|f| f.compliance(asm.stiffness[i]));
+        let r_eff = r / (1.0 + r * c.unwrap_or(0.0));
         let nz = (0..m)
-            .map(|a| (tau[a] + r * xi[a]).powi(2))
+            .map(|a| (r_eff / r * tau[a] + r_eff * xi[a]).powi(2))
             .sum::<f64>()
             .sqrt();
-        let exact = cb.friction.as_ref().is_some_and(|f| f.is_exact());
         (u_nu - gap).abs() > margin
-            && (!exact || (nz - frozen.friction.bound[i]).abs() > r * margin)
+            && (c.is_none() || (nz - frozen.friction.bound[i]).abs() > r_eff * margin)
     })
 }
 
@@ -743,11 +750,12 @@ fn assembled_contact_terms_2d_match_finite_differences() {
     let pattern = SystemPattern::new(problem.mesh(), &dofs).unwrap();
     let slots = contact_slots(&nodes, d, dofs.equations(), &pattern);
     let penalty = vec![500.0; nodes.len()];
+    let stiffness = vec![STIFFNESS; nodes.len()];
     let asm = ContactAssembler {
         dim: d,
         nodes: &nodes,
         boundaries: problem.contact(),
-        regularization_floor: RHO_NUM,
+        stiffness: &stiffness,
         penalty: &penalty,
         responses: &[],
     };
@@ -925,13 +933,15 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         nodes.normal.push(n);
         nodes.gap.push(boundaries[b as usize].gap);
         nodes.tangent.push(t);
+        nodes.foundation_motion.push([0.0; 2]);
     }
     let penalty = vec![500.0; nodes.len()];
+    let stiffness = vec![STIFFNESS; nodes.len()];
     let asm = ContactAssembler {
         dim: d,
         nodes: &nodes,
         boundaries: &boundaries,
-        regularization_floor: RHO_NUM,
+        stiffness: &stiffness,
         penalty: &penalty,
         responses: &[],
     };

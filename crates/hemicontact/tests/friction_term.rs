@@ -3,7 +3,9 @@
 //! gradient against Hessian in 2D (one tangential component) and 3D (two), on the stick and
 //! slip branches of exact friction and for the smoothed norm; closed forms of each branch
 //! (the Moreau envelope of `F‖·‖` is `τ·ξ + r‖ξ‖²/2 − b·ξ` while `‖τ + rξ‖ ≤ F`, its gradient
-//! has length F beyond); which ρ the smoothed norm uses.
+//! has length F beyond); the smoothed norm as exact friction in series with an elastic slip,
+//! whose multiplier converges to the law `τ = proj_{B_F}(ξ k/ε)`; the smooth law (19) with its
+//! own ρ.
 
 use hemicontact::contact::{
     Friction, FrictionBound, FrictionCoefficient, FrictionPotential, NormTreatment, TangentialData,
@@ -82,7 +84,7 @@ fn exact_stick_branch_is_the_quadratic_of_the_envelope() {
             linear: [0.3, -0.2],
             traction: [0.5, 0.4],
             penalty: 10.0,
-            regularization_floor: 0.0,
+            stiffness: 1.0,
         };
         // ‖τ + rξ‖ ≤ ‖τ‖ + r‖ξ‖ < 0.65 + 10·0.05 < F = 2: stick.
         let xi = [0.03, -0.04];
@@ -106,7 +108,7 @@ fn exact_stick_branch_is_the_quadratic_of_the_envelope() {
         check_derivatives(&f, xi, m, &data, "exact stick");
         // The multiplier update keeps τ + rξ inside the ball.
         let tau = f
-            .updated_traction(&xi, m, &data.traction, data.penalty, data.bound)
+            .updated_traction(&xi, m, &data.traction, data.penalty, 1.0, data.bound)
             .expect("exact friction updates its multiplier");
         for a in 0..m {
             assert!((tau[a] - (data.traction[a] + data.penalty * xi[a])).abs() < 1e-15);
@@ -123,7 +125,7 @@ fn exact_slip_branch_carries_the_bound() {
             linear: [0.1, 0.05],
             traction: [0.5, -0.3],
             penalty: 40.0,
-            regularization_floor: 0.0,
+            stiffness: 1.0,
         };
         for xi in [[0.05, 0.02], [-0.08, 0.03], [0.04, -0.09]] {
             let z = [
@@ -155,7 +157,7 @@ fn exact_slip_branch_carries_the_bound() {
             assert!((t.energy - energy).abs() < 1e-14);
             check_derivatives(&f, xi, m, &data, "exact slip");
             let tau = f
-                .updated_traction(&xi, m, &data.traction, r, fb)
+                .updated_traction(&xi, m, &data.traction, r, 1.0, fb)
                 .expect("exact friction updates its multiplier");
             assert!((norm(&tau, m) - fb).abs() < 1e-14);
         }
@@ -172,7 +174,7 @@ fn exact_envelope_is_continuous_across_the_ball() {
         linear: [0.0; 2],
         traction: [0.25, 0.0],
         penalty: 8.0,
-        regularization_floor: 0.0,
+        stiffness: 1.0,
     };
     let s = (1.0 - 0.25) / 8.0;
     let below = f.tangential_term(&[s * (1.0 - 1e-9), 0.0], 2, &data);
@@ -182,54 +184,95 @@ fn exact_envelope_is_continuous_across_the_ball() {
 }
 
 #[test]
-fn smoothed_norm_matches_its_closed_form_and_differences() {
+fn smoothed_norm_is_the_envelope_with_an_elastic_slip() {
+    // A smoothed norm of regularization ε at a point of stiffness k is exact friction in
+    // series with an elastic slip of compliance c = ε/k: the envelope's argument is
+    // z = r'ξ + (r'/r)τ with r' = r/(1 + rc), its energy (H_F(z) − (r'/r)‖τ‖²/2)/r' − b·ξ.
     for m in [1, 2] {
-        for (reg, floor) in [(1e-3, 0.0), (1e-3, 1e-2), (1e-2, 1e-3)] {
-            let f = smoothed(reg);
-            let rho = f64::max(reg, floor);
+        for (eps, k) in [(1e-3, 1.0), (1e-2, 4.0), (0.5, 0.25)] {
+            let f = smoothed(eps);
             let data = TangentialData {
                 bound: 1.5,
                 linear: [0.2, -0.1],
-                traction: [0.0; 2],
-                penalty: 0.0,
-                regularization_floor: floor,
+                traction: [0.3, -0.4],
+                penalty: 10.0,
+                stiffness: k,
             };
-            // Sticking (|ξ| ≲ ρ) and slipping (|ξ| ≫ ρ) samples.
+            let (r, c) = (data.penalty, eps / k);
+            assert_eq!(f.compliance(k), Some(c));
+            let r_eff = r / (1.0 + r * c);
+            // Sticking and slipping samples.
             for xi in [[2e-3, -1e-3], [0.05, 0.08], [-0.3, 0.01]] {
                 let t = f.tangential_term(&xi, m, &data);
-                let s = (norm(&xi, m).powi(2) + rho * rho).sqrt();
-                let energy =
-                    data.bound * (s - rho) - (0..m).map(|a| data.linear[a] * xi[a]).sum::<f64>();
+                let z = [
+                    r_eff * xi[0] + r_eff / r * data.traction[0],
+                    r_eff * xi[1] + r_eff / r * data.traction[1],
+                ];
+                let nz = norm(&z, m);
+                let huber = if nz <= data.bound {
+                    0.5 * nz * nz
+                } else {
+                    data.bound * nz - 0.5 * data.bound * data.bound
+                };
+                let energy = (huber - 0.5 * r_eff / r * norm(&data.traction, m).powi(2)) / r_eff
+                    - (0..m).map(|a| data.linear[a] * xi[a]).sum::<f64>();
                 assert!(
-                    (t.energy - energy).abs() < 1e-15,
-                    "m={m} ρ={rho}: energy {} vs {energy}",
+                    (t.energy - energy).abs() < 1e-13,
+                    "m={m} ε={eps}: energy {} vs {energy}",
                     t.energy
                 );
+                let scale = data.bound.min(nz) / nz;
                 for a in 0..m {
-                    let g = data.bound * xi[a] / s - data.linear[a];
-                    assert!((t.gradient[a] - g).abs() < 1e-14);
+                    let g = z[a] * scale - data.linear[a];
+                    assert!((t.gradient[a] - g).abs() < 1e-13);
                 }
                 check_derivatives(&f, xi, m, &data, "smoothed");
             }
-            assert_eq!(
-                f.updated_traction(&[0.1, 0.1], m, &[0.0; 2], 1.0, 1.0),
-                None
-            );
         }
     }
 }
 
 #[test]
-fn smooth_law_uses_its_own_rho_whatever_the_floor() {
+fn the_multiplier_of_the_smoothed_norm_converges_to_the_elastic_slip_law() {
+    // At a fixed slip ξ the multiplier update τ ← proj_{B_F}(z) converges to the law of
+    // the smoothed norm, τ = proj_{B_F}(ξ k/ε): a spring of stiffness k/ε up to the bound.
+    let (eps, k) = (0.1, 2.0);
+    let f = smoothed(eps);
+    for m in [1, 2] {
+        for xi in [[0.01, -0.02], [0.3, 0.1], [-0.05, 0.0]] {
+            let (penalty, bound) = (5.0, 1.0);
+            let mut tau = [0.0; 2];
+            for _ in 0..200 {
+                tau = f
+                    .updated_traction(&xi, m, &tau, penalty, k, bound)
+                    .expect("the smoothed norm has a multiplier");
+            }
+            let spring = [xi[0] * k / eps, xi[1] * k / eps];
+            let ns = norm(&spring, m);
+            for a in 0..m {
+                let law = spring[a] * (bound.min(ns) / ns);
+                assert!((tau[a] - law).abs() < 1e-12, "m={m} ξ={xi:?}: {tau:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn smooth_law_uses_its_own_rho() {
     let f = law(FrictionPotential::Regularized { rho: 0.02 });
     assert!(!f.is_exact());
     assert_eq!(f.potential.regularization(), None);
+    assert_eq!(f.compliance(1.0), None);
     let data = TangentialData {
         bound: 1.0,
-        regularization_floor: 0.5,
+        stiffness: 1e-9,
         ..Default::default()
     };
     // F ξ/√(ξ² + ρ²) with ρ = 0.02: at ξ = 0.02, 1/√2.
     let t = f.tangential_term(&[0.02, 0.0], 1, &data);
     assert!((t.gradient[0] - 0.5f64.sqrt()).abs() < 1e-15);
+    assert_eq!(
+        f.updated_traction(&[0.1, 0.1], 1, &[0.0; 2], 1.0, 1.0, 1.0),
+        None
+    );
 }

@@ -283,18 +283,25 @@ fn extreme_units_give_the_ordinary_answer() {
     }
 }
 
-/// A regularization far too coarse for the certificate (ρ = 10⁻³ of the displacement
-/// scale) is refused: not converged, naming the friction law, the part and the node. (The
-/// paper's square in soft units with zero gap and μ = 0.3, where every point slips; this
-/// setting used to label them stick.)
+/// A regularization far too coarse for the certificate (an elastic slip of 10⁻³ of each
+/// point's slip scale) is refused: not converged, naming the friction law, the part and the
+/// node. (The paper's square in soft units with zero gap and μ = 1, where points stick and
+/// slip; the elastic slip of its sticking points exceeds the stick threshold, and there the
+/// friction force is below the bound.)
 #[test]
 fn coarse_friction_regularization_is_refused_not_certified() {
     let base = paper(16, 4.0, 2000.0, 0.0, 0.16, 900.0, 1e4, 0.0, 0.0).replace(
         "{ law = \"exponential\", a = 0.4, b = 0.1, beta = 0e0 }",
-        "{ law = \"constant\", mu = 0.3 }",
+        "{ law = \"constant\", mu = 1.0 }",
     );
     let fine = certified(&base);
-    assert!(fine.report.certificate.n_slip > 0);
+    let c = &fine.report.certificate;
+    assert!(
+        c.n_slip > 0 && c.n_stick > 0,
+        "{} stick, {} slip",
+        c.n_stick,
+        c.n_slip
+    );
     let text = format!("{base}\n[solver.outer]\nfriction_regularization = 1e-3\n");
     let s = solve_text(&text).unwrap();
     assert!(!s.report.converged);

@@ -36,7 +36,8 @@ class Result:
       ``contact.csv`` (``node``, ``boundary``, ``x``, ``y``, ``z``, ``weight``, ``u_nu``,
       ``gap``, ``u_tau_1``, ``u_tau_2``, ``slip``, ``pressure``, ``bound``,
       ``force_normal``, ``force_tangential_1``, ``force_tangential_2``, ``normal_state``,
-      ``friction_state``, ``normal_residual``, ``friction_residual``) and the vectors
+      ``friction_state``, ``normal_residual``, ``friction_residual``, ``force_scale``,
+      ``slip_scale``) and the vectors
       ``normal`` (the unit contact normal, columns ``nu_x``, ``nu_y``, ``nu_z``), ``force``
       (interface force on the body, N) and
       ``friction_traction`` (tangential traction on the body, force / weight, Pa), K × 3;

@@ -85,9 +85,10 @@ pub struct ContactAssembler<'a> {
     pub nodes: &'a ContactNodes,
     /// The contact boundaries (laws and gaps).
     pub boundaries: &'a [ContactBoundary],
-    /// Continuation floor of the numerical regularization ρ_num of a smoothed norm (m; 0:
-    /// the laws' own values), see [`crate::contact::FrictionPotential::convex_rho`].
-    pub regularization_floor: f64,
+    /// Elastic stiffness per unit area k_i per point (Pa/m,
+    /// [`crate::solver::constraints::contact_stiffness`]): with the bound, the slip scale
+    /// `F_i / k_i` of the point's smoothed norm.
+    pub stiffness: &'a [f64],
     /// Augmented-Lagrangian penalty r_i per point (Pa/m) of the exact constraints.
     pub penalty: &'a [f64],
     /// The responses of the points of user-defined compliance laws at the displacement
@@ -340,7 +341,7 @@ impl<'a> ContactAssembler<'a> {
                 linear: frozen.linear[i],
                 traction: frozen.traction[i],
                 penalty: r,
-                regularization_floor: self.regularization_floor,
+                stiffness: self.stiffness[i],
             };
             let term = fr.tangential_term(&xi, m, &data);
             energy += w * term.energy;

@@ -261,6 +261,43 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         energy
     }
 
+    /// The sum over the cells `cells` around node `v` of the magnitudes of their element
+    /// forces at `v`, `Σ_T ‖|T| B_vᵀ σ_T‖` (N), at displacement `u`: the scale of the
+    /// forces balanced at the node, whose round-off is about the machine epsilon times this.
+    pub fn nodal_force_sum(&self, u: &[f64], v: u32, cells: &[u32]) -> f64 {
+        if self.mesh.dim() == 2 {
+            self.nodal_force_sum_cells::<6>(u, v, cells)
+        } else {
+            self.nodal_force_sum_cells::<12>(u, v, cells)
+        }
+    }
+
+    /// [`BulkAssembler::nodal_force_sum`] for cells with `LD` local DOFs.
+    fn nodal_force_sum_cells<const LD: usize>(&self, u: &[f64], v: u32, cells: &[u32]) -> f64 {
+        let mesh = self.mesh;
+        let d = element::dim_of(LD);
+        let mut sum = 0.0;
+        for &c in cells {
+            let c = c as usize;
+            let geo = simplex::geometry(d, &mesh.cell_coords(c));
+            let b = element::b_matrix::<LD>(&geo);
+            let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
+            let mut sigma = self.material.stress(&eps);
+            if let Some(al) = self.ideal.map(|l| l.cell(c)) {
+                sigma = sigma.add_scaled(1.0, &al.stress(&eps));
+            }
+            let ge = element::gradient(&b, &sigma, geo.measure);
+            if let Some(a) = mesh.cell(c).iter().position(|&w| w == v) {
+                sum += ge[d * a..d * a + d]
+                    .iter()
+                    .map(|x| x * x)
+                    .sum::<f64>()
+                    .sqrt();
+            }
+        }
+        sum
+    }
+
     /// Constant strain of every cell at displacement `u`.
     pub fn cell_strains(&self, u: &[f64]) -> Vec<Sym> {
         (0..self.mesh.n_cells())

@@ -21,6 +21,18 @@
 //! law (19) is smooth already and carries no treatment, so exact stick/slip of a smooth law
 //! cannot be expressed.
 //!
+//! ## The numerical regularization is local
+//!
+//! The smoothed norm of a contact point i is regularized on its own scales, never on a
+//! scale of the whole problem: `ρ_num,i = ε_reg F_i / k_i`, with `ε_reg` the law's
+//! `regularization`, `F_i` the point's (frozen) friction bound and `k_i = S / h_i` its
+//! elastic stiffness per unit area (S the P-wave modulus, `h_i` the local mesh size, see
+//! [`crate::solver::constraints::contact_stiffness`]). `F_i / k_i` is the slip over which
+//! the friction bound deforms the body around the point, so a sticking point acts as a
+//! tangential spring of stiffness `k_i / ε_reg`, whatever the loads or displacements
+//! elsewhere, and a point slipping by r carries the bound to `(ε_reg F_i / (k_i r))² / 2`
+//! relative.
+//!
 //! ## The tangential term of one contact point
 //!
 //! With the frozen bound `F ≥ 0`, linear term `b` (the linearized concave part), the
@@ -257,22 +269,23 @@ pub enum FrictionBound {
     Coulomb,
 }
 
-/// The default numerical regularization of the norm, relative to the displacement scale U of
-/// the solve: `ρ_num = 10⁻⁸ U`. The friction force of a point slipping by r misses the bound
-/// by `ρ²/(2r²)` of it, far below the certificate tolerance wherever the slip exceeds
-/// `10⁻⁶ max|u|` (below that a point sticks); the paper example's reported digits do not
-/// change when it shrinks tenfold (tested).
+/// The default numerical regularization of the norm, relative to each contact point's own
+/// slip scale `F_i / k_i` (see the module documentation): `ρ_num,i = 10⁻⁹ F_i / k_i`. A
+/// point slips, for the certificate, beyond `tol · max(F_i, p_i) / k_i` (tol = 10⁻⁶ by
+/// default); there its friction force misses the bound by at most `(10⁻⁹/tol)²/2 = 5·10⁻⁷`
+/// of it, below the tolerance.
 pub const DEFAULT_REGULARIZATION: f64 = 1e-8;
 
 /// How the nonsmooth convex part `F ‖·‖` of the potentials `norm` and `nonconvex` is
 /// imposed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum NormTreatment {
-    /// Smoothed to `F (√(‖ξ‖² + ρ_num²) − ρ_num)` with `ρ_num = regularization · U`, U the
-    /// displacement scale of the solve (the law keeps this relative value when it is made
-    /// dimensionless). The solver reaches it by continuation from `10⁻² U`.
+    /// Smoothed to `F (√(‖ξ‖² + ρ_num²) − ρ_num)` with `ρ_num,i = regularization · F_i / k_i`
+    /// at contact point i, relative to the point's own slip scale (see the module
+    /// documentation; the law keeps this relative value when it is made dimensionless). The
+    /// solver reaches it by continuation from `10⁻² F_i / k_i`.
     Smoothed {
-        /// `ρ_num / U`, dimensionless, in (0, 10⁻²).
+        /// `ρ_num,i k_i / F_i`, dimensionless, in (0, 10⁻²).
         regularization: f64,
     },
     /// Exact stick/slip: `F ‖·‖` is imposed by an augmented Lagrangian with the friction
@@ -302,8 +315,8 @@ impl NormTreatment {
                     && regularization < 1e-2) =>
             {
                 Err(format!(
-                    "regularization = {regularization}: a number in (0, 0.01) (relative to the \
-                     displacement scale)"
+                    "regularization = {regularization}: a number in (0, 0.01) (relative to each \
+                     contact point's slip scale F/k)"
                 ))
             }
             _ => Ok(()),
@@ -430,8 +443,8 @@ impl FrictionPotential {
         }
     }
 
-    /// The numerical regularization `ρ_num / U` of the smoothed norm; `None` for exact
-    /// stick/slip and for the smooth law (19).
+    /// The relative numerical regularization `ρ_num,i k_i / F_i` of the smoothed norm;
+    /// `None` for exact stick/slip and for the smooth law (19).
     pub fn regularization(&self) -> Option<f64> {
         match self.treatment() {
             Some(NormTreatment::Smoothed { regularization }) => Some(regularization),
@@ -439,15 +452,11 @@ impl FrictionPotential {
         }
     }
 
-    /// The ρ of the smoothed convex part `√(r² + ρ²) − ρ`: the law's own ρ for (19), its
-    /// numerical regularization, but at least `floor` (the continuation stage of the
-    /// solver), for a smoothed norm. Not used for exact stick/slip.
-    pub fn convex_rho(&self, floor: f64) -> f64 {
+    /// The ρ (m) of the smooth law (19) `√(r² + ρ²) − ρ`; 0 for the other potentials.
+    pub fn rho(&self) -> f64 {
         match *self {
             FrictionPotential::Regularized { rho } => rho,
-            _ => self
-                .regularization()
-                .map_or(floor, |target| target.max(floor)),
+            _ => 0.0,
         }
     }
 
@@ -468,7 +477,7 @@ impl FrictionPotential {
 
     /// The same law for the dimensionless slip `r̂ = r/U` (U the displacement scale, m):
     /// `ĵ(r̂) = j(U r̂)/U`, so ρ̂ = ρ/U and ℓ̂ = ℓ/U. The treatment of the norm is unchanged:
-    /// its regularization is relative to U already.
+    /// its regularization is relative to each point's slip scale already.
     pub fn nondimensional(&self, displacement: f64) -> Self {
         match *self {
             FrictionPotential::Norm { treatment } => FrictionPotential::Norm { treatment },
@@ -486,13 +495,13 @@ impl FrictionPotential {
 
 impl std::fmt::Display for FrictionPotential {
     /// The potential as the scenario names it, with its parameters and the treatment of its
-    /// norm, e.g. `nonconvex, a = 0.5 (norm smoothed, ρ_num = 1e-8 U)`.
+    /// norm, e.g. `nonconvex, a = 0.5 (norm smoothed, ρ_num = 1e-9 F/k)`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
             NormTreatment::Smoothed { regularization } => {
                 write!(
                     f,
-                    " (norm smoothed, ρ_num = {} U)",
+                    " (norm smoothed, ρ_num = {} F/k)",
                     crate::display::significant(regularization)
                 )
             }
@@ -544,9 +553,9 @@ pub struct TangentialData {
     pub traction: [f64; 2],
     /// Exact stick/slip: the augmented-Lagrangian penalty r > 0 (Pa/m).
     pub penalty: f64,
-    /// Smoothed norm: the smallest ρ_num (m) to use, the continuation stage of the solver
-    /// (0: the law's own value).
-    pub regularization_floor: f64,
+    /// Smoothed norm: the elastic stiffness per unit area `k_i = S / h_i` of the point (Pa/m),
+    /// which with the bound sets its slip scale `F / k` (see the module documentation).
+    pub stiffness: f64,
 }
 
 /// Energy density (Pa·m), gradient (Pa) and Hessian (Pa/m) of the tangential term with
@@ -612,12 +621,48 @@ impl Friction {
         self.potential.treatment() == Some(NormTreatment::Exact)
     }
 
+    /// Whether the law's norm is imposed through a friction multiplier τ, exactly or with
+    /// an elastic slip: the potentials `norm` and `nonconvex` (not the smooth law (19)).
+    #[inline]
+    pub fn has_multiplier(&self) -> bool {
+        self.potential.treatment().is_some()
+    }
+
+    /// The compliance `c` (m/Pa) of the elastic slip of the norm at a contact point of
+    /// elastic stiffness per unit area `stiffness` (k_i, Pa/m): `ε / k_i` for a smoothed
+    /// norm of relative regularization ε (a sticking point slips elastically by `c τ`),
+    /// 0 for exact stick/slip, `None` for the smooth law (19).
+    #[inline]
+    pub fn compliance(&self, stiffness: f64) -> Option<f64> {
+        match self.potential.treatment()? {
+            NormTreatment::Exact => Some(0.0),
+            NormTreatment::Smoothed { regularization } => Some(regularization / stiffness),
+        }
+    }
+
+    /// The effective penalty `r' = r / (1 + r c)` and the argument
+    /// `z = r' ξ + (r'/r) τ` of the envelope of a point with penalty r, compliance c,
+    /// multiplier τ and slip ξ (see the module documentation); `z = τ + r ξ` when c = 0.
+    #[inline]
+    fn envelope_argument(xi: &[f64; 2], tau: &[f64; 2], r: f64, c: f64) -> (f64, [f64; 2]) {
+        if c == 0.0 {
+            return (r, [tau[0] + r * xi[0], tau[1] + r * xi[1]]);
+        }
+        let r_eff = r / (1.0 + r * c);
+        let s = r_eff / r;
+        (
+            r_eff,
+            [s * tau[0] + r_eff * xi[0], s * tau[1] + r_eff * xi[1]],
+        )
+    }
+
     /// The tangential term at the tangential displacement ξ (`m` = d − 1 components) with
-    /// the frozen data `data` (see the module documentation): `F φ_ρ(ξ) − b·ξ` with
-    /// `ρ = ` [`FrictionPotential::convex_rho`], or for exact stick/slip the Moreau envelope
-    /// `(1/r) [H_F(τ + rξ) − ‖τ‖²/2] − b·ξ` with gradient `proj_{B_F}(τ + rξ) − b` and
-    /// Hessian `r I` (stick, ‖τ + rξ‖ ≤ F, F > 0) or
-    /// `r F/‖z‖ (I − z zᵀ/‖z‖²)`, `z = τ + rξ` (slip).
+    /// the frozen data `data` (see the module documentation): `F φ_ρ(ξ) − b·ξ` for the
+    /// smooth law (19), or for the norm (exact, or smoothed with the compliance c) the
+    /// augmented Lagrangian `H_F(z)/r' − ‖τ‖²/(2r) − b·ξ`, `z = r'ξ + (r'/r)τ`,
+    /// `r' = r/(1 + rc)` ([`Friction::compliance`]; `z = τ + rξ` and `r' = r` when exact),
+    /// with gradient `proj_{B_F}(z) − b` and Hessian `r' I` (stick, ‖z‖ ≤ F, F > 0) or
+    /// `r' F/‖z‖ (I − z zᵀ/‖z‖²)` (slip).
     #[inline]
     pub fn tangential_term(
         &self,
@@ -630,10 +675,11 @@ impl Friction {
         let mut gt = [0.0; 2];
         let mut ht = [[0.0; 2]; 2];
         let energy;
-        if self.is_exact() {
-            let r = data.penalty;
+        if let Some(c) = self.compliance(data.stiffness) {
             let tau = data.traction;
-            let z = [tau[0] + r * xi[0], tau[1] + r * xi[1]];
+            let (r, z) = Self::envelope_argument(xi, &tau, data.penalty, c);
+            // τ enters the energy as ‖τ‖²/(2 r_penalty) = (r'/r_penalty) ‖τ‖²/(2r').
+            let tau_weight = r / data.penalty;
             let nz = z[..m].iter().map(|x| x * x).sum::<f64>().sqrt();
             let tau2: f64 = tau[..m].iter().map(|x| x * x).sum();
             let (g, _) = project_ball(&z, m, f);
@@ -654,12 +700,13 @@ impl Friction {
                 }
                 f * nz - 0.5 * f * f
             };
-            energy = (huber - 0.5 * tau2) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>();
+            energy =
+                (huber - 0.5 * tau2 * tau_weight) / r - (0..m).map(|a| b[a] * xi[a]).sum::<f64>();
             for a in 0..m {
                 gt[a] = g[a] - b[a];
             }
         } else {
-            let rho = self.potential.convex_rho(data.regularization_floor);
+            let rho = self.potential.rho();
             let (phi, g, h) = regularized_norm(xi, m, rho);
             energy = f * phi - (0..m).map(|a| b[a] * xi[a]).sum::<f64>();
             for a in 0..m {
@@ -676,9 +723,11 @@ impl Friction {
         }
     }
 
-    /// The multiplier update of exact stick/slip, `τ ← proj_{B_F}(τ + r ξ)`, for the
-    /// tangential displacement ξ (`m` components), multiplier `traction`, penalty `penalty`
-    /// and frozen bound `bound`; `None` unless stick/slip is exact.
+    /// The multiplier update of the norm, `τ ← proj_{B_F}(z)` with `z = τ + r ξ` for exact
+    /// stick/slip and `z = r'ξ + (r'/r)τ` for a smoothed norm (see
+    /// [`Friction::tangential_term`]), for the tangential displacement ξ (`m` components),
+    /// multiplier `traction`, penalty `penalty`, the point's elastic stiffness per unit area
+    /// `stiffness` and frozen bound `bound`; `None` for the smooth law (19).
     #[inline]
     pub fn updated_traction(
         &self,
@@ -686,12 +735,11 @@ impl Friction {
         m: usize,
         traction: &[f64; 2],
         penalty: f64,
+        stiffness: f64,
         bound: f64,
     ) -> Option<[f64; 2]> {
-        if !self.is_exact() {
-            return None;
-        }
-        let z = [traction[0] + penalty * xi[0], traction[1] + penalty * xi[1]];
+        let c = self.compliance(stiffness)?;
+        let (_, z) = Self::envelope_argument(xi, traction, penalty, c);
         Some(project_ball(&z, m, bound).0)
     }
 }

@@ -183,6 +183,8 @@ c_nu = 1.0
             friction_state,
             normal_residual: 0.0,
             friction_residual: 0.0,
+            force_scale: 1.0,
+            slip_scale: 1.0,
         }
     }
 

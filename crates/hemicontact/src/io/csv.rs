@@ -20,13 +20,15 @@ pub fn field(text: &str) -> std::borrow::Cow<'_, str> {
 /// pressure, bound, force_normal, force_tangential_1, force_tangential_2, normal_state
 /// (separated/contact), friction_state (none/stick/slip), normal_residual,
 /// friction_residual, nu_x, nu_y, nu_z (the point's unit contact normal ν_i, outward from
-/// the body: against an obstacle, the opposite of the obstacle's normal).
+/// the body: against an obstacle, the opposite of the obstacle's normal), force_scale and
+/// slip_scale (the point's own scales its residuals and its stick threshold are relative
+/// to, see [`crate::solver::certificate`]).
 pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
     let mesh = &problem.mesh;
     let mut out = String::from(
         "node,boundary,x,y,z,weight,u_nu,gap,u_tau_1,u_tau_2,slip,pressure,bound,\
          force_normal,force_tangential_1,force_tangential_2,normal_state,friction_state,normal_residual,friction_residual,\
-         nu_x,nu_y,nu_z\n",
+         nu_x,nu_y,nu_z,force_scale,slip_scale\n",
     );
     // The contact points in the order of the solution's rows (a solved problem has them).
     let points = problem.contact_nodes().unwrap_or_default();
@@ -36,7 +38,7 @@ pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
         let xyz: Vec<f64> = (0..3).map(|i| x.get(i).copied().unwrap_or(0.0)).collect();
         let part = field(&mesh.part_names()[problem.contact[c.boundary].part]);
         out.push_str(&format!(
-            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{:e},{:e},{:e},{:e}\n",
+            "{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
             c.node,
             part,
             xyz[0],
@@ -59,7 +61,9 @@ pub fn contact_csv(problem: &Problem, solution: &Solution) -> String {
             c.friction_residual,
             nu[0],
             nu[1],
-            nu[2]
+            nu[2],
+            c.force_scale,
+            c.slip_scale
         ));
     }
     out

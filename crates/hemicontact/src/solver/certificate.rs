@@ -13,24 +13,41 @@
 //!   otherwise (stick) `‖R_τ,i‖ ≤ w_i F j'(0)`; for the smooth law (19) always
 //!   `R_τ,i = −w_i F ∇j(u_τ)`.
 //!
+//! # Every point on its own scales
+//!
+//! No check of a point is decided by another part of the problem. Each contact point i has
+//!
+//! - a **force scale** `f_i = max(w_i max(F_i, p_i), η L_i)` (N): its own friction bound
+//!   and pressure times its weight, but at least the fraction η = 1 % of the force `L_i`
+//!   that the stresses of its cells pass through its node (a separated point has no force
+//!   of its own; see [`super::local_scales`]); its residuals are relative to `f_i`;
+//! - a **slip scale** `δ_i = f_i / (w_i k_i)` (m), with `k_i = S / h_i` its elastic
+//!   stiffness per unit area ([`super::constraints::contact_stiffness`]): the slip that its
+//!   force scale causes around it, element size times local strain. A point sticks when its
+//!   slip is at most `tol · δ_i`.
+//!
+//! Both are independent of the loads and displacements of other bodies and other regions,
+//! and of a rigid translation of the whole (the slip is relative to the foundation).
+//!
 //! States, one for each law (never mixed): the *normal state* is `contact` where the
 //! pressure is positive and `separated` elsewhere; the *friction state* is `none` where no
 //! friction force can act (frictionless contact, or a Coulomb-type bound at a separated
-//! point), `stick` where the slip is at most `tol · max|u|` and `slip` elsewhere. A
-//! Tresca-type bound acts regardless of the pressure, so a separated point may stick or
-//! slip.
+//! point), `stick` where the slip is at most `tol · δ_i` and `slip` elsewhere (exact
+//! friction: where its multiplier's projection is inactive). A Tresca-type bound acts
+//! regardless of the pressure, so a separated point may stick or slip.
 //!
-//! The law checks, each relative to the solution's own scales (force scale `S`, slip scale
-//! `max|u|`) with the certificate tolerance `tol`:
+//! The law checks, each relative to the point's force scale with the certificate
+//! tolerance `tol`:
 //!
 //! - stick: `‖R_τ‖ ≤ w F j'(0)` (the excess is the residual) — and the slip is below
-//!   `tol · max|u|` by definition of the state;
+//!   `tol · δ_i` by definition of the state;
 //! - slip: `R_τ = −w F j'(r) u_τ/r` (the force equals the bound and opposes the slip);
 //! - the smooth law (19) everywhere: `R_τ = −w F ∇j(u_τ)`;
 //! - separated points under a Coulomb bound or without friction: `R_τ = 0`;
 //! - the normal law `R·ν = −w p(u_ν)` (for Signorini with the multiplier as p; its sign,
 //!   the constraint and complementarity are the KKT checks);
-//! - equilibrium at the free DOFs (the relative Newton residual).
+//! - equilibrium `∇W(u) − f = 0` at the free DOFs of the nodes without a contact point,
+//!   body by body, relative to the body's force scale.
 //!
 //! A certificate *passes* when every residual is at most `tol`; a solve whose certificate
 //! fails is reported as not converged, naming the law, the contact part and the node.
@@ -47,10 +64,9 @@
 //! equilibrium force is one vector for several points: the force attributed to a point is
 //! what remains after subtracting the model forces of the node's other points.
 //!
-//! Residuals are forces (N, or N/m in 2D), reported relative to the force scale `S` =
-//! the largest nodal external force or contact force, at least the force unit of the
-//! prescribed displacements ([`super::System::force_floor`]).
+//! Residuals are forces (N, or N/m in 2D), reported relative to their point's force scale.
 
+use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
@@ -92,7 +108,8 @@ pub enum FrictionState {
     /// No friction force can act: frictionless contact, or a Coulomb-type bound at a
     /// separated point.
     None,
-    /// Slip at most `tol · max|u|`; the tangential force is within the bound.
+    /// Slip at most `tol` times the point's slip scale; the tangential force is within the
+    /// bound.
     Stick,
     /// Slipping: the tangential force equals the bound and opposes the slip.
     Slip,
@@ -157,6 +174,12 @@ pub struct ContactResult {
     pub normal_residual: f64,
     /// Friction-law residual (N).
     pub friction_residual: f64,
+    /// The point's force scale (N), which its residuals are relative to: `w max(F, p)`, at
+    /// least the force resolution of its body (see the module documentation).
+    pub force_scale: f64,
+    /// The point's slip scale `force_scale / (w k)` (m), k its elastic stiffness per unit
+    /// area: the slip its force scale causes around it. It sticks up to `tol` times this.
+    pub slip_scale: f64,
 }
 
 /// Where a law residual is largest: the point's node, contact boundary and residual.
@@ -166,7 +189,7 @@ pub struct Worst {
     pub node: u32,
     /// Contact boundary index (into the problem's list).
     pub boundary: usize,
-    /// The residual relative to the force scale.
+    /// The residual relative to the point's force scale.
     pub residual: f64,
 }
 
@@ -175,21 +198,17 @@ pub struct Worst {
 pub struct Certificate {
     /// The tolerance every residual is compared with (dimensionless).
     pub tolerance: f64,
-    /// Relative equilibrium residual of the last convex problem (‖∇E_k‖ / force scale of
-    /// the Newton criterion).
+    /// Relative equilibrium residual: the largest over the bodies of `‖(∇W − f)|_b‖ / F_b`
+    /// over the free DOFs of the nodes without a contact point ([`super::local_scales`]).
     pub equilibrium: f64,
-    /// Largest normal-law residual, relative to the force scale.
+    /// Largest normal-law residual, each relative to its point's force scale.
     pub normal_law: f64,
-    /// Largest friction-law residual, relative to the force scale.
+    /// Largest friction-law residual, each relative to its point's force scale.
     pub friction_law: f64,
     /// The point with the largest normal-law residual, if any point has one.
     pub worst_normal: Option<Worst>,
     /// The point with the largest friction-law residual, if any point has one.
     pub worst_friction: Option<Worst>,
-    /// The force scale S (N).
-    pub force_scale: f64,
-    /// Slip up to which a point counts as sticking, `tol · max|u|` (m).
-    pub stick_threshold: f64,
     /// Number of points in contact (normal state).
     pub n_contact: usize,
     /// Number of sticking points (friction state).
@@ -254,12 +273,14 @@ pub struct Inputs<'a> {
     pub f_ext: &'a [f64],
     /// Whether a DOF is prescribed.
     pub fixed: &'a dyn Fn(usize) -> bool,
-    /// Relative equilibrium residual of the last convex problem.
-    pub equilibrium: f64,
+    /// The bodies of the mesh, the unit of the equilibrium check
+    /// ([`super::local_scales`]).
+    pub bodies: &'a Bodies,
+    /// The floor `η L_i` of the force scale of every contact point at `u` (N;
+    /// [`super::System::point_scales`]).
+    pub floor: &'a [f64],
     /// The contact data of the last convex problem.
     pub frozen: ContactData<'a>,
-    /// Force floor of the force scale ([`super::System::force_floor`]).
-    pub force_floor: f64,
     /// Certificate tolerance.
     pub tolerance: f64,
 }
@@ -277,19 +298,33 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         grad_bulk,
         f_ext,
         fixed,
-        equilibrium,
+        bodies,
+        floor,
         frozen,
-        force_floor,
         tolerance,
     } = *inp;
     let d = ca.dim;
     let m = d - 1;
-    let u_scale = u
-        .chunks(d)
-        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let stick_threshold = tolerance * u_scale;
+    // Equilibrium, body by body, at the free DOFs of the nodes without a contact point (at
+    // those, the interface force is what the laws check).
+    let mut on_contact = vec![false; grad_bulk.len() / d];
+    for &v in &ca.nodes.node {
+        on_contact[v as usize] = true;
+    }
+    let (mut residual, mut external, mut scale) = (Vec::new(), Vec::new(), Vec::new());
+    bodies.residuals(
+        d,
+        grad_bulk,
+        |k| fixed(k) || on_contact[k / d],
+        &mut residual,
+    );
+    bodies.norms(d, f_ext.len(), |k| f_ext[k], &mut external);
+    bodies.force_scales(d, grad_bulk, f_ext, &external, &mut scale);
+    let equilibrium =
+        residual.iter().zip(&scale).fold(
+            0.0f64,
+            |e, (r, s)| if r.is_nan() { f64::NAN } else { e.max(r / s) },
+        );
     let mut kkt = KktCertificate::default();
     // The other points on the node of point i (points are ordered by boundary, so they are
     // found through a node → points map).
@@ -305,10 +340,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     };
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
-    let mut scale = f_ext
-        .chunks(d)
-        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max);
     for i in 0..ca.nodes.len() {
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
@@ -319,6 +350,13 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             .map_or(0.0, |f| f.bound_of(mu[i], s.pressure));
         let w = ca.nodes.weight[i];
         let v = ca.nodes.node[i] as usize;
+        // The point's own scales: its force, at least a fraction of the force its node
+        // passes, and the slip that force causes around it.
+        let force_scale = (w * bound.max(s.pressure))
+            .max(floor[i])
+            .max(f64::MIN_POSITIVE);
+        let slip_scale = force_scale / (w * ca.stiffness[i]);
+        let stick_threshold = tolerance * slip_scale;
         let model = ca.point(u, &frozen, i).gradient;
         let mut force = [0.0; 3];
         for k in 0..d {
@@ -371,7 +409,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                     let stick = frozen.bound[i] > 0.0
                         && crate::assembly::contact::project_ball(&z, m, frozen.bound[i]).1;
                     if stick {
-                        kkt.stick_slip = kkt.stick_slip.max(s.slip / u_scale);
+                        kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
                     }
                     kkt.n_constraints.2 += 1;
                     !stick && s.slip > 0.0
@@ -405,7 +443,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 friction_traction[k] += ft[a] * t[a][k] / w;
             }
         }
-        scale = scale.max(w * s.pressure).max(w * bound);
         exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
@@ -425,19 +462,18 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             friction_state,
             normal_residual,
             friction_residual,
+            force_scale,
+            slip_scale,
         });
     }
-    let scale = scale.max(force_floor).max(f64::MIN_POSITIVE);
     let mut cert = Certificate {
         kkt: exact_any.then_some(kkt),
         tolerance,
         equilibrium,
-        force_scale: scale,
-        stick_threshold,
         ..Certificate::default()
     };
     let worse = |w: &mut Option<Worst>, value: &mut f64, r: &ContactResult, residual: f64| {
-        let rel = residual / scale;
+        let rel = residual / r.force_scale;
         // A NaN residual is the worst of all.
         if rel > *value || (rel.is_nan() && !value.is_nan()) || w.is_none() && rel > 0.0 {
             *value = rel;

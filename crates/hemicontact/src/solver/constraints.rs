@@ -187,13 +187,25 @@ impl AugmentedLagrangian {
     }
 }
 
-/// Whether the problem has exact constraints (and so multipliers to iterate on).
+/// Whether the problem has exact constraints (ideal locking, Signorini contact, exact
+/// stick/slip), whose KKT conditions the certificate checks.
 pub fn has_exact_constraints(problem: &Problem) -> bool {
     problem.material.locking.ideal().is_some()
         || problem
             .contact
             .iter()
             .any(|c| c.normal.is_exact() || c.friction.as_ref().is_some_and(|f| f.is_exact()))
+}
+
+/// Whether the problem has multipliers to iterate on: exact constraints, or a friction
+/// norm imposed through its multiplier with an elastic slip
+/// ([`crate::contact::Friction::has_multiplier`]).
+pub fn has_multipliers(problem: &Problem) -> bool {
+    has_exact_constraints(problem)
+        || problem
+            .contact
+            .iter()
+            .any(|c| c.friction.as_ref().is_some_and(|f| f.has_multiplier()))
 }
 
 /// P-wave modulus `S = λ + 2G` of the small-strain Hooke law of the problem (Pa).
@@ -210,6 +222,24 @@ fn stiffness_scale(problem: &Problem) -> f64 {
 /// [`LockingSet::gradient_norm_sq_at_boundary`]).
 pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
     gamma * stiffness_scale(problem) / set.gradient_norm_sq_at_boundary()
+}
+
+/// The elastic stiffness per unit area `k_i = S / h_i` (Pa/m) of every contact point of
+/// weight `weight[i]`, with S the P-wave modulus and `h_i = w_i^{1/(d−1)}` the local mesh
+/// size: the contact traction that deforms the body around the point by a unit
+/// displacement. `F_i / k_i` is the slip scale of a point of friction bound `F_i`: the
+/// numerical regularization of its friction law and the thresholds of its certificate are
+/// relative to it (see [`crate::contact::friction`], [`super::certificate`]).
+pub fn contact_stiffness(problem: &Problem, weight: &[f64]) -> Vec<f64> {
+    let s = stiffness_scale(problem);
+    let d = problem.mesh.dim();
+    weight
+        .iter()
+        .map(|&w| {
+            let h = if d == 2 { w } else { w.sqrt() };
+            s / h.max(f64::MIN_POSITIVE)
+        })
+        .collect()
 }
 
 /// Penalty r_i (Pa/m) of every contact point of weight `weight[i]` for the penalty factor
@@ -237,7 +267,7 @@ pub fn stages(problem: &Problem, c: &ConstraintSettings) -> usize {
     let contact = if problem
         .contact
         .iter()
-        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.is_exact()))
+        .any(|b| b.normal.is_exact() || b.friction.as_ref().is_some_and(|f| f.has_multiplier()))
     {
         c.stages(c.contact_penalty)
     } else {

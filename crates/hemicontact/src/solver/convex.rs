@@ -25,8 +25,11 @@ pub struct ConvexProblem<'a> {
     u: Vec<f64>,
     /// `∇E_k` on the free DOFs at the last evaluation.
     gradient: Vec<f64>,
-    /// `‖f_ext‖` (N).
-    external: f64,
+    /// `‖f_ext|_b‖` per body (N).
+    external: Vec<f64>,
+    /// Per body at the last evaluation: the residual `‖∇E_k|_b‖` over the free DOFs (N), see
+    /// [`super::local_scales`]; its force scale is in the evaluation.
+    body_residual: Vec<f64>,
     /// Raised by the caller to interrupt the minimization ([`ConvexProblem::with_stop`]).
     stop: Option<&'a AtomicBool>,
 }
@@ -43,7 +46,10 @@ impl<'a> ConvexProblem<'a> {
         settings: &'a NewtonSettings,
         u: &[f64],
     ) -> Self {
-        let external = system.f_ext.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut external = Vec::new();
+        let d = problem.mesh.dim();
+        let f = &system.f_ext;
+        system.bodies.norms(d, f.len(), |k| f[k], &mut external);
         ConvexProblem {
             gradient: vec![0.0; system.dofs.n_free()],
             system,
@@ -53,6 +59,7 @@ impl<'a> ConvexProblem<'a> {
             settings,
             u: u.to_vec(),
             external,
+            body_residual: Vec::new(),
             stop: None,
         }
     }
@@ -85,6 +92,34 @@ impl ConvexEnergy for ConvexProblem<'_> {
             .system
             .evaluate(self.problem, &self.u, self.frozen, self.eval, hessian);
         self.system.reduce(&self.eval.grad, &mut self.gradient);
+        let (d, dofs, bodies) = (
+            self.problem.mesh.dim(),
+            &self.system.dofs,
+            &self.system.bodies,
+        );
+        let eval = &mut *self.eval;
+        bodies.residuals(d, &eval.grad, |k| dofs.is_fixed(k), &mut self.body_residual);
+        bodies.force_scales(
+            d,
+            &eval.grad_bulk,
+            &self.system.f_ext,
+            &self.external,
+            &mut eval.body_scale,
+        );
+        let (mut force, mut floor) = (
+            std::mem::take(&mut eval.point_force),
+            std::mem::take(&mut eval.point_floor),
+        );
+        self.system.point_scales(
+            self.problem,
+            &self.u,
+            self.frozen,
+            &eval.normal,
+            &eval.body_scale,
+            &mut force,
+            &mut floor,
+        );
+        (eval.point_force, eval.point_floor) = (force, floor);
         e
     }
 
@@ -92,23 +127,34 @@ impl ConvexEnergy for ConvexProblem<'_> {
         &self.gradient
     }
 
-    /// `max(‖f_ext‖, ‖∇W‖, f_D)`: ‖∇W‖ the internal forces over all DOFs, reactions
-    /// included, and f_D the force unit of the prescribed displacements
-    /// ([`System::force_floor`]), so the criterion is meaningful for load-driven and
-    /// displacement-driven problems alike, including stress-free ones.
-    fn force_scale(&self) -> f64 {
-        let internal = self
-            .eval
-            .grad_bulk
-            .iter()
-            .zip(&self.system.f_ext)
-            .map(|(g, f)| (g + f).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        self.external
-            .max(internal)
-            .max(self.system.force_floor)
-            .max(f64::MIN_POSITIVE)
+    /// Per body b: the residual `‖∇E_k|_b‖` over its free DOFs against
+    /// `max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)`: ‖∇W‖ the internal forces over all DOFs, reactions
+    /// included, and f_D,b the force unit of the body's prescribed motions
+    /// ([`super::local_scales::Bodies::force_floor`]), so the criterion is meaningful for
+    /// load-driven and displacement-driven problems alike, including stress-free ones; and
+    /// per contact point i the residual at its node against its force scale
+    /// `max(w_i σ_i, η L_i)` (see [`super::local_scales`]). The part farthest from equilibrium relative to its
+    /// scale.
+    fn residual(&self) -> (f64, f64) {
+        let (mut res, mut scale) =
+            super::local_scales::Bodies::worst(&self.body_residual, &self.eval.body_scale);
+        let d = self.problem.mesh.dim();
+        let (eval, dofs) = (&*self.eval, &self.system.dofs);
+        for (i, &v) in self.system.contact.node.iter().enumerate() {
+            let v = v as usize;
+            let r = (0..d)
+                .filter(|&k| !dofs.is_fixed(d * v + k))
+                .map(|k| eval.grad[d * v + k].powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let s = eval.point_force[i]
+                .max(eval.point_floor[i])
+                .max(f64::MIN_POSITIVE);
+            if r.is_nan() || r / s > res / scale {
+                (res, scale) = (r, s);
+            }
+        }
+        (res, scale)
     }
 
     fn newton_direction(

@@ -74,31 +74,44 @@ impl Frozen {
     }
 
     /// The relative fixed-point residual between these quantities `z` and their image
-    /// `g = G(z)` at `u`: the larger of `‖(F, b)_g − (F, b)_z‖ / ‖(F, b)_g‖` for the
-    /// friction data and the multiplier change as a primal residual
-    /// ([`Multipliers::change`]).
-    pub fn residual(&self, image: &Frozen, system: &System, problem: &Problem, u: &[f64]) -> f64 {
+    /// `g = G(z)`, each contact point on its own scale `scale[i]` (N, see
+    /// [`super::local_scales`]): the larger of the largest change of a point's friction data
+    /// as a force, `w_i ‖(F, b)_g − (F, b)_z‖_i / scale_i`, and the multiplier change as a
+    /// primal residual ([`Multipliers::change`]).
+    pub fn residual(
+        &self,
+        image: &Frozen,
+        system: &System,
+        problem: &Problem,
+        scale: &[f64],
+    ) -> f64 {
         let (z, g) = (&self.friction, &image.friction);
-        let (mut diff, mut norm) = (0.0, 0.0);
+        let mut fp = 0.0f64;
         for i in 0..z.bound.len() {
-            diff += (g.bound[i] - z.bound[i]).powi(2);
-            norm += g.bound[i].powi(2);
+            let mut diff = (g.bound[i] - z.bound[i]).powi(2);
             for a in 0..2 {
                 diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
-                norm += g.linear[i][a].powi(2);
             }
+            let change = system.contact.weight[i] * diff.sqrt() / scale[i];
+            fp = if change.is_nan() {
+                change
+            } else {
+                fp.max(change)
+            };
         }
-        let fp = if diff == 0.0 {
-            0.0
-        } else {
-            (diff / norm.max(f64::MIN_POSITIVE)).sqrt()
-        };
-        fp.max(self.multipliers.change(
+        let multipliers = self.multipliers.change(
             &image.multipliers,
             &system.continuation.penalties,
+            &system.contact_stiffness,
+            &system.contact.weight,
             problem,
-            u,
-        ))
+            scale,
+        );
+        if multipliers.is_nan() {
+            multipliers
+        } else {
+            fp.max(multipliers)
+        }
     }
 
     /// The fixed-point vector

@@ -13,6 +13,7 @@ pub mod continuation;
 pub mod convex;
 pub mod frozen;
 pub mod line_search;
+pub mod local_scales;
 pub mod mixing;
 pub mod multipliers;
 pub mod newton;
@@ -266,7 +267,7 @@ fn solve_dimensionless(
         .stop
         .message(&report, &settings.outer, outcome.oscillations);
     report.stop = outcome.stop;
-    let (frozen, last) = (outcome.frozen, outcome.last);
+    let frozen = outcome.frozen;
     // Final evaluation for the certificate and the reactions.
     let energy = system.evaluate(problem, &u, &frozen, &mut eval, false);
     if let Some(e) = eval.law_error.take() {
@@ -286,7 +287,16 @@ fn solve_dimensionless(
         problem,
         &u,
     );
-    let equilibrium = last.residual / last.force_scale;
+    let (mut point_force, mut floor) = (Vec::new(), Vec::new());
+    system.point_scales(
+        problem,
+        &u,
+        &frozen,
+        &eval.normal,
+        &eval.body_scale,
+        &mut point_force,
+        &mut floor,
+    );
     let (contact, mut certificate) = certificate::evaluate(
         &ca,
         &certificate::Inputs {
@@ -295,15 +305,15 @@ fn solve_dimensionless(
             grad_bulk: &eval.grad_bulk,
             f_ext: &system.f_ext,
             fixed: &|k| system.dofs.is_fixed(k),
-            equilibrium,
+            bodies: &system.bodies,
+            floor: &floor,
             frozen: frozen.contact(),
-            force_floor: system.force_floor,
             tolerance: settings.certificate_tolerance,
         },
     );
     if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
-        updated.kkt(&ca, problem, &u, kkt);
+        updated.kkt(&ca, problem, &u, &contact, kkt);
     }
     // A run counts as converged only with a passing certificate.
     if let Some(worst) = certificate.failures().first().filter(|_| report.converged) {
@@ -336,8 +346,11 @@ fn solve_dimensionless(
     }
     report.certificate = certificate;
     // Equilibrium along the free rigid motions carried by contact, at the answer.
-    report.rigid_residual =
-        system.rigid.generalized_force(&problem.mesh, &eval.grad) / last.force_scale;
+    let body_scale = eval
+        .body_scale
+        .iter()
+        .fold(f64::MIN_POSITIVE, |m, &s| m.max(s));
+    report.rigid_residual = system.rigid.generalized_force(&problem.mesh, &eval.grad) / body_scale;
     report.rigid_shift = eval.rigid_shift;
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
@@ -349,6 +362,101 @@ fn solve_dimensionless(
         frozen,
         report,
     })
+}
+
+/// The certificate of a given displacement `u` (m, DOF order, length `d · n_nodes`; its
+/// prescribed DOFs are replaced by the Dirichlet values) as an answer of `problem`,
+/// whoever computed it: its contact results and the residuals of every law at `u`
+/// ([`certificate`]), with the tolerance of `settings`. The interface forces come from the
+/// equilibrium of the body alone, so the check does not trust the solver's model; the
+/// friction bound is the one at `u`.
+///
+/// # Errors
+/// Invalid settings or a `u` of the wrong length or not finite; a problem with exact
+/// constraints (ideal locking, Signorini contact, exact stick/slip), whose forces are
+/// multipliers that `u` alone does not give (certify the solver's own answer instead,
+/// [`Solution::report`]); the errors of [`solve`] while setting the problem up.
+pub fn certify(
+    problem: &Problem,
+    settings: &SolverSettings,
+    u: &[f64],
+) -> Result<(Vec<ContactResult>, Certificate)> {
+    settings.validate()?;
+    let n = problem.mesh.dim() * problem.mesh.n_nodes();
+    if u.len() != n || u.iter().any(|x| !x.is_finite()) {
+        return Err(crate::Error::invalid(
+            "u",
+            format!("{} values", u.len()),
+            format!("{n} finite displacements (d per node)"),
+        ));
+    }
+    if constraints::has_exact_constraints(problem) {
+        return Err(crate::Error::invalid(
+            "problem",
+            "exact constraints (ideal locking, Signorini contact or exact stick/slip)",
+            "laws whose forces are functions of the displacement: the forces of exact \
+             constraints are multipliers, certified with the solver's own answer",
+        ));
+    }
+    let scales = scaling::Scales::of(problem)?;
+    let scaled = scales.nondimensional(problem);
+    let mut system = System::new(&scaled, settings)?;
+    let prescribed = scaled.prescribed_displacement();
+    let u: Vec<f64> = u
+        .iter()
+        .enumerate()
+        .map(|(k, x)| {
+            if system.dofs.is_fixed(k) {
+                prescribed[k]
+            } else {
+                x / scales.displacement
+            }
+        })
+        .collect();
+    let frozen = Frozen::initial(&system, &scaled, &u)?;
+    let mut eval = system::Evaluation::new(&system);
+    system.evaluate(&scaled, &u, &frozen, &mut eval, false);
+    if let Some(e) = eval.law_error.take() {
+        return Err(e);
+    }
+    let (mut external, mut body_scale) = (Vec::new(), Vec::new());
+    let (d, f) = (scaled.mesh.dim(), &system.f_ext);
+    system.bodies.norms(d, f.len(), |k| f[k], &mut external);
+    system
+        .bodies
+        .force_scales(d, &eval.grad_bulk, f, &external, &mut body_scale);
+    let (mut point_force, mut floor) = (Vec::new(), Vec::new());
+    system.point_scales(
+        &scaled,
+        &u,
+        &frozen,
+        &eval.normal,
+        &body_scale,
+        &mut point_force,
+        &mut floor,
+    );
+    let mut ca = system.contact_assembler(&scaled);
+    ca.responses = &eval.normal;
+    let mu = ca.friction_coefficients(&u)?;
+    let (contact, certificate) = certificate::evaluate(
+        &ca,
+        &certificate::Inputs {
+            u: &u,
+            mu: &mu,
+            grad_bulk: &eval.grad_bulk,
+            f_ext: &system.f_ext,
+            fixed: &|k| system.dofs.is_fixed(k),
+            bodies: &system.bodies,
+            floor: &floor,
+            frozen: frozen.contact(),
+            tolerance: settings.certificate_tolerance,
+        },
+    );
+    let contact = contact
+        .iter()
+        .map(|c| scales.dimensional_contact(c))
+        .collect();
+    Ok((contact, certificate))
 }
 
 /// Builds the faer parallelism for `threads` (0: all available cores).

@@ -5,6 +5,7 @@
 //! KKT residuals of the certificate. The penalties the updates use, and their continuation,
 //! are [`AugmentedLagrangian`]'s.
 
+use super::certificate::ContactResult;
 use super::constraints::AugmentedLagrangian;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::assembly::element;
@@ -65,9 +66,14 @@ impl Multipliers {
                 next.pressure[i] = s.pressure;
             }
             let Some(fr) = &cb.friction else { continue };
-            if let Some(tau) =
-                fr.updated_traction(&s.u_tau, m, &self.traction[i], ca.penalty[i], data.bound[i])
-            {
+            if let Some(tau) = fr.updated_traction(
+                &s.u_tau,
+                m,
+                &self.traction[i],
+                ca.penalty[i],
+                ca.stiffness[i],
+                data.bound[i],
+            ) {
                 next.traction[i] = tau;
             }
         }
@@ -79,23 +85,27 @@ impl Multipliers {
     }
 
     /// The size of the update `self → next` as a primal residual, relative: the changes
-    /// divided by their penalty, `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i` relative to `max|u|`,
-    /// `|Δλ_T|/r_T` relative to the size of B (θ, κ², r). For an active constraint `Δλ/r`
-    /// *is* the constraint violation, for a sticking point `Δτ/r` the slip: the standard
-    /// primal stopping test of the augmented Lagrangian method. (Measured in force units
-    /// instead, the change has a floor of r times the Newton tolerance, far above the
-    /// tolerance for the large penalties used.)
+    /// divided by their penalty, `|Δλ_i|/r_i` and `‖Δτ_i‖/r_i` relative to the point's own
+    /// slip scale `δ_i = scale_i / (w_i k_i)` (`scale` its force scale, N, `stiffness` its
+    /// k_i, `weight` its w_i; see [`super::local_scales`]), `|Δλ_T|/r_T` relative to the
+    /// size of B (θ, κ², r). For an active constraint `Δλ/r` *is* the constraint violation,
+    /// for a sticking point `Δτ/r` the slip: the standard primal stopping test of the
+    /// augmented Lagrangian method. (Measured in force units instead, the change has a floor
+    /// of r times the Newton tolerance, far above the tolerance for the large penalties
+    /// used.)
     pub fn change(
         &self,
         next: &Multipliers,
         penalties: &AugmentedLagrangian,
+        stiffness: &[f64],
+        weight: &[f64],
         problem: &Problem,
-        u: &[f64],
+        scale: &[f64],
     ) -> f64 {
-        let u_scale = max_node_norm(u, problem.mesh.dim());
         let mut fp = 0.0f64;
         for i in 0..self.pressure.len() {
-            let r = penalties.contact()[i] * u_scale;
+            let slip_scale = scale[i] / (weight[i] * stiffness[i]);
+            let r = penalties.contact()[i] * slip_scale;
             let dt = ((next.traction[i][0] - self.traction[i][0]).powi(2)
                 + (next.traction[i][1] - self.traction[i][1]).powi(2))
             .sqrt();
@@ -114,16 +124,19 @@ impl Multipliers {
 
     /// The KKT residuals of Signorini contact and ideal locking for these multipliers (the
     /// updated ones, consistent with the forces of the last convex problem) at `u`, written
-    /// into `kkt`: violation, sign of the multipliers and complementarity. The stick/slip
-    /// residual of exact friction is the certificate's, which classifies the points.
+    /// into `kkt`: violation, sign of the multipliers and complementarity, each at a contact
+    /// point relative to that point's own scales (`slip_scale` δ_i and `force_scale` f_i of
+    /// its certificate results `points`, see [`super::certificate`]): the penetration
+    /// `(u_ν − g)_+ / δ_i` and `λ_i |g − u_ν| w_i / (f_i δ_i)`. The stick/slip residual of
+    /// exact friction is the certificate's, which classifies the points.
     pub fn kkt(
         &self,
         ca: &ContactAssembler<'_>,
         problem: &Problem,
         u: &[f64],
+        points: &[ContactResult],
         kkt: &mut KktCertificate,
     ) {
-        let u_scale = max_node_norm(u, ca.dim);
         let exact = |i: usize| {
             ca.boundaries[ca.nodes.boundary[i] as usize]
                 .normal
@@ -134,33 +147,22 @@ impl Multipliers {
             let gap = ca.nodes.gap[i];
             let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
             let p = self.pressure[i];
+            let (f, delta) = (points[i].force_scale, points[i].slip_scale);
             kkt.n_constraints.1 += 1;
             max_pressure = max_pressure.max(p);
             min_pressure = min_pressure.min(p);
-            kkt.contact_violation = kkt.contact_violation.max((u_nu - gap).max(0.0) / u_scale);
+            kkt.contact_violation = kkt.contact_violation.max((u_nu - gap).max(0.0) / delta);
+            kkt.contact_complementarity = kkt
+                .contact_complementarity
+                .max(p * (gap - u_nu).abs() * ca.nodes.weight[i] / (f * delta));
         }
         if max_pressure > 0.0 {
             kkt.contact_min_multiplier = min_pressure / max_pressure;
-            for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
-                let gap = ca.nodes.gap[i];
-                let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
-                kkt.contact_complementarity = kkt
-                    .contact_complementarity
-                    .max(self.pressure[i] * (gap - u_nu).abs() / (max_pressure * u_scale));
-            }
         }
         if let Some(set) = problem.material.locking.ideal() {
             locking_kkt(&problem.mesh, &set, u, &self.locking, kkt);
         }
     }
-}
-
-/// `max_v |u_v|` over the nodes, at least the smallest positive number (m).
-fn max_node_norm(u: &[f64], d: usize) -> f64 {
-    u.chunks(d)
-        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
-        .fold(0.0, f64::max)
-        .max(f64::MIN_POSITIVE)
 }
 
 /// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+` of the locking set `set`
@@ -191,14 +193,15 @@ pub struct KktCertificate {
     pub locking_complementarity: f64,
     /// Cells where the locking constraint is active (λ_T > 0).
     pub n_locked: usize,
-    /// Signorini: `max_i (u_ν − g)_+ / max|u|`.
+    /// Signorini: `max_i (u_ν − g)_+ / δ_i`, δ_i the point's slip scale.
     pub contact_violation: f64,
     /// Smallest Signorini multiplier (pressure) divided by the largest.
     pub contact_min_multiplier: f64,
-    /// `max_i λ_i |g − u_ν,i| / (max λ · max|u|)`.
+    /// `max_i λ_i |g − u_ν,i| w_i / (f_i δ_i)`, f_i and δ_i the point's force and slip
+    /// scales.
     pub contact_complementarity: f64,
-    /// Exact friction: largest slip of a sticking point relative to max|u| (zero to
-    /// round-off when stick is exact).
+    /// Exact friction: largest slip of a sticking point relative to its slip scale δ_i
+    /// (zero to round-off when stick is exact).
     pub stick_slip: f64,
     /// Number of constraints of each kind checked: (cells, Signorini points, exact-friction
     /// points).

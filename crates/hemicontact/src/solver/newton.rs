@@ -7,7 +7,8 @@
 //! ([`super::line_search`]: the full step if it satisfies the Armijo condition, else a
 //! bracketing secant search).
 //! It stops when the residual ‖∇Π(x)‖ is below `residual_tolerance` times the energy's
-//! force scale ([`ConvexEnergy::force_scale`]), so the criterion is dimensionless.
+//! force scale ([`ConvexEnergy::residual`]: body by body), so the criterion is
+//! dimensionless.
 
 use super::line_search::LineSearch;
 use super::report::{NewtonStep, Timings};
@@ -127,8 +128,11 @@ pub trait ConvexEnergy {
     fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64;
     /// `∇Π` at the last evaluation (N), length n.
     fn gradient(&self) -> &[f64];
-    /// The force scale (N) that makes the residual dimensionless, at the last evaluation.
-    fn force_scale(&self) -> f64;
+    /// The residual norm and the force scale (N) that makes it dimensionless, at the last
+    /// evaluation: for an energy of independent parts (the bodies of a mesh,
+    /// [`super::bodies`]), those of the part farthest from equilibrium relative to its own
+    /// scale.
+    fn residual(&self) -> (f64, f64);
     /// Solves `H Δ = rhs` with the Hessian of the last evaluation with one, to the relative
     /// residual `eta` where the solve is iterative; timings go to `timings`.
     ///
@@ -151,10 +155,6 @@ pub trait ConvexEnergy {
 
 /// How far above the tolerance a stagnating residual may be taken as the round-off floor.
 const ROUND_OFF_MARGIN: f64 = 1e3;
-
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
-}
 
 /// Outcome of one Newton solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -227,8 +227,7 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
             None => (energy.evaluate(x, true), true),
         };
         record.timings.assembly += t.elapsed().as_secs_f64();
-        let res = norm(energy.gradient());
-        let force_scale = energy.force_scale();
+        let (res, force_scale) = energy.residual();
         let tol = tolerance * force_scale;
         record.residual = res;
         record.residual_tolerance = tol;

@@ -34,7 +34,6 @@ use super::report::{OuterStep, SolveReport};
 use super::system::Evaluation;
 use super::{constraints, SolverSettings, System};
 use crate::error::Result;
-use crate::norms::energy_norm;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -186,7 +185,7 @@ pub struct OuterOutcome {
 /// Coulomb-type bound, or a nonconvex potential, or there are exact constraints (whose
 /// multipliers are iterated). Otherwise one convex problem is the whole problem.
 pub fn needs_outer_loop(problem: &Problem) -> bool {
-    constraints::has_exact_constraints(problem)
+    constraints::has_multipliers(problem)
         || problem
             .contact
             .iter()
@@ -262,6 +261,7 @@ pub fn run(
     let mut z = frozen.flatten();
     let mut mixer = Mixer::new(&settings.outer);
     let mut u_prev = u.to_vec();
+    let (mut norm_u, mut norm_diff, mut point_scale) = (Vec::new(), Vec::new(), Vec::new());
     let mut change = f64::INFINITY;
     let mut last = NewtonOutcome {
         converged: false,
@@ -321,17 +321,35 @@ pub fn run(
             }
         };
         let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
-        let norm_u = energy_norm(&problem.mesh, &hooke, u);
         change = if k == 0 {
             f64::INFINITY
         } else {
-            energy_norm(&problem.mesh, &hooke, &diff) / norm_u.max(f64::MIN_POSITIVE)
+            // Body by body: the largest relative change of a body.
+            system
+                .bodies
+                .energy_norms(&problem.mesh, &hooke, u, &mut norm_u);
+            system
+                .bodies
+                .energy_norms(&problem.mesh, &hooke, &diff, &mut norm_diff);
+            norm_diff
+                .iter()
+                .zip(&norm_u)
+                .map(|(d, n)| d / n.max(f64::MIN_POSITIVE))
+                .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
         };
         u_prev.copy_from_slice(u);
         // A user-defined friction law that fails ends the solve with its error.
         let next = frozen.image(system, problem, u)?;
         let g = next.flatten();
-        let fp_rel = frozen.residual(&next, system, problem, u);
+        // Each contact point on its own scale (see `local_scales`).
+        point_scale.clear();
+        point_scale.extend(
+            eval.point_force
+                .iter()
+                .zip(&eval.point_floor)
+                .map(|(f, floor)| f.max(*floor).max(f64::MIN_POSITIVE)),
+        );
+        let fp_rel = frozen.residual(&next, system, problem, &point_scale);
         let mut step = OuterStep {
             change,
             fixed_point_residual: fp_rel,

@@ -184,14 +184,38 @@ impl Scales {
         }
     }
 
-    /// Converts a solution of the dimensionless problem back to the user's units.
-    pub fn dimensional(&self, mut s: Solution) -> Solution {
+    /// Converts the results of a contact point of the dimensionless problem back to the
+    /// user's units.
+    pub fn dimensional_contact(&self, c: &ContactResult) -> ContactResult {
         let (u, t, f, w) = (
             self.displacement,
             self.traction(),
             self.force(),
             self.length.powi(self.dim as i32 - 1),
         );
+        ContactResult {
+            weight: c.weight * w,
+            u_nu: c.u_nu * u,
+            gap: c.gap * u,
+            u_tau: c.u_tau.map(|x| x * u),
+            slip: c.slip * u,
+            pressure: c.pressure * t,
+            bound: c.bound * t,
+            force_normal: c.force_normal * f,
+            force_tangential: c.force_tangential.map(|x| x * f),
+            force: c.force.map(|x| x * f),
+            friction_traction: c.friction_traction.map(|x| x * t),
+            normal_residual: c.normal_residual * f,
+            friction_residual: c.friction_residual * f,
+            force_scale: c.force_scale * f,
+            slip_scale: c.slip_scale * u,
+            ..*c
+        }
+    }
+
+    /// Converts a solution of the dimensionless problem back to the user's units.
+    pub fn dimensional(&self, mut s: Solution) -> Solution {
+        let (u, t, f) = (self.displacement, self.traction(), self.force());
         s.u.iter_mut().for_each(|x| *x *= u);
         s.reactions.iter_mut().for_each(|x| *x *= f);
         s.energy *= self.energy();
@@ -199,22 +223,7 @@ impl Scales {
             .iter_mut()
             .for_each(|x| *x *= self.locking_multiplier);
         for c in &mut s.contact {
-            *c = ContactResult {
-                weight: c.weight * w,
-                u_nu: c.u_nu * u,
-                gap: c.gap * u,
-                u_tau: c.u_tau.map(|x| x * u),
-                slip: c.slip * u,
-                pressure: c.pressure * t,
-                bound: c.bound * t,
-                force_normal: c.force_normal * f,
-                force_tangential: c.force_tangential.map(|x| x * f),
-                force: c.force.map(|x| x * f),
-                friction_traction: c.friction_traction.map(|x| x * t),
-                normal_residual: c.normal_residual * f,
-                friction_residual: c.friction_residual * f,
-                ..*c
-            };
+            *c = self.dimensional_contact(c);
         }
         let (fr, z) = (&mut s.frozen.friction, &mut s.frozen.multipliers);
         fr.bound.iter_mut().for_each(|x| *x *= t);
@@ -232,8 +241,6 @@ impl Scales {
         r.residual *= f;
         r.rigid_shift *= f / u;
         r.residual_tolerance *= f;
-        r.certificate.force_scale *= f;
-        r.certificate.stick_threshold *= u;
         r.scales = Some(*self);
         s
     }

@@ -6,6 +6,7 @@
 
 use super::continuation::Continuation;
 use super::frozen::Frozen;
+use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
@@ -31,18 +32,21 @@ pub struct System {
     pub contact: ContactNodes,
     /// Hessian slots of the contact points' node blocks.
     pub contact_slots: Vec<u32>,
+    /// Elastic stiffness per unit area k_i of every contact point (Pa/m,
+    /// [`super::constraints::contact_stiffness`]): the local scale of its friction
+    /// regularization and of its certificate.
+    pub contact_stiffness: Vec<f64>,
+    /// The cells around the node of every contact point, in compressed rows: those of point
+    /// i are `point_cells.1[point_cells.0[i]..point_cells.0[i + 1]]`.
+    pub point_cells: (Vec<usize>, Vec<u32>),
     /// The continuation stage of the outer loop: penalties of the exact constraints and
     /// floor of the friction regularization.
     pub continuation: Continuation,
     /// External force vector (N), DOF order.
     pub f_ext: Vec<f64>,
-    /// Force unit of the prescribed displacements, `S · max|u_D| · diam^{d−2}` (N; S the
-    /// P-wave modulus; u_D includes the translations of obstacles with friction, see
-    /// [`Problem::largest_prescribed_motion`]): the floor of the force scales of the Newton criterion and the
-    /// certificate, so that a displacement-driven solution without stress (a prescribed
-    /// rigid motion) is measured against the forces its data could cause, not against
-    /// zero.
-    pub force_floor: f64,
+    /// The bodies of the mesh, each with the force unit of its prescribed motions: the unit
+    /// of the convergence tests ([`super::local_scales`]).
+    pub bodies: Bodies,
     /// Seconds spent on (pattern, symbolic analysis or multigrid grids and prolongations).
     pub setup_time: (f64, f64),
     /// Parallel assembly buffers.
@@ -87,6 +91,15 @@ pub struct Evaluation {
     /// The error of a user-defined compliance law at the last evaluation, which then
     /// returned a NaN energy; the outer loop ends the solve with it.
     pub law_error: Option<crate::Error>,
+    /// The force `w_i max(F_i, p_i)` of every contact point at the last evaluation of a
+    /// convex problem (N; [`System::point_scales`]).
+    pub point_force: Vec<f64>,
+    /// The floor `η L_i` of the force scale of every contact point at the last evaluation
+    /// of a convex problem (N; [`System::point_scales`]).
+    pub point_floor: Vec<f64>,
+    /// The force scale `F_b` of every body at the last evaluation of a convex problem (N;
+    /// [`super::local_scales::Bodies::force_scales`]).
+    pub body_scale: Vec<f64>,
 }
 
 impl Evaluation {
@@ -100,6 +113,9 @@ impl Evaluation {
             rigid_shift: 0.0,
             normal: Vec::new(),
             law_error: None,
+            point_force: Vec::new(),
+            point_floor: Vec::new(),
+            body_scale: Vec::new(),
         }
     }
 }
@@ -140,6 +156,8 @@ impl System {
         let contact = problem.contact_nodes()?;
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
+        let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
+        let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
         let options = PrepareOptions {
             ordering: settings.ordering,
@@ -148,13 +166,8 @@ impl System {
         let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();
         let f_ext = problem.external_forces();
-        let force_floor = {
-            let d = problem.mesh.dim();
-            let h = problem.material.elasticity.small_strain_hooke(d);
-            let u_d = problem.largest_prescribed_motion();
-            (h.lambda + 2.0 * h.mu) * u_d * problem.diameter().powi(d as i32 - 2)
-        };
         let rigid = problem.rigid_motions()?;
+        let bodies = Bodies::new(problem, &rigid, &contact);
         let rigid_slots = rigid
             .shifted_dofs()
             .into_iter()
@@ -167,9 +180,11 @@ impl System {
             linear_solver,
             contact,
             contact_slots,
+            contact_stiffness,
+            point_cells,
             continuation,
             f_ext,
-            force_floor,
+            bodies,
             setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
             workspace: Workspace::new(match settings.threads {
                 0 => rayon::current_num_threads(),
@@ -187,9 +202,49 @@ impl System {
             dim: problem.mesh.dim(),
             nodes: &self.contact,
             boundaries: &problem.contact,
-            regularization_floor: self.continuation.regularization_floor,
+            stiffness: &self.contact_stiffness,
             penalty: self.continuation.penalties.contact(),
             responses: &[],
+        }
+    }
+
+    /// The local scales of every contact point at `u` for the frozen quantities `frozen`
+    /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
+    /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
+    /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
+    /// force scale of its body, from `body_scale`) into `floor`.
+    pub fn point_scales(
+        &self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        responses: &[NormalResponse],
+        body_scale: &[f64],
+        force: &mut Vec<f64>,
+        floor: &mut Vec<f64>,
+    ) {
+        let n = self.contact.len();
+        let bulk = BulkAssembler {
+            mesh: &problem.mesh,
+            material: &problem.material,
+            ideal: self.ideal_locking(problem, frozen),
+        };
+        let mut ca = self.contact_assembler(problem);
+        ca.responses = responses;
+        let data = frozen.contact();
+        force.clear();
+        floor.clear();
+        let (offsets, cells) = &self.point_cells;
+        for i in 0..n {
+            let p = ca.state(u, i, &data).pressure;
+            force.push(self.contact.weight[i] * data.bound[i].max(p));
+            let around = &cells[offsets[i]..offsets[i + 1]];
+            let v = self.contact.node[i];
+            let body = body_scale
+                .get(self.bodies.of_node[v as usize] as usize)
+                .copied()
+                .unwrap_or(0.0);
+            floor.push((FLOW_FLOOR * bulk.nodal_force_sum(u, v, around)).max(BODY_FLOOR * body));
         }
     }
 
@@ -322,4 +377,33 @@ impl System {
             .map(|k| if self.dofs.is_fixed(k) { grad[k] } else { 0.0 })
             .collect()
     }
+}
+
+/// The cells around each of the nodes `nodes`, in compressed rows (see
+/// [`System::point_cells`]).
+fn cells_around(mesh: &crate::mesh::Mesh, nodes: &[u32]) -> (Vec<usize>, Vec<u32>) {
+    let mut wanted = vec![u32::MAX; mesh.n_nodes()];
+    let mut lists: Vec<Vec<u32>> = vec![Vec::new(); nodes.len()];
+    let mut first_point = Vec::with_capacity(nodes.len());
+    for (i, &v) in nodes.iter().enumerate() {
+        if wanted[v as usize] == u32::MAX {
+            wanted[v as usize] = i as u32;
+        }
+        first_point.push(wanted[v as usize] as usize);
+    }
+    for c in 0..mesh.n_cells() {
+        for &v in mesh.cell(c) {
+            let i = wanted[v as usize];
+            if i != u32::MAX {
+                lists[i as usize].push(c as u32);
+            }
+        }
+    }
+    let mut offsets = vec![0];
+    let mut cells = Vec::new();
+    for &j in &first_point {
+        cells.extend_from_slice(&lists[j]);
+        offsets.push(cells.len());
+    }
+    (offsets, cells)
 }
