@@ -1,5 +1,7 @@
 //! VTK XML UnstructuredGrid writer (`.vtu`): binary appended data, zlib-compressed in
-//! blocks ([`super::zlib_blocks`], 64-bit block headers), readable by ParaView, VTK and
+//! blocks ([`super::zlib_blocks`], 64-bit block headers), every array in a block of its own
+//! at an offset of its own, the blocks in the reverse order of their arrays (so that meshio
+//! reads every array as VTK does: [`VtuWriter::to_bytes`]), readable by ParaView, VTK and
 //! meshio; the same input always gives the same bytes.
 //!
 //! Point coordinates are written with 3 components (z = 0 in 2D); vectors with 3 components;
@@ -155,55 +157,68 @@ impl<'a> VtuWriter<'a> {
     }
 
     /// Encodes the file: the XML header, then the appended data, every array compressed
-    /// by [`zlib_blocks::compress`].
+    /// by [`zlib_blocks::compress`] into a block of its own.
+    ///
+    /// The blocks are laid out in the reverse order of their `<DataArray>` elements (the
+    /// last array's block at offset 0, the first array's block last), every offset its own.
+    /// VTK reads each array at its offset, whatever the order. meshio (5.3.5) converts raw
+    /// appended data to base64 block by block, from the first byte on, finds the element of
+    /// each block by the offset attribute (the first element in document order with that
+    /// value) and renumbers that attribute to the block's base64 position as it goes; in
+    /// document order, a block's raw offset could equal the new number of an element
+    /// already renumbered, and meshio then gave the block to that element, swapping two
+    /// arrays. In reverse order every element already renumbered comes after the one whose
+    /// offset is looked up, so the lookup always finds the right one.
     pub fn to_bytes(&self) -> Vec<u8> {
+        /// A piece of the file in document order: XML text, or an appended array (its
+        /// `<DataArray` tag up to its offset, and its encoded block).
+        enum Part {
+            Xml(String),
+            Array { tag: String, block: Vec<u8> },
+        }
+        let array = |tag: String, bytes: &[u8]| Part::Array {
+            tag,
+            block: zlib_blocks::compress(bytes),
+        };
         let mesh = self.mesh;
         let d = mesh.dim();
-        let mut appended: Vec<u8> = Vec::new();
-        let mut push = |bytes: &[u8]| -> usize {
-            let at = appended.len();
-            appended.extend_from_slice(&zlib_blocks::compress(bytes));
-            at
-        };
-        let mut xml = String::from(
+        let mut parts = vec![Part::Xml(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
              byte_order=\"LittleEndian\" header_type=\"UInt64\" \
-             compressor=\"vtkZLibDataCompressor\">\n<UnstructuredGrid>\n",
-        );
+             compressor=\"vtkZLibDataCompressor\">\n<UnstructuredGrid>\n"
+                .to_string(),
+        )];
         if !self.field.is_empty() {
-            xml.push_str("<FieldData>\n");
+            parts.push(Part::Xml("<FieldData>\n".into()));
             for a in &self.field {
                 let (ty, bytes) = a.data.encode();
-                let at = push(&bytes);
-                let _ = writeln!(
-                    xml,
+                let tag = format!(
                     "<DataArray type=\"{ty}\" Name=\"{}\" NumberOfTuples=\"{}\" \
-                     format=\"appended\" offset=\"{at}\"/>",
+                     format=\"appended\"",
                     a.name,
                     a.data.len()
                 );
+                parts.push(array(tag, &bytes));
             }
-            xml.push_str("</FieldData>\n");
+            parts.push(Part::Xml("</FieldData>\n".into()));
         }
-        let _ = writeln!(
-            xml,
-            "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        parts.push(Part::Xml(format!(
+            "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
             mesh.n_nodes(),
             mesh.n_cells()
-        );
-        for (tag, arrays) in [("PointData", &self.point), ("CellData", &self.cell)] {
-            let _ = writeln!(xml, "<{tag}>");
+        )));
+        for (section, arrays) in [("PointData", &self.point), ("CellData", &self.cell)] {
+            parts.push(Part::Xml(format!("<{section}>\n")));
             for a in arrays.iter() {
                 let (ty, bytes) = a.data.encode();
-                let at = push(&bytes);
-                let _ = writeln!(
-                    xml,
+                let tag = format!(
                     "<DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{}\" \
-                     format=\"appended\" offset=\"{at}\"/>",
+                     format=\"appended\"",
                     a.name, a.components
                 );
+                parts.push(array(tag, &bytes));
             }
-            let _ = writeln!(xml, "</{tag}>");
+            parts.push(Part::Xml(format!("</{section}>\n")));
         }
         let mut pts = Vec::with_capacity(24 * mesh.n_nodes());
         for n in 0..mesh.n_nodes() {
@@ -212,12 +227,14 @@ impl<'a> VtuWriter<'a> {
                 pts.extend_from_slice(&(if i < d { x[i] } else { 0.0 }).to_le_bytes());
             }
         }
-        let at = push(&pts);
-        let _ = writeln!(
-            xml,
-            "<Points>\n<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" \
-             format=\"appended\" offset=\"{at}\"/>\n</Points>"
-        );
+        parts.push(Part::Xml("<Points>\n".into()));
+        parts.push(array(
+            "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" \
+             format=\"appended\""
+                .into(),
+            &pts,
+        ));
+        parts.push(Part::Xml("</Points>\n<Cells>\n".into()));
         let conn: Vec<u8> = mesh
             .cells()
             .iter()
@@ -229,18 +246,42 @@ impl<'a> VtuWriter<'a> {
             .collect();
         let vtk_type: u8 = if d == 2 { 5 } else { 10 };
         let types = vec![vtk_type; mesh.n_cells()];
-        let a1 = push(&conn);
-        let a2 = push(&offs);
-        let a3 = push(&types);
-        let _ = write!(
-            xml,
-            "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{a1}\"/>\n\
-             <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{a2}\"/>\n\
-             <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{a3}\"/>\n\
-             </Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_"
-        );
+        for (ty, name, bytes) in [
+            ("Int64", "connectivity", &conn),
+            ("Int64", "offsets", &offs),
+            ("UInt8", "types", &types),
+        ] {
+            let tag = format!("<DataArray type=\"{ty}\" Name=\"{name}\" format=\"appended\"");
+            parts.push(array(tag, bytes));
+        }
+        parts.push(Part::Xml(
+            "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_".into(),
+        ));
+        // Offsets: the blocks in reverse document order, one after the other.
+        let mut offsets = vec![0usize; parts.len()];
+        let mut at = 0;
+        for (k, part) in parts.iter().enumerate().rev() {
+            if let Part::Array { block, .. } = part {
+                offsets[k] = at;
+                at += block.len();
+            }
+        }
+        let mut xml = String::new();
+        for (part, offset) in parts.iter().zip(&offsets) {
+            match part {
+                Part::Xml(text) => xml.push_str(text),
+                Part::Array { tag, .. } => {
+                    let _ = writeln!(xml, "{tag} offset=\"{offset}\"/>");
+                }
+            }
+        }
         let mut out = xml.into_bytes();
-        out.extend_from_slice(&appended);
+        out.reserve(at + 32);
+        for part in parts.iter().rev() {
+            if let Part::Array { block, .. } = part {
+                out.extend_from_slice(block);
+            }
+        }
         out.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
         out
     }

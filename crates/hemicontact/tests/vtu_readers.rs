@@ -1,0 +1,339 @@
+//! # Verification: every reader reads the same `.vtu`
+//!
+//! What is verified, and why it must hold:
+//!
+//! - **Own blocks.** In every file written, each `<DataArray format="appended">` has an
+//!   offset of its own, and the encoded arrays at those offsets tile the appended data
+//!   exactly (no gap, no overlap, nothing shared), each decoding to the size its type and
+//!   counts call for; the blocks follow one another in the reverse order of their
+//!   elements, the layout that meshio's offset lookup (below) cannot confuse. Checked here
+//!   in Rust, without Python.
+//! - **meshio reads what VTK reads.** `tests/python/check_readers.py` reads every file with
+//!   meshio and with VTK's `vtkXMLUnstructuredGridReader` and requires the same points,
+//!   connectivity and point, cell and field arrays: same names, dtypes, shapes and bytes.
+//!   meshio rewrites raw appended data to base64 and finds the array of each block by its
+//!   offset, one block after the other, renumbering offsets as it goes; a block whose raw
+//!   offset equals an offset already renumbered used to be handed to the wrong array (a
+//!   `step-001/solution.vtu` of a load path with a tiny first factor had its `reaction`
+//!   and `contact_normal` swapped), which only the comparison with VTK shows.
+//! - **Which files.** Every committed scenario in `scenarios/` (generated meshes at a small
+//!   resolution, the Gmsh mesh as it is), both steps of a load path with a tiny first load
+//!   factor (`[loading] factors = [1e-6, 1.0]` on the paper's example at n = 2, the case
+//!   that was misread), and files with many short `FieldData` arrays of arbitrary content,
+//!   where raw offsets and renumbered offsets meet often.
+//!
+//! The interpreter is `$HEMICONTACT_PYTHON`, else `python3`; under `CI=true` a missing
+//! meshio or vtk fails the test, elsewhere the reader comparison is skipped with a loud line
+//! saying it is no evidence (the Rust checks still run).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+use hemicontact::io::vtu::{solution_vtu, VtuWriter};
+use hemicontact::io::zlib_blocks;
+use hemicontact::loading::load_path;
+use hemicontact::scenario::schema::MeshKind;
+use hemicontact::scenario::Scenario;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::AtomicBool;
+
+/// The repository's committed scenarios, sorted by name.
+fn committed_scenarios() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 10, "{} scenarios in {dir:?}", files.len());
+    files
+}
+
+/// The scenario at a resolution that solves in a fraction of a second: generated meshes
+/// with 4 cells along x (2D) or 2 (3D); a Gmsh mesh as it is.
+fn small(scenario: &Scenario) -> Scenario {
+    let spec = scenario.mesh_spec().unwrap();
+    match spec.kind {
+        MeshKind::Rectangle => scenario.with_resolution(4).unwrap(),
+        MeshKind::Box => scenario.with_resolution(2).unwrap(),
+        MeshKind::Gmsh => scenario.clone(),
+    }
+}
+
+/// Writes the `solution.vtu` of every committed scenario (small, one solve at the full
+/// load, the scenario's title) into `dir`; returns the paths.
+fn write_committed(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    for file in committed_scenarios() {
+        let scenario = small(&Scenario::from_file(&file).unwrap());
+        let problem = scenario.into_problem().unwrap();
+        let settings = scenario.settings().unwrap();
+        let solution = hemicontact::solver::solve(&problem, &settings).unwrap();
+        let title = scenario.file.title.clone().unwrap_or("scenario".into());
+        let stem = file.file_stem().unwrap().to_str().unwrap();
+        let path = dir.join(format!("{stem}.vtu"));
+        solution_vtu(&problem, &solution, &title, 1.0)
+            .unwrap()
+            .write(&path)
+            .unwrap();
+        out.push(path);
+    }
+    out
+}
+
+/// Solves the paper's example at n = 2 along `[loading] factors = [1e-6, 1.0]` and writes
+/// each step's `solution.vtu` into `dir` (the step's title and load factor, as
+/// `hemicontact solve` writes them); returns the paths.
+fn write_tiny_first_factor_path(dir: &Path) -> Vec<PathBuf> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenarios/paper.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains("n = [128, 128]"));
+    let text =
+        text.replace("n = [128, 128]", "n = [2, 2]") + "\n[loading]\nfactors = [1e-6, 1.0]\n";
+    let scenario = Scenario::from_str(&text, "paper.toml at n = 2").unwrap();
+    let problem = scenario.into_problem().unwrap();
+    let settings = scenario.settings().unwrap();
+    let factors = scenario.load_factors().unwrap().unwrap();
+    let title = scenario.file.title.clone().unwrap();
+    let steps = load_path(
+        &problem,
+        &settings,
+        &factors,
+        &AtomicBool::new(false),
+        &|_, _| {},
+        &mut |_| Ok(()),
+    )
+    .unwrap();
+    assert_eq!(steps.len(), 2);
+    steps
+        .iter()
+        .map(|s| {
+            let path = dir.join(format!("step-{:03}.vtu", s.step));
+            let step_title = format!("{title}, load factor {:e}", s.factor);
+            solution_vtu(&s.problem, &s.solution, &step_title, s.factor)
+                .unwrap()
+                .write(&path)
+                .unwrap();
+            path
+        })
+        .collect()
+}
+
+/// Writes `count` files on a small mesh, each with many `FieldData` arrays beside point and
+/// cell arrays: first 30 all-zero arrays of 8 to 40 values (their base64 form is long,
+/// their compressed form short), then 150 arrays of 1 to 3 arbitrary values (compressed
+/// longer than they are), so that the raw offsets of the later arrays pass through the
+/// range of the base64 offsets meshio gives the earlier ones; returns the paths.
+fn write_many_short_arrays(dir: &Path, count: usize) -> Vec<PathBuf> {
+    let problem = common::problem(
+        "[mesh]\nkind = \"rectangle\"\nsize = [1.0, 1.0]\nn = [2, 2]\n\
+         [material]\nyoung = 1.0\npoisson = 0.3\n[[dirichlet]]\npart = \"bottom\"\n",
+    );
+    let mesh = problem.mesh();
+    let mut rng = common::Rng::new(7);
+    (0..count)
+        .map(|f| {
+            let mut w = VtuWriter::new(mesh);
+            w.field_text("TITLE", &format!("file {f}"));
+            for k in 0..30 {
+                let len = 8 + (rng.next_u64() % 33) as usize;
+                w.field_f64(&format!("zeros{k:03}"), vec![0.0; len]);
+            }
+            for k in 0..150 {
+                let len = 1 + (rng.next_u64() % 3) as usize;
+                let values = (0..len).map(|_| rng.uniform(-1.0, 1.0)).collect();
+                w.field_f64(&format!("short{k:03}"), values);
+            }
+            let n = mesh.n_nodes();
+            w.point_f64("zeros", 3, vec![0.0; 3 * n])
+                .point_i32("ids", (0..n as i32).collect())
+                .point_f64("also_zeros", 1, vec![0.0; n])
+                .cell_f64("x", 1, (0..mesh.n_cells()).map(|c| c as f64).collect())
+                .cell_i32("none", vec![0; mesh.n_cells()]);
+            let path = dir.join(format!("short-{f:02}.vtu"));
+            w.write(&path).unwrap();
+            path
+        })
+        .collect()
+}
+
+/// Bytes per value of a VTK type name.
+fn type_size(ty: &str) -> usize {
+    match ty {
+        "Float64" | "Int64" => 8,
+        "Int32" => 4,
+        "UInt8" => 1,
+        _ => panic!("unexpected type {ty}"),
+    }
+}
+
+/// Asserts that every appended `DataArray` of the file at `path` has its own offset and its
+/// own block: the blocks at the offsets tile the appended data, and each decodes to the size
+/// its type and counts call for. Returns (offset, name) of each in document order.
+fn own_blocks(path: &Path) -> Vec<(usize, String)> {
+    use common::vtu::attr;
+    let bytes = std::fs::read(path).unwrap();
+    let marker = b"<AppendedData encoding=\"raw\">\n_";
+    let start = bytes
+        .windows(marker.len())
+        .position(|w| w == marker)
+        .expect("appended data")
+        + marker.len();
+    let end = bytes.len() - b"\n</AppendedData>\n</VTKFile>\n".len();
+    let head = String::from_utf8(bytes[..start].to_vec()).unwrap();
+    let count = |key: &str| -> usize {
+        let at = head.find(key).unwrap() + key.len();
+        head[at..].split('"').next().unwrap().parse().unwrap()
+    };
+    let (n_points, n_cells) = (count("NumberOfPoints=\""), count("NumberOfCells=\""));
+    let mut blocks: Vec<(usize, usize, String)> = Vec::new();
+    let mut section = "";
+    for line in head.lines() {
+        if let Some(tag) = line.strip_prefix('<').and_then(|l| l.strip_suffix('>')) {
+            if !tag.starts_with("DataArray") && !tag.starts_with('/') {
+                section = ["FieldData", "PointData", "CellData", "Points", "Cells"]
+                    .into_iter()
+                    .find(|s| tag == *s)
+                    .unwrap_or(section);
+            }
+        }
+        if !line.starts_with("<DataArray") {
+            continue;
+        }
+        assert_eq!(attr(line, "format"), "appended", "{path:?}: {line}");
+        let name = attr(line, "Name").to_string();
+        let offset: usize = attr(line, "offset").parse().unwrap();
+        let (data, used) = zlib_blocks::decompress(&bytes[start + offset..end])
+            .unwrap_or_else(|e| panic!("{path:?}: {name} at {offset}: {e}"));
+        let values = data.len() / type_size(attr(line, "type"));
+        let expected = match (section, name.as_str()) {
+            ("FieldData", _) => attr(line, "NumberOfTuples").parse().unwrap(),
+            ("Cells", "connectivity") => values, // checked by the readers
+            ("Cells", _) => n_cells,
+            (section, _) => {
+                let components: usize = attr(line, "NumberOfComponents").parse().unwrap();
+                let tuples = if section == "CellData" {
+                    n_cells
+                } else {
+                    n_points
+                };
+                tuples * components
+            }
+        };
+        assert_eq!(values, expected, "{path:?}: {section} {name}");
+        blocks.push((offset, used, format!("{section} {name}")));
+    }
+    let in_document_order: Vec<(usize, String)> =
+        blocks.iter().map(|(o, _, n)| (*o, n.clone())).collect();
+    blocks.sort();
+    let mut at = 0;
+    for (offset, used, name) in &blocks {
+        assert_eq!(
+            *offset, at,
+            "{path:?}: {name} starts at {offset}, the block before it ends at {at}: \
+             every array has its own block, one after the other ({blocks:?})"
+        );
+        at = offset + used;
+    }
+    assert_eq!(
+        at,
+        end - start,
+        "{path:?}: the blocks fill the appended data"
+    );
+    in_document_order
+}
+
+/// Asserts the layout that meshio's offset lookup cannot confuse: the blocks of the
+/// arrays `blocks` (offset, name; in document order) of the file at `path` follow one
+/// another in the reverse order of their elements.
+fn assert_reverse_layout(path: &Path, blocks: &[(usize, String)]) {
+    for pair in blocks.windows(2) {
+        assert!(
+            pair[0].0 > pair[1].0,
+            "{path:?}: {} at {} comes before {} at {} in the XML: the blocks are laid out \
+             in the reverse order of their elements",
+            pair[0].1,
+            pair[0].0,
+            pair[1].1,
+            pair[1].0
+        );
+    }
+}
+
+/// All checks on `files`: every array in a block of its own, meshio and VTK reading the
+/// same, and the reverse layout (checked last, so that on a file in another layout the
+/// readers' disagreement, if any, is what is reported).
+fn check_files(files: &[PathBuf]) {
+    let layouts: Vec<Vec<(usize, String)>> = files.iter().map(|f| own_blocks(f)).collect();
+    readers_agree(files);
+    for (f, blocks) in files.iter().zip(&layouts) {
+        assert_reverse_layout(f, blocks);
+    }
+}
+
+/// The Python interpreter of the reader checks: `$HEMICONTACT_PYTHON`, else `python3`.
+fn python() -> String {
+    std::env::var("HEMICONTACT_PYTHON").unwrap_or_else(|_| "python3".to_string())
+}
+
+/// Runs `tests/python/check_readers.py` on `files`: panics if a check fails; announces the
+/// skip (or fails under `CI=true`) if the interpreter cannot import meshio and vtk.
+fn readers_agree(files: &[PathBuf]) {
+    use std::io::Write as _;
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_readers.py");
+    let out = Command::new(python())
+        .arg(&script)
+        .args(files)
+        .output()
+        .expect("the Python interpreter runs");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    if out.status.code() == Some(77) {
+        assert!(
+            std::env::var("CI").as_deref() != Ok("true"),
+            "CI=true and `{}` cannot import meshio and vtk: {stderr}; .ci/run installs them \
+             with scripts/install-test-deps.sh and sets HEMICONTACT_PYTHON",
+            python()
+        );
+        let _ = writeln!(
+            std::io::stderr().lock(),
+            "\n*** SKIPPED check_readers.py: `{}` cannot import meshio, vtk and numpy. This \
+             run is NO evidence that meshio and VTK read the files the same. Install the \
+             readers with `bash scripts/install-test-deps.sh target/test-venv` and set \
+             HEMICONTACT_PYTHON=$PWD/target/test-venv/bin/python (an absolute path). ***\n",
+            python()
+        );
+        return;
+    }
+    assert!(
+        out.status.success(),
+        "check_readers.py failed (exit {:?}):\n{}{stderr}",
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout)
+    );
+}
+
+#[test]
+fn committed_scenarios_are_read_the_same_by_meshio_and_vtk() {
+    let dir = common::fresh_dir("vtu-readers-scenarios");
+    let files = write_committed(&dir);
+    check_files(&files);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn load_path_with_a_tiny_first_factor_is_read_the_same_by_meshio_and_vtk() {
+    let dir = common::fresh_dir("vtu-readers-path");
+    let files = write_tiny_first_factor_path(&dir);
+    check_files(&files);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn many_short_arrays_are_read_the_same_by_meshio_and_vtk() {
+    let dir = common::fresh_dir("vtu-readers-short");
+    let files = write_many_short_arrays(&dir, 16);
+    check_files(&files);
+    let _ = std::fs::remove_dir_all(&dir);
+}
