@@ -31,6 +31,10 @@
 //!    is μ(0) × N.
 //! 4. **Two contact parts** under the block, with coefficients 0.2 and 0.4: solved at half
 //!    the smaller one's limit, refused above the larger one's.
+//! 5. **A rigid foundation (Signorini) and a gap**: the Coulomb bound of a Signorini point
+//!    takes its pressure from the multiplier, zero in the first iteration; with it, and
+//!    with the block 0.5 m above a compliant foundation (dropped onto it first), friction
+//!    holds the block at 0.99 of the limit and refuses 1.01 of it.
 //!
 //! Before the change that introduced these checks, every case with a Coulomb bound and a
 //! nonzero side load failed with "the load pulls the body off its contact" (the first
@@ -345,6 +349,33 @@ fn two_contact_parts_share_the_friction_limit() {
                 assert!(msg.contains("normal force 20 N/m"), "{msg}");
             }
             other => panic!("not refused: {:?}", other.map(|s| s.report.message)),
+        }
+    }
+}
+
+#[test]
+fn a_rigid_foundation_and_a_gap_have_the_same_limit() {
+    let compliance = "law = \"normal-compliance\"\nc_nu = 2000.0";
+    for exact in [false, true] {
+        for (what, from, to) in [
+            ("Signorini", compliance, "law = \"signorini\""),
+            ("gap 0.5 m", "gap = 0.0", "gap = 0.5"),
+        ] {
+            let limit = MU * Q * 2.0;
+            let text =
+                |ratio: f64| block(2, ratio * limit / 2.0, Law::Coulomb, exact).replace(from, to);
+            let case = format!("{what}, exact = {exact}");
+            let (problem, settings) = common::setup(&text(0.99));
+            let sol = solve(&problem, &settings).unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(sol.report.converged, "{case}: {}", sol.report.message);
+            assert_held(&problem, &sol, &[0.99 * limit, -Q * 2.0], limit, &case);
+            let msg = refused(&text(1.01));
+            assert!(
+                msg.contains(
+                    "is 6.06 N/m, above the friction limit μ × normal force = 0.3 × 20 N/m = 6 N/m"
+                ),
+                "{case}: {msg}"
+            );
         }
     }
 }

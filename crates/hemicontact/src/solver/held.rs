@@ -197,6 +197,14 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
                 coefficients[j] += c[l] * bl[j];
             }
         }
+        // Components at round-off level (a tilt of 10⁻¹⁶ from a load's moment that the
+        // rest has cancelled) would turn a translation into a rotation about a far point.
+        let reach = norm(&coefficients);
+        for x in coefficients.iter_mut() {
+            if x.abs() <= ROUND_OFF * reach {
+                *x = 0.0;
+            }
+        }
         let mut largest = 0.0f64;
         for &v in nodes {
             let r = rigid.displacement(b, &coefficients, mesh.node(v as usize));
@@ -690,7 +698,7 @@ impl Sliding {
         u: &[f64],
         frozen: &Frozen,
     ) -> Result<()> {
-        let (bounds, pressures, mu) = largest_bounds(system, problem, u, frozen)?;
+        let (bounds, pressures, mu) = largest_bounds(system, problem, u, frozen, false)?;
         for s in &self.bodies {
             let limit = limit(system, problem, s, &bounds, &pressures, &mu);
             if s.load > limit.value {
@@ -721,7 +729,7 @@ impl Sliding {
         if system.rigid.sliding_share(r.body, &r.motion) < 0.5 {
             return Ok(None);
         }
-        let (bounds, pressures, mu) = largest_bounds(system, problem, u, frozen)?;
+        let (bounds, pressures, mu) = largest_bounds(system, problem, u, frozen, true)?;
         let largest = limit(system, problem, s, &bounds, &pressures, &mu);
         let carried = capacity(system, s, &frozen.friction.bound);
         let unit = force_unit(system, s);
@@ -874,9 +882,11 @@ fn with_unit(x: f64, unit: &str) -> String {
 }
 
 /// The largest friction bound each contact point can reach at `u`, with its pressure and
-/// its largest coefficient μ₀ (see the module documentation): `μ₀ p(u)` for a Coulomb
-/// bound (the pressure with the multipliers of `frozen` at Signorini points), `μ₀` for a
-/// Tresca bound, 0 without friction.
+/// its largest coefficient μ₀ (see the module documentation): `μ₀ p` for a Coulomb bound,
+/// `μ₀` for a Tresca bound, 0 without friction. The pressure is `p(u)`; at a Signorini
+/// point the multiplier of `frozen` itself if `frozen_multipliers` (the pressure the
+/// bound of its convex problem was built on), else its update `(λ + r (u_ν − g))_+` at u
+/// (after a first iteration, whose multipliers are still zero).
 ///
 /// # Errors
 /// [`Error::Law`] if a user-defined law fails.
@@ -885,6 +895,7 @@ pub fn largest_bounds(
     problem: &Problem,
     u: &[f64],
     frozen: &Frozen,
+    frozen_multipliers: bool,
 ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let ca = system.contact_assembler(problem);
     let mut responses = Vec::new();
@@ -925,7 +936,11 @@ pub fn largest_bounds(
             if !fr.mu.is_field() && sup.is_finite() {
                 mu[i] = mu[i].max(sup);
             }
-            pressures[i] = ca.state(u, i, &data).pressure;
+            pressures[i] = if frozen_multipliers && problem.contact[b].normal.is_exact() {
+                data.pressure[i]
+            } else {
+                ca.state(u, i, &data).pressure
+            };
             bounds[i] = fr.bound_of(mu[i], pressures[i]);
         }
     }

@@ -365,7 +365,14 @@ pub fn run(
             u_prev.copy_from_slice(u);
         }
         // A user-defined friction law that fails ends the solve with its error.
-        let next = frozen.image(system, problem, u)?;
+        let mut next = frozen.image(system, problem, u)?;
+        if k == 0 && relieved_first {
+            // A Coulomb bound at a Signorini point takes its pressure from the multiplier,
+            // zero in this first iteration: take the updated one.
+            next.friction = system
+                .contact_assembler(problem)
+                .convexify(u, &next.contact())?;
+        }
         let g = next.flatten();
         let fp_rel = frozen.residual(&next, system, problem, u);
         let mut step = OuterStep {
