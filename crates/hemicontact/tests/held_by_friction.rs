@@ -28,7 +28,10 @@
 //!    `μ × normal force = 0.3 × 20 N/m = 6 N/m`, `bound × contact length = 3 Pa × 2 m`).
 //! 3. **A slip-weakening coefficient** (exponential, μ(0) = 0.3 down to 0.1): the static
 //!    value holds the sticking block at half its limit, and the limit named when refusing
-//!    is μ(0) × N.
+//!    is μ(0) × N. With the paper's strong weakening (μ from 0.4 to 0.1 over slips of
+//!    0.01 m), 0.75 of the static limit is held; at 0.975 of it the slips weaken μ below
+//!    the load: the solve either holds the block or says so, naming what the bound of
+//!    the outer iteration that lost it carried and the static limit.
 //! 4. **Two contact parts** under the block, with coefficients 0.2 and 0.4: solved at half
 //!    the smaller one's limit, refused above the larger one's.
 //! 5. **A rigid foundation (Signorini) and a gap**: the Coulomb bound of a Signorini point
@@ -259,6 +262,29 @@ fn a_slip_weakening_coefficient_holds_with_its_static_value() {
                 msg.contains(&format!("μ × normal force = {normal}")),
                 "{case}: {msg}"
             );
+        }
+    }
+    let paper = "mu = { law = \"exponential\", a = 0.4, b = 0.1, beta = 100.0 }";
+    let limit = 0.4 * Q * 2.0;
+    for ratio in [0.75, 0.975] {
+        let text = block(2, ratio * limit / 2.0, Law::Coulomb, false).replace(&constant, paper);
+        let (problem, settings) = common::setup(&text);
+        match solve(&problem, &settings) {
+            Ok(sol) => {
+                assert!(sol.report.converged, "{ratio}: {}", sol.report.message);
+                assert_held(
+                    &problem,
+                    &sol,
+                    &[ratio * limit, -Q * 2.0],
+                    limit,
+                    "paper law",
+                );
+            }
+            Err(e @ Error::FrictionLimit { .. }) if ratio > 0.9 => {
+                let msg = e.to_string();
+                assert!(msg.contains("the slips reached weaken μ below its static limit μ × normal force = 0.4 × 20 N/m = 8 N/m"), "{msg}");
+            }
+            Err(e) => panic!("{ratio}: {e}"),
         }
     }
 }

@@ -702,7 +702,7 @@ impl Sliding {
         for s in &self.bodies {
             let limit = limit(system, problem, s, &bounds, &pressures, &mu);
             if s.load > limit.value {
-                return Err(self.error(system, s, limit.words(system, s), None));
+                return Err(self.error(system, s, limit.words(system, s)));
             }
         }
         Ok(())
@@ -731,35 +731,29 @@ impl Sliding {
         }
         let (bounds, pressures, mu) = largest_bounds(system, problem, u, frozen, true)?;
         let largest = limit(system, problem, s, &bounds, &pressures, &mu);
+        let words = largest.words(system, s);
+        if s.load > largest.value {
+            return Ok(Some(self.error(system, s, words)));
+        }
+        // Below the largest limit: the bound of this iteration, weakened by the slips it
+        // was built on, could not carry the load.
         let carried = capacity(system, s, &frozen.friction.bound);
-        let unit = force_unit(system, s);
-        let note = format!(
-            "; the friction bound of outer iteration {iteration} carried only {} (the slips \
-             reached weaken μ)",
-            with_unit(carried * unit.0, unit.1)
+        let (scale, unit) = force_unit(system, s);
+        let limit = format!(
+            "of outer iteration {iteration}, {} (the slips reached weaken μ below its \
+             static limit {words})",
+            with_unit(carried * scale, unit)
         );
-        Ok(Some(self.error(
-            system,
-            s,
-            largest.words(system, s),
-            Some(note),
-        )))
+        Ok(Some(self.error(system, s, limit)))
     }
 
-    fn error(
-        &self,
-        system: &System,
-        s: &SlidingLoad,
-        limit: String,
-        note: Option<String>,
-    ) -> Error {
-        let rigid = &system.rigid;
+    fn error(&self, system: &System, s: &SlidingLoad, limit: String) -> Error {
         let units = system.user_units();
         let unit = force_unit(system, s);
         Error::FrictionLimit {
-            motion: describe(rigid, s.body, &s.direction, units.length),
+            motion: describe(&system.rigid, s.body, &s.direction, units.length),
             load: with_unit(s.load * unit.0, unit.1),
-            limit: limit + &note.unwrap_or_default(),
+            limit,
         }
     }
 }
