@@ -83,15 +83,37 @@ pub enum Error {
         motions: String,
     },
     /// The load pulls a body off the contact that was to carry its free rigid motions (see
-    /// [`crate::fem::rigid::RigidMotions::check_runaway`]): there is no equilibrium.
+    /// [`crate::fem::rigid::RigidMotions::runaway`] and [`crate::solver::held`]): there is
+    /// no equilibrium.
     #[error(
         "the load pulls the body off its contact: no equilibrium along the rigid motions \
          that the Dirichlet conditions leave free: {motions}; block them by Dirichlet \
          conditions or change the load"
     )]
     ContactLost {
-        /// The free motions in words and how far the body moved.
+        /// The motion the body moved along, in words, and how far it moved (or would have
+        /// to).
         motions: String,
+    },
+    /// The load along a rigid motion of a body that only friction carries (it moves no
+    /// contact point along its normal: a block without supports pushed along the
+    /// foundation) exceeds the largest force friction can exert along it (see
+    /// [`crate::solver::held`]): the body slides away, there is no equilibrium.
+    #[error(
+        "friction cannot hold the body: the load along its {motion} (a motion that only \
+         friction carries) is {load}, above the friction limit {limit}; lower that load, \
+         raise the friction, or block the motion by a Dirichlet condition"
+    )]
+    FrictionLimit {
+        /// The motion in words (e.g. `translation along x`), with the mesh component when
+        /// there are several.
+        motion: String,
+        /// The load along it with its unit (a force in N, N/m in 2D; a moment in N·m,
+        /// N·m/m in 2D, for a rotation), e.g. `6.06 N/m`.
+        load: String,
+        /// The friction limit with its unit and how it is made up, e.g.
+        /// `μ × normal force = 0.3 × 20 N/m = 6 N/m`.
+        limit: String,
     },
     /// A user-defined law failed during a solve: its function returned an error, or a value
     /// that is not finite or is negative (see [`crate::contact::slip_law`]).

@@ -82,6 +82,14 @@ pub struct ContactNodes {
     /// Position of the node in the reference configuration (m; unused coordinates 0), where
     /// a friction law of the position is evaluated.
     pub position: Vec<[f64; 3]>,
+    /// Normal component `ν_i·u_R` (m) of a rigid placement `u_R` of the body applied
+    /// before the solve ([`ContactNodes::place`]), already subtracted from `gap`; empty
+    /// without placement.
+    pub placed_normal: Vec<f64>,
+    /// Tangential coordinates `τ_a·u_R` (m) of that placement, added to the tangential
+    /// displacement of every evaluation ([`ContactNodes::kinematics`]); empty without
+    /// placement.
+    pub placed_tangential: Vec<[f64; 2]>,
 }
 
 /// Angle between facet normals above which one contact boundary is split at a node into
@@ -192,7 +200,10 @@ impl ContactNodes {
 
     /// Normal displacement `u_ν = u·ν` and tangential coordinates of the slip
     /// `ξ_a = u·τ_a − t_a` of point `i` for the displacement `u` (DOF order), relative to
-    /// the foundation's material point ([`ContactNodes::foundation_motion`] `t_a`).
+    /// the foundation's material point ([`ContactNodes::foundation_motion`] `t_a`). After a
+    /// rigid placement `u_R` ([`ContactNodes::place`]), `u` is the displacement relative to
+    /// it: `u_ν` is then relative too (to be compared with the remaining `gap`), and
+    /// `ξ_a = (u + u_R)·τ_a − t_a` is the whole slip, which the friction law sees.
     #[inline]
     pub fn kinematics(&self, dim: usize, u: &[f64], i: usize) -> (f64, [f64; 2]) {
         let v = self.node[i] as usize;
@@ -202,7 +213,42 @@ impl ContactNodes {
         for (a, t) in self.tangent[i].iter().enumerate().take(dim - 1) {
             xi[a] = dot(t) - self.foundation_motion[i][a];
         }
+        if let Some(placed) = self.placed_tangential.get(i) {
+            for a in 0..dim - 1 {
+                xi[a] += placed[a];
+            }
+        }
         (dot(&self.normal[i]), xi)
+    }
+
+    /// Moves the bodies rigidly by `u_r` (DOF order, m) before a solve, which then solves
+    /// for the displacement `u − u_r` relative to this placement: each point's gap becomes
+    /// `g_i − ν_i·u_r(x_i)` (the part of the gap the placement has closed is subtracted
+    /// once, exactly, instead of being carried through every evaluation of `u_ν − g`), and
+    /// its tangential coordinates `τ_a·u_r(x_i)` are kept in
+    /// [`ContactNodes::placed_tangential`] and added back by
+    /// [`ContactNodes::kinematics`]. A placement replaces any earlier one, whose normal
+    /// part is first given back to the gaps.
+    pub fn place(&mut self, dim: usize, u_r: &[f64]) {
+        let n = self.len();
+        if self.placed_normal.len() == n {
+            for (g, p) in self.gap.iter_mut().zip(&self.placed_normal) {
+                *g += p;
+            }
+        }
+        self.placed_normal = vec![0.0; n];
+        self.placed_tangential = vec![[0.0; 2]; n];
+        for i in 0..n {
+            let v = self.node[i] as usize;
+            let x = &u_r[dim * v..dim * v + dim];
+            let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
+            let normal = dot(&self.normal[i]);
+            self.placed_normal[i] = normal;
+            self.gap[i] -= normal;
+            for a in 0..dim - 1 {
+                self.placed_tangential[i][a] = dot(&self.tangent[i][a]);
+            }
+        }
     }
 }
 

@@ -10,6 +10,7 @@ use super::system::{Evaluation, LinearInfo};
 use super::System;
 use crate::error::Result;
 use crate::fem::dofs::FIXED;
+use crate::fem::rigid::Runaway;
 use crate::problem::Problem;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -32,6 +33,9 @@ pub struct ConvexProblem<'a> {
     body_residual: Vec<f64>,
     /// Raised by the caller to interrupt the minimization ([`ConvexProblem::with_stop`]).
     stop: Option<&'a AtomicBool>,
+    /// The body that moved by more than its size, if the minimization stopped for that
+    /// ([`ConvexEnergy::accept`]).
+    pub runaway: Option<Runaway>,
 }
 
 impl<'a> ConvexProblem<'a> {
@@ -61,6 +65,7 @@ impl<'a> ConvexProblem<'a> {
             external,
             body_residual: Vec::new(),
             stop: None,
+            runaway: None,
         }
     }
 
@@ -169,7 +174,11 @@ impl ConvexEnergy for ConvexProblem<'_> {
     }
 
     /// A body whose free rigid motions only contact carries, pulled off that contact,
-    /// moves without bound: [`crate::Error::ContactLost`]. A raised stop flag:
+    /// moves without bound: [`crate::Error::ContactLost`] once it has moved by more than its
+    /// size along a motion that presses no contact point into its foundation, the forces at
+    /// `x` still driving it along that motion (a body pressed into its foundation, or pushed
+    /// back after an overshoot, is let come back), naming the motion in the user's units, with the
+    /// body and motion kept in [`ConvexProblem::runaway`]. A raised stop flag:
     /// [`crate::Error::Interrupted`].
     fn accept(&mut self, x: &[f64]) -> Result<()> {
         if self.stop.is_some_and(|s| s.load(Ordering::Relaxed)) {
@@ -177,9 +186,70 @@ impl ConvexEnergy for ConvexProblem<'_> {
         }
         if self.eval.rigid_shift > 0.0 {
             self.expand(x);
-            self.system
+            let length = self.system.length_unit();
+            let Some(r) = self
+                .system
                 .rigid
-                .check_runaway(&self.u, self.system.length_unit)?;
+                .runaway(&self.problem.mesh, &self.u, length)
+            else {
+                return Ok(());
+            };
+            // A body runs away along a motion that moves no contact point into its
+            // foundation (it lifts off or slides) and along which the forces at x still
+            // drive it. One moving into its foundation meets a growing resistance (a load
+            // that deforms by more than the body's size, linear elasticity allows it), and
+            // one that the forces push back has overshot its equilibrium (a line search
+            // along a nearly flat energy, e.g. friction close to its limit): both come back.
+            if r.moved.is_finite() {
+                let d = self.problem.mesh.dim();
+                let rigid = &self.system.rigid;
+                let mesh = &self.problem.mesh;
+                let contact = &self.system.contact;
+                let reach = rigid.bodies[r.body]
+                    .nodes
+                    .iter()
+                    .map(|&v| {
+                        let m = rigid.displacement(r.body, &r.motion, mesh.node(v as usize));
+                        m.iter().map(|c| c * c).sum::<f64>().sqrt()
+                    })
+                    .fold(0.0f64, f64::max);
+                let into = (0..contact.len())
+                    .filter(|&i| rigid.body_of[contact.node[i] as usize] as usize == r.body)
+                    .map(|i| {
+                        let m = rigid.displacement(
+                            r.body,
+                            &r.motion,
+                            mesh.node(contact.node[i] as usize),
+                        );
+                        (0..d).map(|j| m[j] * contact.normal[i][j]).sum::<f64>()
+                    })
+                    .fold(0.0f64, f64::max);
+                if into > 1e-2 * reach {
+                    return Ok(());
+                }
+                self.evaluate(x, false);
+                let rigid = &self.system.rigid;
+                let mut push = 0.0;
+                for &v in &rigid.bodies[r.body].nodes {
+                    let m =
+                        rigid.displacement(r.body, &r.motion, self.problem.mesh.node(v as usize));
+                    for i in 0..d {
+                        let dof = d * v as usize + i;
+                        if !self.system.dofs.is_fixed(dof) {
+                            push -= m[i] * self.eval.grad[dof];
+                        }
+                    }
+                }
+                if push <= 0.0 {
+                    return Ok(());
+                }
+            }
+            self.runaway = Some(r);
+            let units = self.system.user_units();
+            return Err(self
+                .system
+                .rigid
+                .contact_lost(&r, units.length, units.displacement));
         }
         Ok(())
     }

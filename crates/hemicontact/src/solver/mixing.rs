@@ -29,6 +29,10 @@ pub enum Mixing {
         /// Stages in all.
         stages: usize,
     },
+    /// The first iteration of a body held by friction alone was solved with the load along
+    /// its sliding motions balanced by uniformly distributed friction forces (see
+    /// [`super::held`]): its image `G(z)`, whose bound carries that load, is taken as it is.
+    Relieved,
     /// The plain fixed-point step `z ← G(z)`.
     FixedPoint,
     /// The relaxed fixed-point step `z ← z + ω (G(z) − z)`.
@@ -63,6 +67,11 @@ impl std::fmt::Display for Mixing {
             Mixing::Continuation { next, stages } => {
                 write!(f, "continuation: stage {next} of {stages} next")
             }
+            Mixing::Relieved => write!(
+                f,
+                "load along the motions only friction carries held by uniform friction in \
+                 this iteration: image taken as it is"
+            ),
             Mixing::FixedPoint => write!(f, "fixed point"),
             Mixing::Relaxed { omega } => write!(f, "fixed point ω = {omega}"),
             Mixing::Oscillation { omega } => {

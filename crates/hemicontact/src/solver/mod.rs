@@ -12,6 +12,7 @@ pub mod constraints;
 pub mod continuation;
 pub mod convex;
 pub mod frozen;
+pub mod held;
 pub mod line_search;
 pub mod local_scales;
 pub mod mixing;
@@ -204,26 +205,7 @@ pub fn solve_observed(
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
-    let solution = match solve_dimensionless(
-        &scaled,
-        settings,
-        u,
-        scales.length / scales.displacement,
-        stop,
-        observe,
-    ) {
-        Ok(s) => s,
-        // Described again in the user's coordinates.
-        Err(crate::Error::ContactLost { .. }) => {
-            return Err(crate::Error::ContactLost {
-                motions: format!(
-                    "{} (the body moved by more than its size)",
-                    problem.rigid_motions()?.describe_all().join("; ")
-                ),
-            })
-        }
-        Err(e) => return Err(e),
-    };
+    let solution = solve_dimensionless(&scaled, settings, u, &scales, stop, observe)?;
     let mut solution = scales.dimensional(solution);
     solution.report.free_rigid_motions = problem.rigid_motions()?.describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
@@ -231,26 +213,39 @@ pub fn solve_observed(
 }
 
 /// [`solve_from`] for a problem in dimensionless variables ([`scaling`]): every tolerance,
-/// regularization and threshold below is a pure number relative to the problem's scales.
-/// `length_unit` is the length scale in units of the displacement scale.
+/// regularization and threshold below is a pure number relative to the problem's scales,
+/// `scales` (which messages use to speak in the user's units).
+///
+/// A body resting across a gap is first dropped onto its contact
+/// ([`held::rigid_drop`]); the outer loop then solves for the displacement relative to
+/// that placement, and the answer is the placement plus it.
 fn solve_dimensionless(
     problem: &Problem,
     settings: &SolverSettings,
     mut u: Vec<f64>,
-    length_unit: f64,
+    scales: &scaling::Scales,
     stop: &AtomicBool,
     observe: &dyn Fn(&OuterProgress),
 ) -> Result<Solution> {
     let start = Instant::now();
     let mut system = System::new(problem, settings)?;
-    system.length_unit = length_unit;
+    system.scales = Some(*scales);
     let prescribed = problem.prescribed_displacement();
     for (k, x) in u.iter_mut().enumerate() {
         if system.dofs.is_fixed(k) {
             *x = prescribed[k];
         }
     }
+    let drop = held::rigid_drop(&system, problem, &u)?;
+    let drop_words = drop
+        .as_ref()
+        .map(|p| held::describe_placement(&system, problem, p))
+        .unwrap_or_default();
+    if let Some(p) = drop {
+        system.place(p.u);
+    }
     let mut report = SolveReport::new(&system);
+    report.rigid_drop = drop_words;
     let mut eval = system::Evaluation::new(&system);
     let outcome = outer::run(
         problem,
@@ -352,6 +347,23 @@ fn solve_dimensionless(
         .fold(f64::MIN_POSITIVE, |m, &s| m.max(s));
     report.rigid_residual = system.rigid.generalized_force(&problem.mesh, &eval.grad) / body_scale;
     report.rigid_shift = eval.rigid_shift;
+    // The answer is the rigid drop plus the displacement relative to it.
+    let mut energy = energy;
+    let mut contact = contact;
+    if let Some(placed) = &system.placement {
+        for (x, p) in u.iter_mut().zip(placed) {
+            *x += p;
+        }
+        energy -= system
+            .f_ext
+            .iter()
+            .zip(placed)
+            .map(|(f, p)| f * p)
+            .sum::<f64>();
+        for (c, p) in contact.iter_mut().zip(&system.contact.placed_normal) {
+            c.u_nu += p;
+        }
+    }
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,

@@ -28,6 +28,7 @@
 
 use super::convex;
 use super::frozen::Frozen;
+use super::held;
 use super::mixing::{Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
 use super::report::{OuterStep, SolveReport};
@@ -258,6 +259,23 @@ pub fn run(
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = Frozen::initial(system, problem, u)?;
+    // Bodies held by friction alone (see `held`): a first bound that cannot carry the load
+    // along their sliding motions (a Coulomb bound at zero pressure) is given one iteration
+    // with that load balanced by uniform friction; a fixed bound is checked now.
+    let sliding = held::Sliding::of(system, problem);
+    let mut relieved = None;
+    if !sliding.is_empty() && sliding.exceeds(system, &frozen.friction.bound) {
+        if outer_loop {
+            let relief = sliding.relief(system, problem);
+            relieved = Some(system.f_ext.clone());
+            for (f, r) in system.f_ext.iter_mut().zip(&relief) {
+                *f += r;
+            }
+        } else {
+            sliding.check(system, problem, u, &frozen)?;
+        }
+    }
+    let relieved_first = relieved.is_some();
     let mut z = frozen.flatten();
     let mut mixer = Mixer::new(&settings.outer);
     let mut u_prev = u.to_vec();
@@ -274,7 +292,8 @@ pub fn run(
     let stages = system.continuation.stages();
     for k in 0..settings.outer.max_iterations.max(1) {
         system.continuation.set_stage(k);
-        let tol = if !outer_loop || !settings.outer.inexact {
+        // A relieved first iteration gives the friction limit: solved accurately.
+        let tol = if !outer_loop || !settings.outer.inexact || (k == 0 && relieved_first) {
             final_tol
         } else {
             (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
@@ -294,16 +313,26 @@ pub fn run(
             convex::ConvexProblem::new(system, eval, problem, &frozen, &settings.newton, u)
                 .with_stop(interrupt);
         let result = convex::minimize(&mut energy, tol, u, &mut record);
+        let runaway = energy.runaway;
         report.add_newton(record);
+        if let Some(f_ext) = relieved.take() {
+            system.f_ext = f_ext;
+        }
         // A user-defined compliance law that fails ends the solve with its error.
         if let Some(e) = eval.law_error.take() {
             return Err(e);
         }
         last = match result {
             Ok(outcome) => outcome,
-            // The load pulls a body off the contact carrying its free rigid motions: no
-            // solution to report.
-            Err(e @ crate::Error::ContactLost { .. }) => return Err(e),
+            // The load pulls a body off the contact carrying its free rigid motions, or
+            // slides it beyond what friction holds: no solution to report.
+            Err(e @ crate::Error::ContactLost { .. }) => {
+                let slid = match runaway {
+                    Some(r) => sliding.slid_away(system, problem, &r, &u_prev, &frozen, k)?,
+                    None => None,
+                };
+                return Err(slid.unwrap_or(e));
+            }
             // The caller asked to stop: no result.
             Err(crate::Error::Interrupted) => return Err(crate::Error::Interrupted),
             // Before any step succeeded there is no iterate worth keeping: the problem
@@ -338,8 +367,22 @@ pub fn run(
                 .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
         };
         u_prev.copy_from_slice(u);
+        if k == 0 && relieved_first {
+            // The pressures of the relieved iteration give the friction limit; the slips
+            // start from its answer centred on the contact.
+            sliding.check(system, problem, u, &frozen)?;
+            sliding.recenter(system, problem, u);
+            u_prev.copy_from_slice(u);
+        }
         // A user-defined friction law that fails ends the solve with its error.
-        let next = frozen.image(system, problem, u)?;
+        let mut next = frozen.image(system, problem, u)?;
+        if k == 0 && relieved_first {
+            // A Coulomb bound at a Signorini point takes its pressure from the multiplier,
+            // zero in this first iteration: take the updated one.
+            next.friction = system
+                .contact_assembler(problem)
+                .convexify(u, &next.contact())?;
+        }
         let g = next.flatten();
         // Each contact point on its own scale (see `local_scales`).
         point_scale.clear();
@@ -385,7 +428,11 @@ pub fn run(
             stop = StopReason::Converged;
             break;
         }
-        if outer_loop && k + 1 < stages {
+        if k == 0 && relieved_first {
+            step.mixing = Mixing::Relieved;
+            z = g;
+            frozen = next;
+        } else if outer_loop && k + 1 < stages {
             // Continuation (penalties, friction regularization): the map changes with each
             // stage, so no mixing yet.
             step.mixing = Mixing::Continuation {

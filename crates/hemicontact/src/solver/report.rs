@@ -106,6 +106,10 @@ pub struct SolveReport {
     /// unit thickness, N/m in 3D; 0: none). It changes Newton directions only, never the
     /// energy or the gradient, so it exerts no force on the answer.
     pub rigid_shift: f64,
+    /// The rigid drop made before Newton, in words with how far each body moved (empty:
+    /// none; see [`super::held::rigid_drop`]), e.g. `translation along y by up to 0.001 m`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rigid_drop: Vec<String>,
     /// Largest unbalanced generalized force along those motions at the final iterate,
     /// relative to the force scale of the Newton criterion (0 without them): how well
     /// contact balances the load along them.
@@ -151,6 +155,7 @@ impl SolveReport {
             scales: None,
             free_rigid_motions: system.rigid.describe_all(),
             rigid_shift: 0.0,
+            rigid_drop: Vec::new(),
             rigid_residual: 0.0,
             timings: Timings {
                 pattern: system.setup_time.0,

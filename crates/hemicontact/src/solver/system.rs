@@ -7,6 +7,7 @@
 use super::continuation::Continuation;
 use super::frozen::Frozen;
 use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
+use super::scaling::Scales;
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
 use crate::assembly::{BulkAssembler, SystemPattern};
@@ -56,10 +57,28 @@ pub struct System {
     pub rigid: RigidMotions,
     /// Diagonal slots of the free equations of the bodies with free rigid motions.
     rigid_slots: Vec<usize>,
-    /// The unit of the coordinates in units of the displacements: 1 for a problem in
-    /// metres, `L/U` when it is solved in the dimensionless variables of
-    /// [`super::scaling`] (set by the solver).
-    pub length_unit: f64,
+    /// The scales of the dimensionless variables the problem is solved in (set by the
+    /// solver, see [`super::scaling`]); `None` for a problem in the user's units. Only
+    /// messages and the runaway check read them.
+    pub scales: Option<Scales>,
+    /// A rigid placement of the bodies applied before the solve (DOF order, in the units
+    /// of the displacements; see [`super::held::rigid_drop`]): the unknown is then the
+    /// displacement relative to it, and the contact points' gaps and tangential
+    /// displacements account for it ([`ContactNodes::place`]). `None`: no placement.
+    pub placement: Option<Vec<f64>>,
+}
+
+/// The user's units of the solver's variables ([`System::user_units`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UserUnits {
+    /// Unit of the coordinates (m).
+    pub length: f64,
+    /// Unit of the displacements (m).
+    pub displacement: f64,
+    /// Unit of the nodal forces (N; N/m in 2D).
+    pub force: f64,
+    /// Unit of the tractions, pressures and Tresca bounds (Pa).
+    pub traction: f64,
 }
 
 /// The linear solver that `kind` resolves to for `problem` ([`super::LinearSolver::resolve`]
@@ -192,8 +211,41 @@ impl System {
             }),
             rigid,
             rigid_slots,
-            length_unit: 1.0,
+            scales: None,
+            placement: None,
         })
+    }
+
+    /// The unit of the coordinates in units of the displacements: 1 for a problem in the
+    /// user's units, `L/U` in the dimensionless variables of [`super::scaling`].
+    pub fn length_unit(&self) -> f64 {
+        self.scales.map_or(1.0, |s| s.length / s.displacement)
+    }
+
+    /// The user's units of the solver's variables: (length, displacement, force, traction)
+    /// in m, m, N (N/m in 2D) and Pa; all 1 for a problem in the user's units.
+    pub fn user_units(&self) -> UserUnits {
+        self.scales.map_or(
+            UserUnits {
+                length: 1.0,
+                displacement: 1.0,
+                force: 1.0,
+                traction: 1.0,
+            },
+            |s| UserUnits {
+                length: s.length,
+                displacement: s.displacement,
+                force: s.force(),
+                traction: s.traction(),
+            },
+        )
+    }
+
+    /// Places the bodies rigidly by `u_r` (DOF order) before the solve: see
+    /// [`System::placement`] and [`ContactNodes::place`].
+    pub fn place(&mut self, u_r: Vec<f64>) {
+        self.contact.place(self.rigid.dim, &u_r);
+        self.placement = Some(u_r);
     }
 
     /// The contact assembler of `problem` on this system.

@@ -29,6 +29,17 @@
 //! has no null space. Motions neither prescribed nor carried make the problem singular:
 //! [`RigidMotions::check`] turns them into an [`Error::RigidMotion`] that names the motion
 //! (translation along x, rotation about z through a point, …) and what would block it.
+//!
+//! The free motions of a body split into two orthogonal subspaces (in the coefficients
+//! `c`): the *sliding* motions, which move no contact point along its normal (the null
+//! space of the normal rows alone: friction, if anything, carries them), and the *pressed*
+//! motions, which move some contact point along its normal (normal contact carries them).
+//! A block resting on a flat foundation without supports slides along the foundation's
+//! plane (2D: translation along it; 3D: two translations and the rotation about the
+//! normal) and is pressed along the normal and by the tilts. The solver treats them
+//! differently ([`crate::solver::held`]): the rigid drop before Newton moves along the
+//! pressed motions only, and the load along the sliding ones is checked against the
+//! friction limit.
 
 mod words;
 
@@ -69,6 +80,15 @@ pub struct RigidMotions {
     /// Per body: orthonormal basis of the free motions that no contact point carries
     /// either (a subspace of `free`).
     pub uncarried: Vec<Vec<[f64; 6]>>,
+    /// Per body: orthonormal basis of the free motions that move no contact point along
+    /// its normal: carried by friction alone, if at all (a subspace of `free` that
+    /// contains `uncarried`; see the module documentation).
+    pub sliding: Vec<Vec<[f64; 6]>>,
+    /// Per body: orthonormal basis of the orthogonal complement of `sliding` in `free`: the
+    /// free motions that normal contact carries.
+    pub pressed: Vec<Vec<[f64; 6]>>,
+    /// The body of each mesh node (`u32::MAX` for a node in no cell).
+    pub body_of: Vec<u32>,
 }
 
 impl RigidMotions {
@@ -86,6 +106,8 @@ impl RigidMotions {
         let (body_of, bodies) = bodies(mesh);
         let mut free = Vec::with_capacity(bodies.len());
         let mut uncarried = Vec::with_capacity(bodies.len());
+        let mut sliding = Vec::with_capacity(bodies.len());
+        let mut pressed = Vec::with_capacity(bodies.len());
         for (b, body) in bodies.iter().enumerate() {
             // Constraint rows of the prescribed DOFs.
             let mut normal = Normal::new(m);
@@ -100,8 +122,10 @@ impl RigidMotions {
                 }
             }
             let z = normal.null_space();
-            // Contact rows of this body, restricted to the free motions.
+            // Contact rows of this body, restricted to the free motions: all of them
+            // (`carried`), and the normal rows alone (`pressing`).
             let mut carried = Normal::new(z.len());
+            let mut pressing = Normal::new(z.len());
             if !z.is_empty() {
                 for p in 0..contact.len() {
                     let v = contact.node[p] as usize;
@@ -109,43 +133,53 @@ impl RigidMotions {
                         continue;
                     }
                     let x = mesh.node(v);
-                    let mut add = |dir: &[f64; 3]| {
+                    let restricted = |dir: &[f64; 3]| {
                         let row = mode_row(d, body, x, dir);
                         let mut r = [0.0; 6];
                         for (l, zl) in z.iter().enumerate() {
                             r[l] = (0..m).map(|j| row[j] * zl[j]).sum();
                         }
-                        carried.add_weighted(&r, mode_row_norm2(&row, m));
+                        (r, mode_row_norm2(&row, m))
                     };
-                    add(&contact.normal[p]);
+                    let (r, n2) = restricted(&contact.normal[p]);
+                    carried.add_weighted(&r, n2);
+                    pressing.add_weighted(&r, n2);
                     if frictional[contact.boundary[p] as usize] {
                         for t in &contact.tangent[p][..d - 1] {
-                            add(t);
+                            let (r, n2) = restricted(t);
+                            carried.add_weighted(&r, n2);
                         }
                     }
                 }
             }
-            let y = carried.null_space();
-            let u = y
-                .iter()
-                .map(|yl| {
-                    let mut c = [0.0; 6];
-                    for (l, zl) in z.iter().enumerate() {
-                        for j in 0..m {
-                            c[j] += yl[l] * zl[j];
+            // Coefficients of the combinations `y` of the free basis `z`.
+            let expand = |ys: Vec<[f64; 6]>| -> Vec<[f64; 6]> {
+                ys.iter()
+                    .map(|yl| {
+                        let mut c = [0.0; 6];
+                        for (l, zl) in z.iter().enumerate() {
+                            for j in 0..m {
+                                c[j] += yl[l] * zl[j];
+                            }
                         }
-                    }
-                    c
-                })
-                .collect();
+                        c
+                    })
+                    .collect()
+            };
+            uncarried.push(expand(carried.null_space()));
+            let (slide, press) = pressing.split();
+            sliding.push(expand(slide));
+            pressed.push(expand(press));
             free.push(z);
-            uncarried.push(u);
         }
         RigidMotions {
             dim: d,
             bodies,
             free,
             uncarried,
+            sliding,
+            pressed,
+            body_of,
         }
     }
 
@@ -379,18 +413,24 @@ impl Normal {
     /// Orthonormal basis (k coefficients each) of the eigenvectors with
     /// eigenvalue at most `NULL_TOLERANCE · scale`; all of them without any row.
     fn null_space(&self) -> Vec<[f64; 6]> {
+        self.split().0
+    }
+
+    /// The orthonormal eigenvectors (k coefficients each) split into the null space (as
+    /// [`Normal::null_space`]) and its orthogonal complement, the range.
+    fn split(&self) -> (Vec<[f64; 6]>, Vec<[f64; 6]>) {
         let (values, vectors) = jacobi_eigen(self.a, self.k);
         let tol = NULL_TOLERANCE * self.scale;
-        (0..self.k)
-            .filter(|&j| values[j] <= tol)
-            .map(|j| {
-                let mut c = [0.0; 6];
-                for (l, cl) in c.iter_mut().enumerate().take(self.k) {
-                    *cl = vectors[l][j];
-                }
-                c
-            })
-            .collect()
+        let column = |j: usize| {
+            let mut c = [0.0; 6];
+            for (l, cl) in c.iter_mut().enumerate().take(self.k) {
+                *cl = vectors[l][j];
+            }
+            c
+        };
+        let null = (0..self.k).filter(|&j| values[j] <= tol).map(column);
+        let range = (0..self.k).filter(|&j| values[j] > tol).map(column);
+        (null.collect(), range.collect())
     }
 }
 
@@ -569,14 +609,76 @@ impl RigidMotions {
         worst
     }
 
-    /// # Errors
-    /// [`Error::ContactLost`] if a body with a free rigid motion has moved by more than
-    /// its size under the displacement `u` (DOF order): the load then pulls it off the
-    /// contact that was to carry the motion (small-strain displacements never approach
-    /// the size of the body). `length` is the unit of the coordinates in units of the
-    /// displacements (1 when both are in metres; `L/U` in the dimensionless variables of
-    /// [`crate::solver::scaling`]).
-    pub fn check_runaway(&self, u: &[f64], length: f64) -> Result<()> {
+    /// The free rigid motion of body `b` closest to the displacement `u` (DOF order) on
+    /// that body, in the least-squares sense over its nodes: its coefficients (first m
+    /// entries; see the module documentation), with components below 10⁻⁹ of the largest
+    /// set to zero so that a motion along an axis reads as such. Zero if `b` has no free
+    /// motion.
+    pub fn fitted_motion(&self, mesh: &Mesh, b: usize, u: &[f64]) -> [f64; 6] {
+        let d = self.dim;
+        let basis = &self.free[b];
+        let k = basis.len();
+        let mut gram = [[0.0; 6]; 6];
+        let mut rhs = [0.0; 6];
+        for &v in &self.bodies[b].nodes {
+            let x = mesh.node(v as usize);
+            let fields: Vec<[f64; 3]> = basis.iter().map(|c| self.displacement(b, c, x)).collect();
+            for l in 0..k {
+                rhs[l] += (0..d)
+                    .map(|i| fields[l][i] * u[d * v as usize + i])
+                    .sum::<f64>();
+                for j in 0..k {
+                    gram[l][j] += (0..d).map(|i| fields[l][i] * fields[j][i]).sum::<f64>();
+                }
+            }
+        }
+        let y = solve_small(&gram, &rhs, k);
+        let mut c = [0.0; 6];
+        for (l, zl) in basis.iter().enumerate() {
+            for j in 0..6 {
+                c[j] += y[l] * zl[j];
+            }
+        }
+        let largest = c.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        for x in &mut c {
+            if x.abs() <= 1e-9 * largest {
+                *x = 0.0;
+            }
+        }
+        c
+    }
+
+    /// The rigid motion with coefficients `c` of body `b` in words, in coordinates whose
+    /// unit is `length` times that of the mesh (1 for a mesh in metres; the length scale
+    /// `L` of [`crate::solver::scaling`] for a mesh in its dimensionless variables).
+    pub fn describe_in(&self, b: usize, c: &[f64; 6], length: f64) -> String {
+        let body = self.bodies[b].in_units(length);
+        describe(self.dim, &body, c)
+    }
+
+    /// The share of the rigid motion `c` of body `b` that is sliding (in the span of
+    /// [`RigidMotions::sliding`]): `‖P_sliding c‖ / ‖c‖` in the coefficients, 0 for `c = 0`.
+    pub fn sliding_share(&self, b: usize, c: &[f64; 6]) -> f64 {
+        let norm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm == 0.0 {
+            return 0.0;
+        }
+        let projected = self.sliding[b]
+            .iter()
+            .map(|s| (0..6).map(|j| s[j] * c[j]).sum::<f64>().powi(2))
+            .sum::<f64>()
+            .sqrt();
+        projected / norm
+    }
+
+    /// The first body with a free rigid motion that has moved by more than its size under
+    /// the displacement `u` (DOF order), with the motion it moved along
+    /// ([`RigidMotions::fitted_motion`]); `None` if no body has. `length` is the unit of
+    /// the coordinates in units of the displacements (1 when both are in metres; `L/U` in
+    /// the dimensionless variables of [`crate::solver::scaling`]). Small-strain
+    /// displacements never approach the size of the body: such a body has left the contact
+    /// that was to carry its free motions (or slid off the friction meant to hold it).
+    pub fn runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Option<Runaway> {
         let d = self.dim;
         for (b, body) in self.bodies.iter().enumerate() {
             if self.free[b].is_empty() {
@@ -593,21 +695,104 @@ impl RigidMotions {
                 })
                 .fold(0.0, f64::max);
             if moved > body.size * length || !moved.is_finite() {
-                let which = if self.bodies.len() > 1 {
-                    format!("mesh component {} of {}: ", b + 1, self.bodies.len())
+                let motion = if moved.is_finite() {
+                    self.fitted_motion(mesh, b, u)
                 } else {
-                    String::new()
+                    [0.0; 6]
                 };
-                return Err(Error::ContactLost {
-                    motions: format!(
-                        "{which}{} (the body moved by {moved:.3e} m, more than its size \
-                         {:.3e} m)",
-                        self.describe_free(b).join("; "),
-                        body.size * length
-                    ),
+                return Some(Runaway {
+                    body: b,
+                    motion,
+                    moved,
                 });
             }
         }
-        Ok(())
+        None
     }
+
+    /// # Errors
+    /// [`Error::ContactLost`] if a body with a free rigid motion has moved by more than
+    /// its size under the displacement `u` ([`RigidMotions::runaway`]; `length` as there):
+    /// the message names the motion it moved along and how far, in the units of `u` and of
+    /// the mesh.
+    pub fn check_runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Result<()> {
+        match self.runaway(mesh, u, length) {
+            None => Ok(()),
+            Some(r) => Err(self.contact_lost(&r, 1.0, length)),
+        }
+    }
+
+    /// The [`Error::ContactLost`] of a runaway, described in the user's units: `length` (m)
+    /// the unit of the mesh's coordinates, `displacement` (m) that of the displacements.
+    pub fn contact_lost(&self, r: &Runaway, length: f64, displacement: f64) -> Error {
+        let b = r.body;
+        let which = if self.bodies.len() > 1 {
+            format!("mesh component {} of {}: ", b + 1, self.bodies.len())
+        } else {
+            String::new()
+        };
+        let motion = if r.motion.iter().any(|&x| x != 0.0) {
+            self.describe_in(b, &r.motion, length)
+        } else {
+            self.free[b]
+                .iter()
+                .map(|c| self.describe_in(b, c, length))
+                .collect::<Vec<_>>()
+                .join("; ")
+        };
+        Error::ContactLost {
+            motions: format!(
+                "{which}{motion} (the body moved by {} m, more than its size {} m)",
+                crate::display::significant(r.moved * displacement),
+                crate::display::significant(self.bodies[b].size * length)
+            ),
+        }
+    }
+}
+
+/// A body that moved by more than its size ([`RigidMotions::runaway`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Runaway {
+    /// The body.
+    pub body: usize,
+    /// The free rigid motion it moved along (coefficients; zero if the displacement is not
+    /// finite).
+    pub motion: [f64; 6],
+    /// How far it moved: its largest nodal displacement (units of the displacements).
+    pub moved: f64,
+}
+
+impl Body {
+    /// The same body in coordinates whose unit is `length` times that of its own (its
+    /// centroid, size and bounding box times `length`).
+    pub fn in_units(&self, length: f64) -> Body {
+        Body {
+            nodes: self.nodes.clone(),
+            centroid: self.centroid.map(|x| x * length),
+            size: self.size * length,
+            bounding_box: (
+                self.bounding_box.0.map(|x| x * length),
+                self.bounding_box.1.map(|x| x * length),
+            ),
+        }
+    }
+}
+
+/// The solution of the `k × k` symmetric positive semidefinite system `a y = b` (k ≤ 6) by
+/// its eigendecomposition, eigenvalues below `10⁻¹²` of the largest treated as zero (the
+/// least-squares solution of least norm).
+pub fn solve_small(a: &[[f64; 6]; 6], b: &[f64; 6], k: usize) -> [f64; 6] {
+    let (values, vectors) = jacobi_eigen(*a, k);
+    let largest = values[..k].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut y = [0.0; 6];
+    for j in 0..k {
+        if values[j] <= 1e-12 * largest || values[j] <= 0.0 {
+            continue;
+        }
+        let proj: f64 = (0..k).map(|l| vectors[l][j] * b[l]).sum::<f64>() / values[j];
+        for (l, yl) in y.iter_mut().enumerate().take(k) {
+            *yl += proj * vectors[l][j];
+        }
+    }
+    y
 }
