@@ -75,9 +75,12 @@
 //!   Exact constraints are imposed by augmented Lagrangians ([`solver::constraints`]).
 //! - Every solve is carried out in dimensionless variables ([`solver::scaling`]), so units
 //!   do not matter; the norm `‖·‖` of the friction potential is regularized numerically by
-//!   `ρ_num = 10⁻⁸ U` with U the displacement scale (a parameter of the friction law, see
-//!   [`contact::NormTreatment`]), or imposed exactly with `exact = true`. A solve counts as converged only when its certificate passes
-//!   ([`solver::certificate`]).
+//!   an elastic slip of at most `10⁻⁸ F/k` at each point, F its friction bound and k its
+//!   elastic stiffness per unit area (a parameter of the friction law, see
+//!   [`contact::NormTreatment`]), or imposed exactly with `exact = true`. Every threshold
+//!   that decides a contact point's law or label is relative to the point's own scales
+//!   ([`solver::local_scales`]). A solve counts as converged only when its certificate
+//!   passes ([`solver::certificate`]).
 #![deny(missing_docs)]
 
 pub mod assembly;

@@ -15,35 +15,38 @@
 //! | regularized (19) | `√(r² + ρ²) − ρ` | j | 0 |
 //!
 //! The norm is nonsmooth at 0. For the potentials whose convex part is the norm (`norm`,
-//! `nonconvex`) the law says how the term `F ‖·‖` is treated ([`NormTreatment`]): either
-//! smoothed to `F (√(r² + ρ_num²) − ρ_num)`, with a numerical `ρ_num` far below every
-//! displacement of interest, or imposed exactly by an augmented Lagrangian. The regularized
+//! `nonconvex`) the law says how the term `F ‖·‖` is treated ([`NormTreatment`]): exactly,
+//! or with a small elastic slip; both through the friction multiplier τ. The regularized
 //! law (19) is smooth already and carries no treatment, so exact stick/slip of a smooth law
 //! cannot be expressed.
 //!
-//! ## The numerical regularization is local
+//! ## The smoothed norm: an elastic slip on the point's own scale
 //!
-//! The smoothed norm of a contact point i is regularized on its own scales, never on a
-//! scale of the whole problem: `ρ_num,i = ε_reg F_i / k_i`, with `ε_reg` the law's
-//! `regularization`, `F_i` the point's (frozen) friction bound and `k_i = S / h_i` its
-//! elastic stiffness per unit area (S the P-wave modulus, `h_i` the local mesh size, see
-//! [`crate::solver::constraints::contact_stiffness`]). `F_i / k_i` is the slip over which
-//! the friction bound deforms the body around the point, so a sticking point acts as a
-//! tangential spring of stiffness `k_i / ε_reg`, whatever the loads or displacements
-//! elsewhere, and a point slipping by r carries the bound to `(ε_reg F_i / (k_i r))² / 2`
-//! relative.
+//! The smoothed norm of contact point i is exact friction in series with an elastic slip
+//! of compliance `c_i = ε / k_i` (m/Pa): ε the law's `regularization`, `k_i = S / h_i` the
+//! point's elastic stiffness per unit area (S the P-wave modulus, `h_i` the local mesh size;
+//! [`crate::solver::constraints::contact_stiffness`]). Its friction traction is
+//! `τ = proj_{B_F}(ξ / c_i)`: a sticking point slips elastically by `c_i ‖τ‖ ≤ ε F_i / k_i`,
+//! a slipping point carries exactly the bound. `F_i / k_i` is the slip over which the
+//! friction bound deforms the body around the point, so the regularization is relative to
+//! the point's own scales, whatever the loads or displacements elsewhere. The law is the
+//! Moreau–Yosida regularization of `F‖·‖`, and it is solved like exact friction: the
+//! augmented Lagrangian of the series law is the Moreau envelope with the compliances
+//! added, `1/r' = 1/r + c_i`, so the Newton matrix never sees a stiffness above the penalty
+//! r, however small ε.
 //!
 //! ## The tangential term of one contact point
 //!
 //! With the frozen bound `F ≥ 0`, linear term `b` (the linearized concave part), the
 //! tangential energy at slip ξ is ([`Friction::tangential_term`])
 //!
-//! - smoothed norm or law (19): `F φ_ρ(ξ) − b·ξ`, `φ_ρ(ξ) = √(‖ξ‖² + ρ²) − ρ`;
-//! - exact stick/slip, multiplier τ (the friction traction) and penalty r: the Moreau
-//!   envelope of `F‖·‖`, `(1/r) [H_F(τ + rξ) − ‖τ‖²/2] − b·ξ`, with the Huber function
+//! - law (19): `F φ_ρ(ξ) − b·ξ`, `φ_ρ(ξ) = √(‖ξ‖² + ρ²) − ρ`;
+//! - the norm, multiplier τ (the friction traction), penalty r and compliance c (0 when
+//!   exact): the augmented Lagrangian `H_F(z)/r' − ‖τ‖²/(2r) − b·ξ` with
+//!   `z = r'ξ + (r'/r)τ`, `r' = r/(1 + rc)` (`z = τ + rξ` when exact), the Huber function
 //!   `H_F(z) = ‖z‖²/2` (‖z‖ ≤ F), `F‖z‖ − F²/2` (‖z‖ > F), whose gradient is the projection
-//!   `proj_{B_F}(τ + rξ)` onto the ball of radius F; the multiplier update is
-//!   `τ ← proj_{B_F}(τ + r ξ)` ([`Friction::updated_traction`]).
+//!   `proj_{B_F}(z)` onto the ball of radius F; the multiplier update is
+//!   `τ ← proj_{B_F}(z)` ([`Friction::updated_traction`]), whose fixed point is the law.
 
 use super::field_law::CustomField;
 use super::slip_law::CustomCoefficient;
@@ -269,23 +272,23 @@ pub enum FrictionBound {
     Coulomb,
 }
 
-/// The default numerical regularization of the norm, relative to each contact point's own
-/// slip scale `F_i / k_i` (see the module documentation): `ρ_num,i = 10⁻⁹ F_i / k_i`. A
-/// point slips, for the certificate, beyond `tol · max(F_i, p_i) / k_i` (tol = 10⁻⁶ by
-/// default); there its friction force misses the bound by at most `(10⁻⁹/tol)²/2 = 5·10⁻⁷`
-/// of it, below the tolerance.
+/// The default numerical regularization ε of the norm, relative to each contact point's
+/// own slip scale `F_i / k_i` (see the module documentation): a sticking point slips
+/// elastically by at most `10⁻⁸ F_i / k_i`, a hundredth of the certificate's stick
+/// threshold `10⁻⁶ max(F_i, p_i) / k_i` at its default tolerance; slipping points carry the
+/// bound exactly.
 pub const DEFAULT_REGULARIZATION: f64 = 1e-8;
 
 /// How the nonsmooth convex part `F ‖·‖` of the potentials `norm` and `nonconvex` is
-/// imposed.
+/// imposed: exactly, or with an elastic slip (see the module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum NormTreatment {
-    /// Smoothed to `F (√(‖ξ‖² + ρ_num²) − ρ_num)` with `ρ_num,i = regularization · F_i / k_i`
-    /// at contact point i, relative to the point's own slip scale (see the module
-    /// documentation; the law keeps this relative value when it is made dimensionless). The
-    /// solver reaches it by continuation from `10⁻² F_i / k_i`.
+    /// Exact friction in series with an elastic slip of compliance `regularization / k_i`
+    /// at contact point i: a sticking point slips elastically by at most
+    /// `regularization · F_i / k_i`, relative to the point's own slip scale (see the module
+    /// documentation; the law keeps this relative value when it is made dimensionless).
     Smoothed {
-        /// `ρ_num,i k_i / F_i`, dimensionless, in (0, 10⁻²).
+        /// ε, dimensionless, in (0, 10⁻²).
         regularization: f64,
     },
     /// Exact stick/slip: `F ‖·‖` is imposed by an augmented Lagrangian with the friction
@@ -443,8 +446,9 @@ impl FrictionPotential {
         }
     }
 
-    /// The relative numerical regularization `ρ_num,i k_i / F_i` of the smoothed norm;
-    /// `None` for exact stick/slip and for the smooth law (19).
+    /// The relative numerical regularization ε of the smoothed norm (its elastic slip over
+    /// the point's slip scale `F/k`); `None` for exact stick/slip and for the smooth law
+    /// (19).
     pub fn regularization(&self) -> Option<f64> {
         match self.treatment() {
             Some(NormTreatment::Smoothed { regularization }) => Some(regularization),
@@ -495,13 +499,13 @@ impl FrictionPotential {
 
 impl std::fmt::Display for FrictionPotential {
     /// The potential as the scenario names it, with its parameters and the treatment of its
-    /// norm, e.g. `nonconvex, a = 0.5 (norm smoothed, ρ_num = 1e-9 F/k)`.
+    /// norm, e.g. `nonconvex, a = 0.5 (elastic slip ≤ 1e-8 F/k)`.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let treatment = |f: &mut std::fmt::Formatter<'_>, t: NormTreatment| match t {
             NormTreatment::Smoothed { regularization } => {
                 write!(
                     f,
-                    " (norm smoothed, ρ_num = {} F/k)",
+                    " (elastic slip ≤ {} F/k)",
                     crate::display::significant(regularization)
                 )
             }

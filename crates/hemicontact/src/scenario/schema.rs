@@ -55,7 +55,7 @@
 //! # mu = { law = "constant", mu = 0.3 }   # or just mu = 0.3
 //! # mu = { law = "table", points = [[0.0, 0.4], [0.01, 0.1]] }
 //! exact = false             # true: exact stick/slip (potentials norm and nonconvex)
-//! regularization = 1e-8     # else the norm is smoothed with ρ_num = regularization · U
+//! regularization = 1e-8     # else an elastic slip of at most regularization · F/k
 //!                           # (U the displacement scale of the solve; default 1e-8)
 //!
 //! [solver]                  # all optional, see SolverSettings
@@ -426,9 +426,10 @@ pub struct FrictionSpec {
     /// potentials `norm` and `nonconvex` only. Default false.
     #[serde(default)]
     pub exact: bool,
-    /// Numerical regularization of the norm, relative to the displacement scale U of the
-    /// solve (`ρ_num = regularization · U`), in (0, 0.01); potentials `norm` and
-    /// `nonconvex` without `exact` only. Default 1e-8
+    /// Numerical regularization of the norm, ε in (0, 0.01): the elastic slip of a sticking
+    /// point is at most ε times its slip scale `F/k` (friction bound over elastic stiffness
+    /// per unit area, see [`crate::contact::friction`]); potentials `norm` and `nonconvex`
+    /// without `exact` only. Default 1e-8
     /// ([`crate::contact::friction::DEFAULT_REGULARIZATION`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub regularization: Option<f64>,
