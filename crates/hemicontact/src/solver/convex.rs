@@ -162,6 +162,14 @@ impl ConvexEnergy for ConvexProblem<'_> {
         (res, scale)
     }
 
+    /// The body farthest from equilibrium: the contact points' own scales are for the
+    /// convergence test; the linear solves are driven by the bodies' residuals (a point
+    /// left behind converges within the next Newton steps, each solved to at least
+    /// `newton.pcg_tolerance`).
+    fn forcing_residual(&self) -> (f64, f64) {
+        super::local_scales::Bodies::worst(&self.body_residual, &self.eval.body_scale)
+    }
+
     fn newton_direction(
         &mut self,
         rhs: &[f64],

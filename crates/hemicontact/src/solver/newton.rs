@@ -133,6 +133,14 @@ pub trait ConvexEnergy {
     /// [`super::bodies`]), those of the part farthest from equilibrium relative to its own
     /// scale.
     fn residual(&self) -> (f64, f64);
+    /// The residual norm and force scale (N) that set the accuracy of the linear solves
+    /// (the forcing term of the inexact Newton method): by default those of
+    /// [`ConvexEnergy::residual`]. An energy whose convergence test also holds small parts
+    /// to their own scales may return the coarse parts here, so that an iterative solver
+    /// is not driven to the accuracy of the smallest part at every step.
+    fn forcing_residual(&self) -> (f64, f64) {
+        self.residual()
+    }
     /// Solves `H Δ = rhs` with the Hessian of the last evaluation with one, to the relative
     /// residual `eta` where the solve is iterative; timings go to `timings`.
     ///
@@ -272,7 +280,8 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
         }
         // Forcing term: accurate enough to reach the tolerance in one step if the problem
         // were quadratic, never looser than `pcg_tolerance`.
-        let eta = (0.1 * tol / res).clamp(1e-12, settings.pcg_tolerance);
+        let (res_f, scale_f) = energy.forcing_residual();
+        let eta = (0.1 * tolerance * scale_f / res_f).clamp(1e-12, settings.pcg_tolerance);
         let linear = energy.newton_direction(&r_neg, &mut delta, eta, &mut record.timings)?;
         let slope: f64 = energy
             .gradient()
