@@ -75,6 +75,8 @@ pub fn solve_path(
     let mut datasets = Vec::new();
     let mut rows = Vec::new();
     let mut cases = Vec::new();
+    // (step, load factor, notes of its solution) of the steps whose solution has notes.
+    let mut noted = Vec::new();
     for s in &steps {
         let folder = step_folder(s.step, n);
         let mut summary = Summary::new(
@@ -84,7 +86,10 @@ pub fn solve_path(
             scenario.file.title.clone(),
             &scenario.source,
         );
-        summary.notes = notes.clone();
+        if !summary.notes.is_empty() {
+            noted.push((s.step, s.factor, summary.notes.clone()));
+        }
+        summary.prepend_notes(notes.clone());
         let step_title = format!("{title}, load factor {}", significant(s.factor));
         let mut extra = Vec::new();
         if output.vtu {
@@ -115,6 +120,7 @@ pub fn solve_path(
             summary,
         });
     }
+    print_step_notes(c, &noted, n);
     let dim = problem.mesh().dim();
     ctx.output.with(|set| {
         if !datasets.is_empty() {
@@ -142,4 +148,28 @@ pub fn solve_path(
         Outcome::NotConverged
     };
     Ok((cases, outcome))
+}
+
+/// Prints the notes of the solutions of a path of `n` steps (the small-deformation check),
+/// given as (step, load factor, notes) for the steps that have any: those of the first
+/// such step, and how many later steps have notes (each step's `summary.json` lists its
+/// own).
+fn print_step_notes(c: &crate::console::Console, noted: &[(usize, f64, Vec<String>)], n: usize) {
+    let Some((step, factor, notes)) = noted.first() else {
+        return;
+    };
+    for note in notes {
+        c.warn(format_args!(
+            "note: step {step}/{n} (load factor {}): {note}",
+            significant(*factor)
+        ));
+    }
+    if noted.len() > 1 {
+        c.warn(format_args!(
+            "note: {} later step(s) have such notes too, the last at step {}/{n}; each \
+             step's summary.json lists its own",
+            noted.len() - 1,
+            noted[noted.len() - 1].0
+        ));
+    }
 }

@@ -421,7 +421,11 @@ fn run_and_write(
         scenario.file.title.clone(),
         &scenario.source,
     );
-    summary.notes = notes;
+    // The notes of the solution (the scenario's were printed before the solve).
+    for note in &summary.notes {
+        c.warn(format_args!("note: {prefix}{note}"));
+    }
+    summary.prepend_notes(notes);
     let title = scenario
         .file
         .title

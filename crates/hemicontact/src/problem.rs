@@ -483,11 +483,29 @@ impl Problem {
                     crate::contact::nodes::CORNER_ANGLE_DEG,
                 ));
             }
-            notes.extend(crate::contact::placement::resolution_notes(
-                &self.mesh, b, c, &points,
-            ));
         }
+        notes.extend(self.obstacle_notes());
         notes
+    }
+
+    /// The notes on the rigid obstacles that their contact part's mesh does not resolve
+    /// (part of [`Problem::notes`]): an obstacle smaller than the part's elements, or one
+    /// reaching into the body between the part's nodes
+    /// ([`crate::contact::placement::resolution_notes`]). Empty without obstacles.
+    pub fn obstacle_notes(&self) -> Vec<String> {
+        if self.contact.iter().all(|c| c.obstacle.is_none()) {
+            return Vec::new();
+        }
+        let Ok(points) = self.contact_nodes() else {
+            return Vec::new();
+        };
+        self.contact
+            .iter()
+            .enumerate()
+            .flat_map(|(b, c)| {
+                crate::contact::placement::resolution_notes(&self.mesh, b, c, &points)
+            })
+            .collect()
     }
 
     /// The contact points of the problem.

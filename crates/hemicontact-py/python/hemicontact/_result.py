@@ -54,7 +54,14 @@ class Result:
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
       ``summary.json`` as a dict);
     - ``load_factor``: the factor λ by which the scenario's loads and prescribed
-      displacements were multiplied (1 for a plain solve; see :func:`load_path`).
+      displacements were multiplied (1 for a plain solve; see :func:`load_path`);
+    - ``notes``: the notes of ``summary.json`` (list of str): those of the scenario
+      (deprecated forms, shared nodes, Gmsh notes, obstacles the mesh does not resolve),
+      then those of the solution (the small-deformation check, see
+      ``summary["small_deformation"]``); ``flagged_notes``: those among them that question
+      the input or the result — an obstacle the mesh does not resolve, a deformation too
+      large for the model — which :func:`solve` and :func:`load_path` raise as
+      ``RuntimeWarning``.
     """
 
     def __init__(self, native: "_core.Solution") -> None:
@@ -67,6 +74,8 @@ class Result:
         #: The load factor λ (dimensionless) of this solve.
         self.load_factor: float = native.load_factor
         self.summary: Dict[str, Any] = json.loads(native.summary_json())
+        self.notes: List[str] = list(self.summary["notes"])
+        self.flagged_notes: List[str] = list(native.flagged_notes)
         report = self.summary["report"]
         self.certificate: Dict[str, Any] = report["certificate"]
         self.history: Dict[str, List[Dict[str, Any]]] = {
@@ -157,6 +166,8 @@ def solve(scenario: ScenarioLike) -> Result:
     (as :func:`load_path`) and the last step solved is returned."""
     s = _scenario(scenario)
     result = Result(_core.solve(s._native))
+    for note in result.flagged_notes:
+        warnings.warn(f"{result.title}: {note}", RuntimeWarning, stacklevel=2)
     if not result.converged:
         warnings.warn(
             f"{result.title}: {result.message}; the result holds the last iterate "
@@ -177,6 +188,7 @@ def load_path(scenario: ScenarioLike) -> List[Result]:
     is released while it runs, and Ctrl-C interrupts it with ``KeyboardInterrupt``."""
     s = _scenario(scenario)
     steps = [Result(native) for native in _core.load_path(s._native)]
+    _warn_path_notes(steps)
     if steps and not steps[-1].converged:
         warnings.warn(
             f"{steps[-1].title}: {steps[-1].message}; the load path stops at step "
@@ -185,6 +197,28 @@ def load_path(scenario: ScenarioLike) -> List[Result]:
             stacklevel=2,
         )
     return steps
+
+
+def _warn_path_notes(steps: List[Result]) -> None:
+    """Raises the flagged notes of a load path as ``RuntimeWarning``: those of the first
+    step that has any (the obstacle notes are the same in every step), and how many later
+    steps have notes of their own."""
+    flagged = [(k, r) for k, r in enumerate(steps, 1) if r.flagged_notes]
+    if not flagged:
+        return
+    k, first = flagged[0]
+    for note in first.flagged_notes:
+        warnings.warn(
+            f"{first.title} (step {k} of {len(steps)}): {note}", RuntimeWarning, stacklevel=3
+        )
+    later = [j for j, r in flagged[1:] if r.flagged_notes != first.flagged_notes]
+    if later:
+        warnings.warn(
+            f"{len(later)} later step(s) of the load path have such notes too, the last at "
+            f"step {later[-1]}; each Result lists its own in flagged_notes",
+            RuntimeWarning,
+            stacklevel=3,
+        )
 
 
 def convergence(
