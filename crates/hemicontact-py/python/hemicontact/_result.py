@@ -8,6 +8,7 @@ from typing import Any, Dict, List, Optional, Sequence, Union
 import numpy as np
 
 from . import _core
+from ._mesh import Mesh
 from ._scenario import PathLike, Scenario, load
 
 
@@ -50,6 +51,9 @@ class Result:
       ``max_pressure`` (Pa, 0 without contact), ``max_pressure_node`` and
       ``max_pressure_at`` (its reference coordinates, m; both ``None`` without contact).
       The vectors are numpy arrays of d components;
+    - on a mesh whose unused nodes :meth:`Mesh.from_arrays` dropped, the nodal arrays
+      (``points``, ``displacement``, ``reactions``), ``cells`` and ``contact["node"]`` use
+      the numbering of the points given, with NaN rows at the dropped nodes;
     - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
       ``summary.json`` as a dict);
@@ -64,7 +68,7 @@ class Result:
       ``RuntimeWarning``.
     """
 
-    def __init__(self, native: "_core.Solution") -> None:
+    def __init__(self, native: "_core.Solution", mesh: Optional[Mesh] = None) -> None:
         self._native = native
         self.dim: int = native.dim
         #: The result's title (the scenario's, else ``scenario``).
@@ -106,6 +110,25 @@ class Result:
         for name, values in text:
             contact[name] = np.array(values, dtype=str)
         self.contact = contact
+        if mesh is not None and mesh._node_map is not None:
+            self._renumber(mesh)
+
+    def _renumber(self, mesh: Mesh) -> None:
+        """Gives the nodal arrays in the numbering of the points given to
+        :meth:`Mesh.from_arrays`, which dropped the nodes no cell uses: NaN rows there."""
+        node_map = mesh._node_map
+        n = len(mesh.points)
+
+        def expand(a: np.ndarray) -> np.ndarray:
+            out = np.full((n,) + a.shape[1:], np.nan)
+            out[node_map] = a
+            return out
+
+        self.points = mesh.points
+        self.displacement = expand(self.displacement)
+        self.reactions = expand(self.reactions)
+        self.cells = node_map[self.cells]
+        self.contact["node"] = node_map[self.contact["node"]]
 
     def write(self, folder: PathLike) -> List[str]:
         """Writes the files ``hemicontact solve`` writes — ``solution.vtu``,
@@ -165,7 +188,7 @@ def solve(scenario: ScenarioLike) -> Result:
     :class:`ScenarioError`. A scenario with ``[loading]`` is solved along its load path
     (as :func:`load_path`) and the last step solved is returned."""
     s = _scenario(scenario)
-    result = Result(_core.solve(s._native))
+    result = Result(_core.solve(s._native), s._mesh)
     for note in result.flagged_notes:
         warnings.warn(f"{result.title}: {note}", RuntimeWarning, stacklevel=2)
     if not result.converged:
@@ -187,7 +210,7 @@ def load_path(scenario: ScenarioLike) -> List[Result]:
     not converge (a ``RuntimeWarning`` says so); the list then ends with that step. The GIL
     is released while it runs, and Ctrl-C interrupts it with ``KeyboardInterrupt``."""
     s = _scenario(scenario)
-    steps = [Result(native) for native in _core.load_path(s._native)]
+    steps = [Result(native, s._mesh) for native in _core.load_path(s._native)]
     _warn_path_notes(steps)
     if steps and not steps[-1].converged:
         warnings.warn(
