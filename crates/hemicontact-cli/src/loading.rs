@@ -1,16 +1,17 @@
 //! `solve` of a scenario with `[loading]`: the load path
-//! ([`hemicontact::loading::load_path`]) written as one result set: each step's usual
-//! results in `step-001/`, `step-002/`, …, the ParaView collection `solution.pvd` over the
-//! steps' `solution.vtu` (time value = load factor) and the table `load_path.csv`.
+//! ([`hemicontact::loading::for_each_step`]) written as one result set, each step as it is
+//! solved: each step's results in `step-001/`, `step-002/`, … (the figures in the last
+//! step's folder only), the ParaView collection `solution.pvd` over the steps'
+//! `solution.vtu` (time value = load factor) and the table `load_path.csv`.
 
 use crate::console::significant_seconds;
-use crate::{Case, Outcome, RunContext};
+use crate::{Outcome, Row, RunContext};
 use anyhow::{Context, Result};
 use hemicontact::display::significant;
 use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
 use hemicontact::io::vtu::solution_vtu;
-use hemicontact::loading::{load_path, path_csv, LoadStep, PathRow};
+use hemicontact::loading::{for_each_step, path_csv, LoadStep, PathRow};
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
 use std::cell::Cell;
@@ -24,23 +25,42 @@ pub fn step_folder(k: usize, n: usize) -> String {
 }
 
 /// Solves `problem` along `factors` and writes the path's results into this run's result
-/// set (begun by the caller, who commits it). Returns the steps solved, for the terminal
-/// table, and the outcome: not converged if a step did not converge (the path stops there;
-/// that step is written, marked `"converged": false`).
+/// set (begun by the caller, who commits it), each step as soon as it is solved: only the
+/// rows of `load_path.csv` and of the terminal table are kept, not the steps. Returns the
+/// table rows and the outcome: not converged if a step did not converge (the path stops
+/// there; that step is written, marked `"converged": false`).
+///
+/// The figures (`deformed`, `interface`) are drawn for the last step only (the last load
+/// factor, or the step that did not converge): drawing them is most of the cost of a step
+/// of a small problem, and `solution.pvd` shows every step.
 pub fn solve_path(
     ctx: &RunContext,
     problem: &Problem,
     scenario: &Scenario,
     notes: Vec<String>,
     factors: &[f64],
-) -> Result<(Vec<Case>, Outcome)> {
+) -> Result<(Vec<Row>, Outcome)> {
     let c = &ctx.console;
     let settings = scenario.settings()?;
     let output = scenario.output();
     let n = factors.len();
     let progress = c.progress(&format!("step 1/{n}:"));
     let current = Cell::new(1);
-    let steps = load_path(
+    let title = scenario
+        .file
+        .title
+        .clone()
+        .unwrap_or_else(|| "scenario".to_string());
+    let mut datasets = Vec::new();
+    let mut rows = Vec::new();
+    let mut table = Vec::new();
+    // (step, load factor, notes of its solution) of the steps whose solution has notes.
+    let mut noted = Vec::new();
+    // Whether the last step handed over converged.
+    let mut converged = true;
+    // An error of this run's output, which the library's error type cannot carry.
+    let mut failure: Option<anyhow::Error> = None;
+    let solved = for_each_step(
         problem,
         &settings,
         factors,
@@ -51,7 +71,7 @@ pub fn solve_path(
             }
             progress.observe(p);
         },
-        &mut |s: &LoadStep| {
+        &mut |s: LoadStep| {
             let r = &s.solution.report;
             progress.phase(format_args!(
                 "step {}/{n} (load factor {}): {} outer iterations / {} Newton steps in {} s{}",
@@ -62,59 +82,69 @@ pub fn solve_path(
                 significant_seconds(r.timings.total),
                 if r.converged { "" } else { " (not converged)" }
             ));
+            converged = r.converged;
+            let folder = step_folder(s.step, n);
+            let mut summary = Summary::new(
+                &s.problem,
+                &settings,
+                &s.solution,
+                scenario.file.title.clone(),
+                &scenario.source,
+            );
+            if !summary.notes.is_empty() {
+                noted.push((s.step, s.factor, summary.notes.clone()));
+            }
+            summary.prepend_notes(notes.clone());
+            let step_title = format!("{title}, load factor {}", significant(s.factor));
+            let mut extra = Vec::new();
+            if output.vtu {
+                extra.push((
+                    "solution.vtu",
+                    solution_vtu(&s.problem, &s.solution, &step_title, s.factor)?.to_bytes(),
+                ));
+                datasets.push((s.factor, format!("{folder}/solution.vtu")));
+            }
+            if s.step == n || !r.converged {
+                extra.extend(solution_figures(&s.problem, &s.solution, &step_title)?);
+            }
+            let written = ctx.output.with(|set| {
+                Ok(write_results(
+                    set,
+                    &folder,
+                    &s.problem,
+                    &s.solution,
+                    &step_title,
+                    output.summary.then_some(&summary),
+                    false,
+                    &extra,
+                ))
+            });
+            match written {
+                Ok(files) => {
+                    files?;
+                }
+                // The output's own error (no result set): kept, and the path stopped.
+                Err(e) => {
+                    let text = e.to_string();
+                    failure = Some(e);
+                    return Err(hemicontact::Error::Breakdown(text));
+                }
+            }
+            rows.push(PathRow::of(&s));
+            table.push(Row::new(
+                &format!("{folder} (λ {:.3})", s.factor),
+                r,
+                summary.max_displacement,
+            ));
             Ok(())
         },
-    )
-    .with_context(|| format!("{}: load path failed", scenario.source))?;
-    progress.finish();
-    let title = scenario
-        .file
-        .title
-        .clone()
-        .unwrap_or_else(|| "scenario".to_string());
-    let mut datasets = Vec::new();
-    let mut rows = Vec::new();
-    let mut cases = Vec::new();
-    for s in &steps {
-        let folder = step_folder(s.step, n);
-        let mut summary = Summary::new(
-            &s.problem,
-            &settings,
-            &s.solution,
-            scenario.file.title.clone(),
-            &scenario.source,
-        );
-        summary.notes = notes.clone();
-        let step_title = format!("{title}, load factor {}", significant(s.factor));
-        let mut extra = Vec::new();
-        if output.vtu {
-            extra.push((
-                "solution.vtu",
-                solution_vtu(&s.problem, &s.solution, &step_title, s.factor)?.to_bytes(),
-            ));
-            datasets.push((s.factor, format!("{folder}/solution.vtu")));
-        }
-        extra.extend(solution_figures(&s.problem, &s.solution, &step_title)?);
-        ctx.output.with(|set| {
-            Ok(write_results(
-                set,
-                &folder,
-                &s.problem,
-                &s.solution,
-                &step_title,
-                output.summary.then_some(&summary),
-                false,
-                &extra,
-            )?)
-        })?;
-        rows.push(PathRow::of(s));
-        cases.push(Case {
-            label: format!("{folder} (λ {:.3})", s.factor),
-            problem: s.problem.clone(),
-            solution: s.solution.clone(),
-            summary,
-        });
+    );
+    if let Some(e) = failure {
+        return Err(e);
     }
+    let solved = solved.with_context(|| format!("{}: load path failed", scenario.source))?;
+    progress.finish();
+    print_step_notes(c, &noted, n);
     let dim = problem.mesh().dim();
     ctx.output.with(|set| {
         if !datasets.is_empty() {
@@ -127,19 +157,43 @@ pub fn solve_path(
         set.write("load_path.csv", path_csv(&rows, dim).as_bytes())?;
         Ok(())
     })?;
-    let last = steps.last().map(|s| &s.solution.report);
-    if let Some(r) = last.filter(|r| !r.converged) {
-        c.warn(format_args!(
-            "warning: step {}/{n} did not converge: {}; the path stops there: it was written, \
-             marked \"converged\": false, and the later steps were not solved",
-            steps.len(),
-            r.message
-        ));
+    if !converged {
+        if let Some(r) = table.last() {
+            c.warn(format_args!(
+                "warning: step {solved}/{n} did not converge: {}; the path stops there: it was \
+                 written, marked \"converged\": false, and the later steps were not solved",
+                r.message
+            ));
+        }
     }
-    let outcome = if last.is_some_and(|r| r.converged) && steps.len() == n {
+    let outcome = if converged && solved == n {
         Outcome::Done
     } else {
         Outcome::NotConverged
     };
-    Ok((cases, outcome))
+    Ok((table, outcome))
+}
+
+/// Prints the notes of the solutions of a path of `n` steps (the small-deformation check),
+/// given as (step, load factor, notes) for the steps that have any: those of the first
+/// such step, and how many later steps have notes (each step's `summary.json` lists its
+/// own).
+fn print_step_notes(c: &crate::console::Console, noted: &[(usize, f64, Vec<String>)], n: usize) {
+    let Some((step, factor, notes)) = noted.first() else {
+        return;
+    };
+    for note in notes {
+        c.warn(format_args!(
+            "note: step {step}/{n} (load factor {}): {note}",
+            significant(*factor)
+        ));
+    }
+    if noted.len() > 1 {
+        c.warn(format_args!(
+            "note: {} later step(s) have such notes too, the last at step {}/{n}; each \
+             step's summary.json lists its own",
+            noted.len() - 1,
+            noted[noted.len() - 1].0
+        ));
+    }
 }

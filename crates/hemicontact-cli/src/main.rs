@@ -306,9 +306,9 @@ fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
             factors.len(),
             problem_size(&problem)
         ));
-        let (cases, outcome) = loading::solve_path(ctx, &problem, &scenario, notes, &factors)?;
+        let (rows, outcome) = loading::solve_path(ctx, &problem, &scenario, notes, &factors)?;
         print_written(c, &dir, &ctx.output.commit()?);
-        print_table(c, &cases);
+        print_table(c, &rows);
         return Ok(outcome);
     }
     c.phase(format_args!(
@@ -328,7 +328,7 @@ fn solve(ctx: &RunContext, file: &Path, out: Option<&Path>) -> Result<Outcome> {
     )?;
     print_written(c, &dir, &ctx.output.commit()?);
     let cases = [case];
-    print_table(c, &cases);
+    print_table(c, &[cases[0].row()]);
     Ok(outcome(&cases))
 }
 
@@ -359,6 +359,51 @@ struct Case {
     problem: Problem,
     solution: Solution,
     summary: Summary,
+}
+
+impl Case {
+    /// The case's row of the terminal table.
+    fn row(&self) -> Row {
+        Row::new(
+            &self.label,
+            &self.solution.report,
+            self.summary.max_displacement,
+        )
+    }
+}
+
+/// One row of the terminal table: what it prints of a solve, without the solution.
+struct Row {
+    label: String,
+    n_dofs: usize,
+    outer: usize,
+    newton: usize,
+    factorizations: usize,
+    seconds: f64,
+    certificate: hemicontact::solver::Certificate,
+    max_displacement: f64,
+    converged: bool,
+    /// The solver's verdict in words.
+    message: String,
+}
+
+impl Row {
+    /// The row of a solve labelled `label` with the report `r` and the largest
+    /// displacement `max_displacement` (m).
+    fn new(label: &str, r: &hemicontact::solver::SolveReport, max_displacement: f64) -> Row {
+        Row {
+            label: label.to_string(),
+            n_dofs: r.n_dofs,
+            outer: r.outer.len(),
+            newton: r.newton.len(),
+            factorizations: r.timings.n_factorizations,
+            seconds: r.timings.total,
+            certificate: r.certificate.clone(),
+            max_displacement,
+            converged: r.converged,
+            message: r.message.clone(),
+        }
+    }
 }
 
 /// Prints the files of a result set once it is in place (and the phase line saying where).
@@ -421,7 +466,11 @@ fn run_and_write(
         scenario.file.title.clone(),
         &scenario.source,
     );
-    summary.notes = notes;
+    // The notes of the solution (the scenario's were printed before the solve).
+    for note in &summary.notes {
+        c.warn(format_args!("note: {prefix}{note}"));
+    }
+    summary.prepend_notes(notes);
     let title = scenario
         .file
         .title
@@ -455,7 +504,7 @@ fn run_and_write(
     })
 }
 
-fn print_table(c: &Console, cases: &[Case]) {
+fn print_table(c: &Console, rows: &[Row]) {
     say!(
         c,
         "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>6} {:>6} {:>10} {:>10}",
@@ -471,9 +520,8 @@ fn print_table(c: &Console, cases: &[Case]) {
         "max |u| m",
         "certif."
     );
-    for case in cases {
-        let r = &case.solution.report;
-        let cert = &r.certificate;
+    for row in rows {
+        let cert = &row.certificate;
         let worst = cert
             .equilibrium
             .max(cert.normal_law)
@@ -482,27 +530,27 @@ fn print_table(c: &Console, cases: &[Case]) {
         say!(
             c,
             "{:<22} {:>9} {:>6} {:>7} {:>8} {:>8.3} {:>7} {:>6} {:>6} {:>10.4e} {:>10.1e}{}",
-            case.label,
-            r.n_dofs,
-            r.outer.len(),
-            r.newton.len(),
-            r.timings.n_factorizations,
-            r.timings.total,
+            row.label,
+            row.n_dofs,
+            row.outer,
+            row.newton,
+            row.factorizations,
+            row.seconds,
             cert.n_contact,
             cert.n_stick,
             cert.n_slip,
-            case.summary.max_displacement,
+            row.max_displacement,
             worst,
-            if r.converged { "" } else { "  NOT CONVERGED" }
+            if row.converged { "" } else { "  NOT CONVERGED" }
         );
     }
-    for case in cases {
-        if let Some(k) = &case.solution.report.certificate.kkt {
+    for row in rows {
+        if let Some(k) = &row.certificate.kkt {
             let (cells, points, friction) = k.n_constraints;
             say!(
                 c,
                 "KKT ({}): exact constraints, relative residuals",
-                case.label
+                row.label
             );
             if cells > 0 {
                 say!(
@@ -598,7 +646,7 @@ fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
         Ok(())
     })?;
     print_written(c, out, &ctx.output.commit()?);
-    print_table(c, &cases);
+    print_table(c, &cases.iter().map(Case::row).collect::<Vec<_>>());
     Ok(outcome(&cases))
 }
 

@@ -100,6 +100,48 @@ fn load_path_writes_each_step_a_collection_and_a_table() {
 }
 
 #[test]
+fn the_figures_are_drawn_for_the_last_step_only() {
+    // 100 steps: 100 step folders (over 300 files, flushed in one go at the commit).
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, dir) = solve(tmp.path(), &format!("{BLOCK}[loading]\nsteps = 100\n"));
+    assert_success(&out);
+    let figures = [
+        "deformed.svg",
+        "deformed.png",
+        "interface.svg",
+        "interface.png",
+    ];
+    for k in 1..=100 {
+        let step = dir.join(format!("step-{k:03}"));
+        for file in ["solution.vtu", "contact.csv", "summary.json"] {
+            assert!(step.join(file).is_file(), "step {k}: {file}");
+        }
+        for figure in figures {
+            assert_eq!(step.join(figure).is_file(), k == 100, "step {k}: {figure}");
+        }
+        // The summary lists exactly the files of its folder.
+        let listed = summary(&step.join("summary.json"))["files"]
+            .as_array()
+            .unwrap()
+            .len();
+        assert_eq!(
+            listed,
+            std::fs::read_dir(&step).unwrap().count(),
+            "step {k}"
+        );
+    }
+    // The last step's figures are those of a plain solve of the full load.
+    std::fs::create_dir(tmp.path().join("plain")).unwrap();
+    let (plain, plain_dir) = solve(&tmp.path().join("plain"), BLOCK);
+    assert_success(&plain);
+    let svg = |d: &Path| std::fs::read_to_string(d.join("interface.svg")).unwrap();
+    assert_eq!(
+        svg(&dir.join("step-100")).lines().count(),
+        svg(&plain_dir).lines().count()
+    );
+}
+
+#[test]
 fn a_step_that_does_not_converge_ends_the_path_with_code_3() {
     let tmp = tempfile::tempdir().unwrap();
     let (out, dir) = solve(
@@ -116,6 +158,8 @@ fn a_step_that_does_not_converge_ends_the_path_with_code_3() {
     let s = summary(&dir.join("step-001/summary.json"));
     assert_eq!(s["converged"], serde_json::Value::Bool(false));
     assert!(!dir.join("step-002").exists(), "the path stops at step 1");
+    // The step that ends the path is the last one: it has the figures.
+    assert!(dir.join("step-001/deformed.png").is_file());
     let csv = std::fs::read_to_string(dir.join("load_path.csv")).unwrap();
     assert_eq!(csv.lines().count(), 2, "{csv}");
     assert!(csv.lines().nth(1).unwrap().ends_with(",false"), "{csv}");

@@ -27,6 +27,17 @@ pub struct NativeSolution {
     output: OutputSpec,
     /// The load factor of the solve (1 for a plain solve; the step's for a load path).
     load_factor: f64,
+    /// The notes that question the input or the result, raised as warnings in Python: an
+    /// obstacle the mesh does not resolve, a deformation too large for the model.
+    flagged: Vec<String>,
+}
+
+/// The notes of a solve that Python raises as warnings: those on the obstacles of the
+/// (unscaled) problem `problem`, then those of the small-deformation check in `summary`.
+fn flagged_notes(problem: &Problem, summary: &Summary) -> Vec<String> {
+    let mut notes = problem.obstacle_notes();
+    notes.extend(summary.small_deformation.notes());
+    notes
 }
 
 /// Solves the scenario (GIL released, Ctrl-C honoured). A solve that does not converge
@@ -58,7 +69,8 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
         s.file.title.clone(),
         &s.source,
     );
-    summary.notes = notes;
+    let flagged = flagged_notes(&problem, &summary);
+    summary.prepend_notes(notes);
     Ok(NativeSolution {
         title: s
             .file
@@ -70,6 +82,7 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
         solution,
         summary,
         load_factor: 1.0,
+        flagged,
     })
 }
 
@@ -103,6 +116,7 @@ pub fn load_path(py: Python<'_>, scenario: &NativeScenario) -> PyResult<Vec<Nati
         .title
         .clone()
         .unwrap_or_else(|| "scenario".to_string());
+    let obstacle_notes = problem.obstacle_notes();
     Ok(steps
         .into_iter()
         .map(|step| {
@@ -113,7 +127,9 @@ pub fn load_path(py: Python<'_>, scenario: &NativeScenario) -> PyResult<Vec<Nati
                 s.file.title.clone(),
                 &s.source,
             );
-            summary.notes = notes.clone();
+            let mut flagged = obstacle_notes.clone();
+            flagged.extend(summary.small_deformation.notes());
+            summary.prepend_notes(notes.clone());
             NativeSolution {
                 title: format!(
                     "{title}, load factor {}",
@@ -124,6 +140,7 @@ pub fn load_path(py: Python<'_>, scenario: &NativeScenario) -> PyResult<Vec<Nati
                 solution: step.solution,
                 summary,
                 load_factor: step.factor,
+                flagged,
             }
         })
         .collect())
@@ -325,6 +342,14 @@ impl NativeSolution {
     #[getter]
     fn load_factor(&self) -> f64 {
         self.load_factor
+    }
+
+    /// The notes that question the input or the result (among the summary's `notes`),
+    /// which Python raises as warnings: an obstacle the contact part's mesh does not
+    /// resolve, a deformation too large for the small-deformation model.
+    #[getter]
+    fn flagged_notes(&self) -> Vec<String> {
+        self.flagged.clone()
     }
 
     /// The summary (`summary.json` without its file list) as JSON.

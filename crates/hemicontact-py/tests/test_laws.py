@@ -91,6 +91,12 @@ def test_an_exception_in_the_callable_propagates_as_itself_naming_the_law():
         (lambda r: 0.3 - 10.0 * r, "-"),
         (lambda r: exponential(r)[:-1], "shape"),
         (lambda r: "much", "a str"),
+        # Converted to floats, these would lose an imaginary part or read True as 1.
+        (lambda r: exponential(r) + 0j, "complex values"),
+        (lambda r: [0.3 + 0.1j] * len(r), "complex values"),
+        (lambda r: r >= 0.0, "boolean values"),
+        (lambda r: True, "boolean values"),
+        (lambda r: np.array([0.3] * (len(r) - 1) + [True], dtype=object), "bool value"),
     ],
 )
 def test_a_bad_value_is_a_scenario_error_naming_the_law(law, says):

@@ -57,7 +57,7 @@
 //! |------|---------|
 //! | `solution.vtu` | VTK UnstructuredGrid: displacement, reactions, contact status, pressure, slip, interface force at points; strain, stress, von Mises, tr ε, locking activity per cell |
 //! | `contact.csv` | one row per contact node: kinematics, forces, status, law residuals |
-//! | `summary.json` | sizes, energy norm, max displacement, contact/slip/locked counts, iteration histories, timings, certificate, scenario notes |
+//! | `summary.json` | sizes, energy norm, max displacement, contact/slip/locked counts, iteration histories, timings, certificate, the small-deformation check, notes (of the scenario and of the solution) |
 //! | `deformed.png/.svg` | the deformed mesh with interface forces (2D) |
 //!
 //! ## Current state / limitations
@@ -99,6 +99,7 @@ pub mod plot;
 pub mod problem;
 pub mod resources;
 pub mod scenario;
+pub mod small_deformation;
 pub mod solver;
 pub mod study;
 pub mod tensor;

@@ -117,6 +117,9 @@ pub struct LoadStep {
 /// solved step (e.g. to write it). The path stops after the first step that does not
 /// converge; the steps solved are returned in order.
 ///
+/// Every step is kept; [`for_each_step`] hands each step over instead, for a caller that
+/// writes the steps as they come and need not hold a long path in memory.
+///
 /// # Errors
 /// Invalid factors ([`validate_factors`]); the errors of [`crate::solver::solve`] and
 /// [`crate::Error::Interrupted`] once `stop` is raised; any error of `on_step`.
@@ -128,29 +131,54 @@ pub fn load_path(
     observe: &dyn Fn(usize, &OuterProgress),
     on_step: &mut dyn FnMut(&LoadStep) -> Result<()>,
 ) -> Result<Vec<LoadStep>> {
-    validate_factors(factors)?;
     let mut steps: Vec<LoadStep> = Vec::with_capacity(factors.len());
+    for_each_step(problem, settings, factors, stop, observe, &mut |step| {
+        on_step(&step)?;
+        steps.push(step);
+        Ok(())
+    })?;
+    Ok(steps)
+}
+
+/// [`load_path`] without keeping the steps: each solved step is handed to `on_step`, in
+/// order, and only the last displacement (the next step's start) is kept. Returns the
+/// number of steps solved; the last one handed over is the first that did not converge,
+/// if any.
+///
+/// # Errors
+/// As [`load_path`].
+pub fn for_each_step(
+    problem: &Problem,
+    settings: &SolverSettings,
+    factors: &[f64],
+    stop: &AtomicBool,
+    observe: &dyn Fn(usize, &OuterProgress),
+    on_step: &mut dyn FnMut(LoadStep) -> Result<()>,
+) -> Result<usize> {
+    validate_factors(factors)?;
+    let mut last: Option<Vec<f64>> = None;
     for (k, &factor) in factors.iter().enumerate() {
         let scaled = problem.with_load_factor(factor)?;
-        let start = match steps.last() {
-            Some(last) => last.solution.u.clone(),
+        let start = match last.take() {
+            Some(u) => u,
             None => scaled.prescribed_displacement(),
         };
         let solution = solve_observed(&scaled, settings, start, stop, &|p| observe(k + 1, p))?;
-        let step = LoadStep {
+        let converged = solution.report.converged;
+        if converged {
+            last = Some(solution.u.clone());
+        }
+        on_step(LoadStep {
             step: k + 1,
             factor,
             problem: scaled,
             solution,
-        };
-        on_step(&step)?;
-        let converged = step.solution.report.converged;
-        steps.push(step);
+        })?;
         if !converged {
-            break;
+            return Ok(k + 1);
         }
     }
-    Ok(steps)
+    Ok(factors.len())
 }
 
 /// One row of a load path's table (`load_path.csv`).

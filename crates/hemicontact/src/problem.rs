@@ -190,6 +190,8 @@ impl Problem {
     ///   with different values; a traction component on a part where that component is
     ///   prescribed (it would vanish into the reaction); a contact part that is also a
     ///   Dirichlet part, or given twice;
+    /// - every rigid obstacle in front of its contact part, not facing away from it
+    ///   ([`crate::contact::placement::check_facing`]);
     /// - no rigid motion of a mesh component left free by the Dirichlet conditions and not
     ///   carried by a contact part ([`RigidMotions::check`]).
     ///
@@ -245,6 +247,13 @@ impl Problem {
             }
         }
         self.check_contradictions()?;
+        if self.contact.iter().any(|c| c.obstacle.is_some()) {
+            let points = self.contact_nodes()?;
+            for (k, c) in self.contact.iter().enumerate() {
+                crate::contact::placement::check_facing(&self.mesh, k, c, &points)
+                    .map_err(|e| e.within(&format!("contact[{k}].obstacle")))?;
+            }
+        }
         self.rigid_motions()?.check("problem")?;
         Ok(())
     }
@@ -420,7 +429,9 @@ impl Problem {
     /// prescribed are not contact nodes (a node on Γ_D is never a contact node);
     /// nodes on a roller keep contact on their free components), and each contact part that
     /// turns corners (nodes split into one contact point per direction; see
-    /// [`crate::contact::nodes`]).
+    /// [`crate::contact::nodes`]), and each rigid obstacle that its contact part's mesh does
+    /// not resolve: smaller than the part's elements, or reaching into the body between its
+    /// nodes ([`crate::contact::placement::resolution_notes`]).
     pub fn notes(&self) -> Vec<String> {
         let names = self.mesh.part_names();
         let full = self.fully_prescribed();
@@ -473,7 +484,28 @@ impl Problem {
                 ));
             }
         }
+        notes.extend(self.obstacle_notes());
         notes
+    }
+
+    /// The notes on the rigid obstacles that their contact part's mesh does not resolve
+    /// (part of [`Problem::notes`]): an obstacle smaller than the part's elements, or one
+    /// reaching into the body between the part's nodes
+    /// ([`crate::contact::placement::resolution_notes`]). Empty without obstacles.
+    pub fn obstacle_notes(&self) -> Vec<String> {
+        if self.contact.iter().all(|c| c.obstacle.is_none()) {
+            return Vec::new();
+        }
+        let Ok(points) = self.contact_nodes() else {
+            return Vec::new();
+        };
+        self.contact
+            .iter()
+            .enumerate()
+            .flat_map(|(b, c)| {
+                crate::contact::placement::resolution_notes(&self.mesh, b, c, &points)
+            })
+            .collect()
     }
 
     /// The contact points of the problem.

@@ -4,7 +4,7 @@
 //! one-step path with the plain solve.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::loading::{load_path, LoadStep, PathRow};
+use hemicontact::loading::{for_each_step, load_path, LoadStep, PathRow};
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::{solve, Solution};
 use std::sync::atomic::AtomicBool;
@@ -256,4 +256,59 @@ fn uniform_steps_are_k_over_n() {
     assert_eq!(f, vec![0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0]);
     let f = hemicontact::loading::uniform_factors(3).unwrap();
     assert_eq!(f, vec![1.0 / 3.0, 2.0 / 3.0, 1.0]);
+}
+
+#[test]
+fn steps_handed_over_one_by_one_are_the_steps_of_the_path_bitwise() {
+    let text = bulging_block("", "[loading]\nsteps = 5\n");
+    let kept = path_of(&text);
+    let scenario = Scenario::from_str(&text, "<test>").unwrap();
+    let (problem, settings) = (
+        scenario.into_problem().unwrap(),
+        scenario.settings().unwrap(),
+    );
+    let factors = scenario.load_factors().unwrap().unwrap();
+    let mut handed = Vec::new();
+    let n = for_each_step(
+        &problem,
+        &settings,
+        &factors,
+        &AtomicBool::new(false),
+        &|_, _| {},
+        &mut |step| {
+            handed.push((step.step, step.factor, step.solution.u));
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert_eq!(n, 5);
+    assert_eq!(handed.len(), kept.len());
+    for ((k, factor, u), step) in handed.iter().zip(&kept) {
+        assert_eq!((*k, *factor), (step.step, step.factor));
+        assert_eq!(u, &step.solution.u, "step {k}");
+    }
+    // A step that does not converge ends the path there, and is handed over.
+    let strict = bulging_block(
+        "",
+        "[loading]\nsteps = 3\n[solver.newton]\nresidual_tolerance = 1e-300\nmax_iterations = 2\n",
+    );
+    let scenario = Scenario::from_str(&strict, "<test>").unwrap();
+    let (problem, settings) = (
+        scenario.into_problem().unwrap(),
+        scenario.settings().unwrap(),
+    );
+    let mut converged = Vec::new();
+    let n = for_each_step(
+        &problem,
+        &settings,
+        &[0.5, 1.0],
+        &AtomicBool::new(false),
+        &|_, _| {},
+        &mut |step| {
+            converged.push(step.solution.report.converged);
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert_eq!((n, converged), (1, vec![false]));
 }

@@ -7,11 +7,14 @@
 //! - While a set is open, a second one for the same folder is refused with
 //!   [`Error::OutputBusy`] naming the folder and this process's id; after the first is
 //!   dropped, the folder can be written again.
+//! - A set of more files than are flushed one by one ([`SYNC_EACH_LIMIT`], flushed with
+//!   one flush of the file system) is put in place with every file and its content, in
+//!   its sub-folders.
 //! - File names must be plain relative names; `files_in` lists a sub-folder's files; a
 //!   target without a name of its own (`.`) or a file in the way is refused.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::io::result_set::ResultSet;
+use hemicontact::io::result_set::{ResultSet, SYNC_EACH_LIMIT};
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
 
@@ -125,4 +128,23 @@ fn invalid_names_and_targets_are_refused() {
     assert_eq!(std::fs::read(&file).unwrap(), b"in the way");
     assert_eq!(names(&w), ["file"]);
     std::fs::remove_dir_all(&w).unwrap();
+}
+
+#[test]
+fn a_large_set_is_committed_whole() {
+    let w = work();
+    let target = w.join("out");
+    let n = 3 * SYNC_EACH_LIMIT;
+    let mut set = ResultSet::begin(&target).unwrap();
+    for k in 0..n {
+        let name = format!("step-{:03}/file-{}.txt", k / 3, k % 3);
+        set.write(&name, k.to_string().as_bytes()).unwrap();
+    }
+    let files = set.commit().unwrap();
+    assert_eq!(files.len(), n);
+    for k in 0..n {
+        let path = target.join(format!("step-{:03}/file-{}.txt", k / 3, k % 3));
+        assert_eq!(std::fs::read_to_string(path).unwrap(), k.to_string());
+    }
+    assert_eq!(names(&w), ["out"]);
 }

@@ -21,6 +21,12 @@
 //! - **`Mesh::try_new` refuses overlapping cells that are each positively oriented**: two
 //!   triangles (and two tetrahedra) on the same side of their common facet; the error names
 //!   both cells, and gives Σ|T| and the boundary integral, both computed here by hand.
+//! - **Overlapping cells under a tagged facet are named as an overlap**: the unit square as
+//!   two triangles plus a third, (0,0),(1,0),(0,1), over half of each; its edges 0–1 and
+//!   0–3 are then shared by two cells on the same side (both cells lie above y = 0, right
+//!   of x = 0), so the tagged bottom edge is no longer on the boundary. The error says the
+//!   cells overlap and names the pairs, cell 0 and cell 2, cell 1 and cell 2. A cell given
+//!   twice makes its facets shared by three cells: the error names them and the repeat.
 //! - **The round-off tolerance does not reject good meshes**: generated rectangles and boxes
 //!   far from the origin (coordinates 10⁶ times the cell size) are accepted.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
@@ -343,6 +349,42 @@ fn overlapping_positive_tetrahedra_are_refused() {
     assert!((sum - 0.2).abs() < 1e-15, "{msg}");
     assert!((enclosed - 1.0 / 30.0).abs() < 1e-15, "{msg}");
     assert!(msg.contains("cell 0 and cell 1"), "{msg}");
+}
+
+/// The unit square 0 (0,0), 1 (1,0), 2 (1,1), 3 (0,1) with the cells `cells` and its four
+/// sides tagged.
+fn tagged_square(cells: Vec<u32>) -> Result<Mesh, Error> {
+    let coords = vec![0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+    let side = |name: &str, a: u32, b: u32| (name.to_string(), vec![a, b]);
+    Mesh::from_parts(
+        2,
+        coords,
+        cells,
+        &[
+            side("bottom", 0, 1),
+            side("right", 1, 2),
+            side("top", 2, 3),
+            side("left", 3, 0),
+        ],
+    )
+}
+
+#[test]
+fn overlapping_cells_under_a_tagged_facet_are_named_as_an_overlap() {
+    tagged_square(vec![0, 1, 2, 0, 2, 3]).unwrap();
+    let msg = mesh_error(tagged_square(vec![0, 1, 2, 0, 2, 3, 0, 1, 3]));
+    assert!(
+        msg.contains("tagged facet [0, 1] (part `bottom`) is not on the boundary")
+            && msg.contains("cells overlap")
+            && msg.contains("(they overlap): cell 0 and cell 2; cell 1 and cell 2"),
+        "{msg}"
+    );
+    let msg = mesh_error(tagged_square(vec![0, 1, 2, 0, 2, 3, 1, 2, 0]));
+    assert!(
+        msg.contains("is shared by 3 cells")
+            && msg.contains("cell 0, cell 1 and cell 2; cell 2 repeats cell 0 (the same nodes)"),
+        "{msg}"
+    );
 }
 
 #[test]

@@ -123,12 +123,48 @@ def restore(d: Dict[str, Any], laws: List[Law]) -> Dict[str, Any]:
     return d
 
 
+def _real(y: Any, name: str, what: str) -> np.ndarray:
+    """The values ``y`` a law returned as a float array, if they are real numbers (floats
+    or integers): booleans, complex numbers (even with a zero imaginary part), strings
+    and other objects are a :class:`ScenarioError` naming the law — converting them would
+    turn ``True`` into 1 or drop an imaginary part without a word."""
+    allowed = f"real numbers (float or int), one per {what}"
+    try:
+        a = np.asarray(y)
+    except (TypeError, ValueError):
+        raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}") from None
+    if a.dtype.kind == "O":
+        bad = next(
+            (v for v in a.flat if isinstance(v, (bool, np.bool_, complex, np.complexfloating))),
+            None,
+        )
+        if bad is not None:
+            raise ScenarioError(f"{name}: returned a {type(bad).__name__} value ({bad!r}): {allowed}")
+        try:
+            return a.astype(float)
+        except (TypeError, ValueError):
+            raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}") from None
+    if a.dtype.kind == "b":
+        raise ScenarioError(
+            f"{name}: returned boolean values (dtype {a.dtype}): {allowed}; True would count as 1"
+        )
+    if a.dtype.kind == "c":
+        raise ScenarioError(
+            f"{name}: returned complex values (dtype {a.dtype}): {allowed}; the imaginary "
+            "part would be lost"
+        )
+    if a.dtype.kind not in "iuf":
+        raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}")
+    return a.astype(float)
+
+
 def evaluate(f: Callable[..., Any], data: bytes, dim: int, name: str, what: str) -> bytes:
     """The user's callable ``f`` at the points of ``data`` (float64 bytes: slips or
     penetrations (m) for ``dim == 0``, else positions (m), ``dim`` per point), as float64
     bytes, one value per point. An exception of ``f`` propagates as itself, with a note
-    naming the law (Python ≥ 3.11); a result of the wrong shape or type is a
-    :class:`ScenarioError` naming the law. ``what`` names the argument in messages."""
+    naming the law (Python ≥ 3.11); a result of the wrong shape or type (booleans and
+    complex numbers included) is a :class:`ScenarioError` naming the law. ``what`` names
+    the argument in messages."""
     x = np.frombuffer(data, dtype="<f8").copy()
     if dim > 0:
         x = x.reshape(-1, dim)
@@ -139,12 +175,7 @@ def evaluate(f: Callable[..., Any], data: bytes, dim: int, name: str, what: str)
         if hasattr(e, "add_note"):
             e.add_note(f"raised by the law {name}")
         raise
-    try:
-        values = np.asarray(y, dtype=float)
-    except (TypeError, ValueError):
-        raise ScenarioError(
-            f"{name}: returned a {type(y).__name__}: an array of numbers, one per {what}"
-        ) from None
+    values = _real(y, name, what)
     if values.shape == ():
         values = np.full(n, float(values))
     if values.shape != (n,):

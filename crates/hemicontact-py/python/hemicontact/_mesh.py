@@ -1,5 +1,6 @@
 """Meshes from numpy arrays and meshio meshes."""
 
+import warnings
 from typing import Any, Dict, Mapping, Optional
 
 import numpy as np
@@ -42,8 +43,6 @@ def _orient_entities(points: np.ndarray, cells: np.ndarray, tags: np.ndarray, di
     every cell negatively oriented — is reoriented in place, with a warning naming it, as
     the library's Gmsh reader does; an entity with cells of both orientations (a tangled
     mesh) is left as it is, for the mesh check to refuse naming its cells."""
-    import warnings
-
     measure = _signed_measures(points, cells, dim)
     for tag in np.unique(tags):
         mine = tags == tag
@@ -58,6 +57,46 @@ def _orient_entities(points: np.ndarray, cells: np.ndarray, tags: np.ndarray, di
             )
 
 
+def _drop_unused(p: np.ndarray, c: np.ndarray, parts: Dict[str, np.ndarray]) -> Any:
+    """Drops the nodes of ``p`` that no cell of ``c`` uses, with a ``RuntimeWarning``
+    naming them: the points, cells and parts renumbered without them, and the node map
+    (for each kept node, its index in ``p``); ``None`` for the map when every node is used.
+    A part facet on a dropped node is a :class:`ScenarioError` naming it. Indices out of
+    range are left for the library to report."""
+    n = len(p)
+    if c.size and (c.min() < 0 or c.max() >= n):
+        return p, c, parts, None
+    used = np.zeros(n, dtype=bool)
+    used[c.ravel()] = True
+    if used.all():
+        return p, c, parts, None
+    dropped = np.flatnonzero(~used)
+    for name, f in parts.items():
+        bad = np.isin(f, dropped)
+        if bad.any():
+            row = int(np.argwhere(bad)[0][0])
+            node = int(f[row][bad[row]][0])
+            raise _error(
+                f"facets[{name!r}][{row}]",
+                str(f[row].tolist()),
+                f"facets of the cells' boundary: node {node} is used by no cell",
+            )
+    new = np.cumsum(used) - 1
+    listed = ", ".join(str(int(v)) for v in dropped[:10])
+    more = f" and {len(dropped) - 10} more" if len(dropped) > 10 else ""
+    warnings.warn(
+        f"Mesh.from_arrays: {len(dropped)} of {n} nodes are used by no cell and were dropped "
+        f"(nodes {listed}{more}): a node without a cell has no stiffness. The mesh, and "
+        "every result solved on it, keep the numbering of `points` (NaN displacement at the "
+        "dropped nodes); the files Result.write writes number the nodes without them",
+        RuntimeWarning,
+        stacklevel=3,
+    )
+    node_map = np.flatnonzero(used)
+    renumbered = {name: new[f] for name, f in parts.items()}
+    return p[used], new[c], renumbered, node_map
+
+
 class Mesh:
     """A simplicial mesh: P1 triangles (2D) or tetrahedra (3D), with named boundary parts.
 
@@ -65,10 +104,38 @@ class Mesh:
     right-handed tetrahedra); an inverted or degenerate cell is an error naming it, never
     silently reoriented. Boundary facets that belong to no named part form the part
     ``untagged`` (traction-free unless a scenario names it).
+
+    Nodes that no cell uses are dropped from the mesh the solver sees, with a
+    ``RuntimeWarning``; ``points``, ``cells``, ``facets`` and the results of a solve keep
+    the numbering of the arrays given (see :meth:`from_arrays`).
     """
 
-    def __init__(self, native: "_core.Mesh") -> None:
+    def __init__(
+        self,
+        native: "_core.Mesh",
+        node_map: Optional[np.ndarray] = None,
+        points: Optional[np.ndarray] = None,
+    ) -> None:
         self._native = native
+        #: For each node of the solver's mesh, its index in the given points; ``None`` when
+        #: no node was dropped.
+        self._node_map = node_map
+        #: The given points (when nodes were dropped).
+        self._points = points
+
+    @property
+    def dropped_nodes(self) -> np.ndarray:
+        """The indices of the given points that no cell uses, dropped from the solver's
+        mesh (empty when every node is used)."""
+        if self._node_map is None:
+            return np.zeros(0, dtype=np.int64)
+        keep = np.zeros(len(self._points), dtype=bool)
+        keep[self._node_map] = True
+        return np.flatnonzero(~keep)
+
+    def _to_given(self, indices: np.ndarray) -> np.ndarray:
+        """Node indices of the solver's mesh in the numbering of the given points."""
+        return indices if self._node_map is None else self._node_map[indices]
 
     @classmethod
     def from_arrays(
@@ -82,6 +149,14 @@ class Mesh:
 
         A 2D mesh may be given with 3 coordinate columns if the third is zero everywhere
         (as meshio stores planar meshes); it is then dropped.
+
+        Nodes that no cell uses (they would have no stiffness) are dropped from the mesh
+        the solver sees, with a ``RuntimeWarning`` naming them, as the command line's Gmsh
+        reader drops them with a note. The mesh keeps the numbering of ``points``: its
+        ``points``, ``cells`` and ``facets``, and the results of a solve on it (``points``,
+        ``displacement`` and ``reactions`` with NaN rows at the dropped nodes, ``cells``,
+        the contact table's ``node``) use the indices given; ``dropped_nodes`` lists them.
+        A boundary facet on such a node is an error.
 
         Raises :class:`ScenarioError` naming the array and what is allowed.
         """
@@ -114,15 +189,23 @@ class Mesh:
             bad = int(np.argwhere(~np.isfinite(p))[0][0])
             raise _error(f"points[{bad}]", str(p[bad].tolist()), "finite coordinates")
         c = _index_array(c, "cells", dim + 1)
-        parts = []
+        given: Dict[str, np.ndarray] = {}
         for name, f in (facets or {}).items():
             if not isinstance(name, str):
                 raise _error("facets", f"a part named {name!r}", "part names as str")
-            parts.append((name, _index_array(f, f"facets[{name!r}]", dim).tobytes()))
+            given[name] = _index_array(f, f"facets[{name!r}]", dim)
+        all_points = p
+        p, c, given, node_map = _drop_unused(p, c, given)
+        parts = [(name, np.ascontiguousarray(f, dtype="<i8").tobytes()) for name, f in given.items()]
         native = _core.Mesh.from_buffers(
-            dim, np.ascontiguousarray(p, dtype="<f8").tobytes(), c.tobytes(), parts
+            dim,
+            np.ascontiguousarray(p, dtype="<f8").tobytes(),
+            np.ascontiguousarray(c, dtype="<i8").tobytes(),
+            parts,
         )
-        return cls(native)
+        if node_map is None:
+            return cls(native)
+        return cls(native, node_map, np.array(all_points, dtype=float))
 
     @classmethod
     def from_meshio(cls, m: Any) -> "Mesh":
@@ -189,19 +272,22 @@ class Mesh:
 
     @property
     def points(self) -> np.ndarray:
-        """Node coordinates (N × d, m)."""
+        """Node coordinates (N × d, m), as given (with any dropped node)."""
+        if self._points is not None:
+            return self._points
         return np.frombuffer(self._native.points(), dtype="<f8").reshape(-1, self.dim)
 
     @property
     def cells(self) -> np.ndarray:
         """Cells (M × (d + 1) node indices)."""
-        return np.frombuffer(self._native.cells(), dtype="<i8").reshape(-1, self.dim + 1)
+        c = np.frombuffer(self._native.cells(), dtype="<i8").reshape(-1, self.dim + 1)
+        return self._to_given(c)
 
     @property
     def facets(self) -> Dict[str, np.ndarray]:
         """Boundary parts: name → facets (K × d node indices)."""
         return {
-            name: np.frombuffer(b, dtype="<i8").reshape(-1, self.dim)
+            name: self._to_given(np.frombuffer(b, dtype="<i8").reshape(-1, self.dim))
             for name, b in self._native.parts()
         }
 
@@ -223,7 +309,9 @@ class Mesh:
         return meshio.Mesh(self.points, blocks, cell_sets=sets)
 
     def __repr__(self) -> str:
+        dropped = len(self.dropped_nodes)
+        note = f", dropped nodes={dropped}" if dropped else ""
         return (
-            f"Mesh(dim={self.dim}, nodes={self._native.n_nodes}, cells={self._native.n_cells}, "
+            f"Mesh(dim={self.dim}, nodes={len(self.points)}{note}, cells={self._native.n_cells}, "
             f"parts={list(self.facets)})"
         )

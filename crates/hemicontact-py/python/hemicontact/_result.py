@@ -8,6 +8,7 @@ from typing import Any, Dict, List, Optional, Sequence, Union
 import numpy as np
 
 from . import _core
+from ._mesh import Mesh
 from ._scenario import PathLike, Scenario, load
 
 
@@ -51,14 +52,24 @@ class Result:
       ``max_pressure`` (Pa, 0 without contact), ``max_pressure_node`` and
       ``max_pressure_at`` (its reference coordinates, m; both ``None`` without contact).
       The vectors are numpy arrays of d components;
+    - on a mesh whose unused nodes :meth:`Mesh.from_arrays` dropped, the nodal arrays
+      (``points``, ``displacement``, ``reactions``), ``cells`` and ``contact["node"]`` use
+      the numbering of the points given, with NaN rows at the dropped nodes;
     - ``converged``, ``message``, ``certificate`` (dict), ``history`` (``outer`` and
       ``newton`` lists of dicts), ``timings`` (dict, s), ``summary`` (the whole
       ``summary.json`` as a dict);
     - ``load_factor``: the factor λ by which the scenario's loads and prescribed
-      displacements were multiplied (1 for a plain solve; see :func:`load_path`).
+      displacements were multiplied (1 for a plain solve; see :func:`load_path`);
+    - ``notes``: the notes of ``summary.json`` (list of str): those of the scenario
+      (deprecated forms, shared nodes, Gmsh notes, obstacles the mesh does not resolve),
+      then those of the solution (the small-deformation check, see
+      ``summary["small_deformation"]``); ``flagged_notes``: those among them that question
+      the input or the result — an obstacle the mesh does not resolve, a deformation too
+      large for the model — which :func:`solve` and :func:`load_path` raise as
+      ``RuntimeWarning``.
     """
 
-    def __init__(self, native: "_core.Solution") -> None:
+    def __init__(self, native: "_core.Solution", mesh: Optional[Mesh] = None) -> None:
         self._native = native
         self.dim: int = native.dim
         #: The result's title (the scenario's, else ``scenario``).
@@ -68,6 +79,8 @@ class Result:
         #: The load factor λ (dimensionless) of this solve.
         self.load_factor: float = native.load_factor
         self.summary: Dict[str, Any] = json.loads(native.summary_json())
+        self.notes: List[str] = list(self.summary["notes"])
+        self.flagged_notes: List[str] = list(native.flagged_notes)
         report = self.summary["report"]
         self.certificate: Dict[str, Any] = report["certificate"]
         self.history: Dict[str, List[Dict[str, Any]]] = {
@@ -98,6 +111,25 @@ class Result:
         for name, values in text:
             contact[name] = np.array(values, dtype=str)
         self.contact = contact
+        if mesh is not None and mesh._node_map is not None:
+            self._renumber(mesh)
+
+    def _renumber(self, mesh: Mesh) -> None:
+        """Gives the nodal arrays in the numbering of the points given to
+        :meth:`Mesh.from_arrays`, which dropped the nodes no cell uses: NaN rows there."""
+        node_map = mesh._node_map
+        n = len(mesh.points)
+
+        def expand(a: np.ndarray) -> np.ndarray:
+            out = np.full((n,) + a.shape[1:], np.nan)
+            out[node_map] = a
+            return out
+
+        self.points = mesh.points
+        self.displacement = expand(self.displacement)
+        self.reactions = expand(self.reactions)
+        self.cells = node_map[self.cells]
+        self.contact["node"] = node_map[self.contact["node"]]
 
     def write(self, folder: PathLike) -> List[str]:
         """Writes the files ``hemicontact solve`` writes — ``solution.vtu``,
@@ -157,7 +189,9 @@ def solve(scenario: ScenarioLike) -> Result:
     :class:`ScenarioError`. A scenario with ``[loading]`` is solved along its load path
     (as :func:`load_path`) and the last step solved is returned."""
     s = _scenario(scenario)
-    result = Result(_core.solve(s._native))
+    result = Result(_core.solve(s._native), s._mesh)
+    for note in result.flagged_notes:
+        warnings.warn(f"{result.title}: {note}", RuntimeWarning, stacklevel=2)
     if not result.converged:
         warnings.warn(
             f"{result.title}: {result.message}; the result holds the last iterate "
@@ -177,7 +211,8 @@ def load_path(scenario: ScenarioLike) -> List[Result]:
     not converge (a ``RuntimeWarning`` says so); the list then ends with that step. The GIL
     is released while it runs, and Ctrl-C interrupts it with ``KeyboardInterrupt``."""
     s = _scenario(scenario)
-    steps = [Result(native) for native in _core.load_path(s._native)]
+    steps = [Result(native, s._mesh) for native in _core.load_path(s._native)]
+    _warn_path_notes(steps)
     if steps and not steps[-1].converged:
         warnings.warn(
             f"{steps[-1].title}: {steps[-1].message}; the load path stops at step "
@@ -186,6 +221,28 @@ def load_path(scenario: ScenarioLike) -> List[Result]:
             stacklevel=2,
         )
     return steps
+
+
+def _warn_path_notes(steps: List[Result]) -> None:
+    """Raises the flagged notes of a load path as ``RuntimeWarning``: those of the first
+    step that has any (the obstacle notes are the same in every step), and how many later
+    steps have notes of their own."""
+    flagged = [(k, r) for k, r in enumerate(steps, 1) if r.flagged_notes]
+    if not flagged:
+        return
+    k, first = flagged[0]
+    for note in first.flagged_notes:
+        warnings.warn(
+            f"{first.title} (step {k} of {len(steps)}): {note}", RuntimeWarning, stacklevel=3
+        )
+    later = [j for j, r in flagged[1:] if r.flagged_notes != first.flagged_notes]
+    if later:
+        warnings.warn(
+            f"{len(later)} later step(s) of the load path have such notes too, the last at "
+            f"step {later[-1]}; each Result lists its own in flagged_notes",
+            RuntimeWarning,
+            stacklevel=3,
+        )
 
 
 def convergence(

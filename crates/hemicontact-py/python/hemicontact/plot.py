@@ -242,8 +242,10 @@ def deformed(
     if isinstance(max_arrows, bool) or not isinstance(max_arrows, int) or max_arrows < 1:
         raise ValueError(f"deformed: max_arrows = {max_arrows!r}: an integer ≥ 1")
     X = result.points
-    P = X + scale * result.displacement
     cells = result.cells
+    # Nodes no cell uses (dropped by Mesh.from_arrays, NaN displacement) are not drawn.
+    used = np.unique(cells)
+    P = X + scale * np.nan_to_num(result.displacement)
     c = result.contact
     handles: List[Any] = []
     parts = _parts(result) if len(c["node"]) else []
@@ -251,8 +253,8 @@ def deformed(
 
     # Axis limits (m): body, deformed body and foundations, with an empty strip on top for
     # the reference arrow; a new figure gets the height that fits them.
-    lo = np.minimum(X.min(axis=0), P.min(axis=0))
-    hi = np.maximum(X.max(axis=0), P.max(axis=0))
+    lo = np.minimum(X[used].min(axis=0), P[used].min(axis=0))
+    hi = np.maximum(X[used].max(axis=0), P[used].max(axis=0))
     for part in parts:
         q = X[c["node"][part.index]] + gap0[part.index, None] * c["normal"][part.index, :2]
         lo, hi = np.minimum(lo, q.min(axis=0)), np.maximum(hi, q.max(axis=0))

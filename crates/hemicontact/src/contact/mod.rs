@@ -1,7 +1,8 @@
 //! Contact and friction on Γ_C: pointwise laws ([`normal`], [`friction`], with user-defined
 //! friction coefficients of the slip in [`slip_law`] and of the position in [`field_law`]) and the contact nodes with their lumped weights,
-//! normals and tangents ([`nodes`]), and the gap and normal of rigid obstacles of given
-//! shape by closest-point projection ([`obstacle`]).
+//! normals and tangents ([`nodes`]), the gap and normal of rigid obstacles of given
+//! shape by closest-point projection ([`obstacle`]), and how an obstacle sits against its
+//! contact part ([`placement`]: facing it, resolved by its mesh).
 //!
 //! Conventions: `ν` is the outward unit normal of the body; `u_ν = u·ν` is the
 //! normal displacement and `g` the initial gap to the foundation (`g ≥ 0` for a flat
@@ -17,6 +18,7 @@ pub mod friction;
 pub mod nodes;
 pub mod normal;
 pub mod obstacle;
+pub mod placement;
 pub mod slip_law;
 
 pub use compliance_law::{ComplianceFunction, CustomCompliance, NormalResponse};

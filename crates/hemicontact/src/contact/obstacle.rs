@@ -186,6 +186,19 @@ enum Shape {
 }
 
 impl Obstacle {
+    /// The smallest radius of curvature of the obstacle's surface (m): R of a circle,
+    /// sphere or cylinder, the radius of curvature R at the apex of a paraboloid (elsewhere
+    /// it is larger); `None` for a plane (flat).
+    pub fn curvature_radius(&self) -> Option<f64> {
+        match self {
+            Obstacle::Plane { .. } => None,
+            Obstacle::Circle { radius, .. }
+            | Obstacle::Sphere { radius, .. }
+            | Obstacle::Cylinder { radius, .. }
+            | Obstacle::Paraboloid { radius, .. } => Some(*radius),
+        }
+    }
+
     /// The name of the shape as a scenario writes it (`kind`).
     pub fn kind(&self) -> &'static str {
         match self {
@@ -317,6 +330,46 @@ impl ObstacleSpec {
     pub fn validate(&self, dim: usize) -> Result<()> {
         self.shape.validate(dim)?;
         self.translation(dim).map(|_| ())
+    }
+
+    /// The implicit function φ of the obstacle translated by t at the point `x` (m): a
+    /// polynomial of degree at most 2 in `x`, negative exactly inside the obstacle, zero on
+    /// its surface, positive outside. With `y = x − t` and the notation of the module
+    /// documentation: plane `φ = −(y − p)·n̂` (m), ball `φ = ‖y − c‖² − R²`, cylinder
+    /// `φ = ‖ρ‖² − R²`, paraboloid `φ = ‖ρ‖² − 2R z` (m²). Unlike the gap it is not a
+    /// distance, but its restriction to a segment or triangle is a convex quadratic, whose
+    /// minimum tells whether the obstacle reaches into it.
+    ///
+    /// # Errors
+    /// Those of [`ObstacleSpec::validate`]; [`Error::Invalid`] for `position` if `x` is not
+    /// finite.
+    pub fn implicit(&self, x: [f64; 3], dim: usize) -> Result<f64> {
+        let shape = self.shape.shape(dim)?;
+        let t = self.translation(dim)?;
+        let y = position(x, dim)?;
+        let y = sub(y, t);
+        Ok(match shape {
+            Shape::Plane { point, normal } => -dot(sub(y, point), normal),
+            Shape::Ball { center, radius } => {
+                let w = sub(y, center);
+                dot(w, w) - radius * radius
+            }
+            Shape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                let w = sub(y, point);
+                let rho = orthogonal_part(w, dot(w, axis), axis);
+                dot(rho, rho) - radius * radius
+            }
+            Shape::Paraboloid { apex, axis, radius } => {
+                let w = sub(y, apex);
+                let along = dot(w, axis);
+                let rho = orthogonal_part(w, along, axis);
+                dot(rho, rho) - 2.0 * radius * along
+            }
+        })
     }
 
     /// The projection of `x` (m) onto the obstacle translated by its displacement t:

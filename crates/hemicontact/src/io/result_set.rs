@@ -14,9 +14,11 @@
 //!    left when they were killed (only the lock holder creates them, so every one found is
 //!    stale), then creates the staging folder `parent/.name.tmp-PID` — a sibling of the
 //!    target, so on the same file system.
-//! 3. [`ResultSet::write`] writes each file into the staging folder and flushes it to disk.
-//! 4. [`ResultSet::commit`] flushes the staging folder, then puts it in place with a single
-//!    rename: onto the target if there is none, else (Linux) an atomic exchange of the two
+//! 3. [`ResultSet::write`] writes each file into the staging folder.
+//! 4. [`ResultSet::commit`] flushes the files and the staging folders to disk — each file
+//!    with `fsync`, or, for a set of more than [`SYNC_EACH_LIMIT`] files on Linux (the
+//!    step folders of a long load path), the whole file system holding them with one
+//!    `syncfs` — then puts the staging folder in place with a single rename: onto the target if there is none, else (Linux) an atomic exchange of the two
 //!    folders (`renameat2` with `RENAME_EXCHANGE`). The previous set, now under the staging
 //!    name, is removed; a crash before that removal leaves a stale temporary that the next
 //!    run removes. Files of the previous set that the new set lacks disappear with it: the
@@ -33,6 +35,12 @@ use crate::error::{Error, Result};
 use std::fs::{File, OpenOptions};
 use std::io::{Read as _, Write as _};
 use std::path::{Component, Path, PathBuf};
+
+/// Most files a result set flushes one by one at its commit (one `fsync` each); a larger
+/// set is flushed with one `syncfs` of its file system on Linux, which costs less than
+/// thousands of `fsync` (each a synchronous write of the file and its inode). Elsewhere
+/// every file is flushed one by one.
+pub const SYNC_EACH_LIMIT: usize = 64;
 
 /// A set of result files being written into a staging folder, put in place as a unit by
 /// [`ResultSet::commit`]; see the module documentation.
@@ -140,8 +148,9 @@ impl ResultSet {
     }
 
     /// Writes the file `name` (relative, `/`-separated; sub-folders are created) of the set
-    /// with the content `bytes` and flushes it to disk. Writing a name again replaces its
-    /// content. Returns the path the file will have once the set is committed.
+    /// with the content `bytes` (flushed to disk by [`ResultSet::commit`]). Writing a name
+    /// again replaces its content. Returns the path the file will have once the set is
+    /// committed.
     ///
     /// # Errors
     /// [`Error::Io`] naming the file's final path if `name` is not a plain relative name
@@ -168,8 +177,7 @@ impl ResultSet {
                 std::fs::create_dir_all(dir)?;
             }
             let mut f = File::create(&path)?;
-            f.write_all(bytes)?;
-            f.sync_all()
+            f.write_all(bytes)
         })();
         result.map_err(|e| Error::io(&final_path, e))?;
         if !self.files.iter().any(|f| f == name) {
@@ -178,14 +186,16 @@ impl ResultSet {
         Ok(final_path)
     }
 
-    /// Puts the set in place as a unit (see the module documentation) and releases the
-    /// lock. Returns the final paths of the files.
+    /// Flushes the set to disk and puts it in place as a unit (see the module
+    /// documentation), and releases the lock. Returns the final paths of the files.
     ///
     /// # Errors
-    /// [`Error::Io`] if the staging folder cannot be flushed or renamed into place (the
-    /// target is then unchanged, and the staging folder removed); an error removing the
-    /// previous set after the exchange is not reported (the next run removes it).
+    /// [`Error::Io`] if a file or the staging folder cannot be flushed (a full disk may
+    /// show only here) or renamed into place (the target is then unchanged, and the staging
+    /// folder removed); an error removing the previous set after the exchange is not
+    /// reported (the next run removes it).
     pub fn commit(mut self) -> Result<Vec<PathBuf>> {
+        self.sync_files()?;
         let mut dirs = vec![self.staging.clone()];
         for f in &self.files {
             let mut p = Path::new(f);
@@ -207,6 +217,25 @@ impl ResultSet {
         }
         let _ = sync_dir(parent);
         Ok(self.files.iter().map(|f| self.target.join(f)).collect())
+    }
+}
+
+impl ResultSet {
+    /// Flushes the files written to disk: one by one, or with one `syncfs` for a large
+    /// set on Linux (see [`SYNC_EACH_LIMIT`]).
+    fn sync_files(&self) -> Result<()> {
+        let failed = |name: &str, e: std::io::Error| Error::io(self.target.join(name), e);
+        #[cfg(target_os = "linux")]
+        if self.files.len() > SYNC_EACH_LIMIT {
+            let dir = File::open(&self.staging).map_err(|e| Error::io(&self.target, e))?;
+            return rustix::fs::syncfs(&dir).map_err(|e| Error::io(&self.target, e.into()));
+        }
+        for name in &self.files {
+            File::open(self.staging.join(name))
+                .and_then(|f| f.sync_all())
+                .map_err(|e| failed(name, e))?;
+        }
+        Ok(())
     }
 }
 

@@ -69,8 +69,15 @@ pub struct Summary {
     /// evaluated for contact with Tresca-type bounds (`applies`, `holds`, `margin`), or
     /// `applies: false` with the reason in `note`.
     pub uniqueness: crate::solver::uniqueness::Uniqueness,
-    /// Notes raised while resolving the scenario (see
-    /// [`crate::scenario::Scenario::into_problem_with_notes`]); empty from [`Summary::new`].
+    /// The small-deformation check of the solution
+    /// ([`crate::small_deformation::SmallDeformation`]): largest strain, largest
+    /// displacement over the body's size, inverted cells, and the limits.
+    pub small_deformation: crate::small_deformation::SmallDeformation,
+    /// Notes: those raised while resolving the scenario (see
+    /// [`crate::scenario::Scenario::into_problem_with_notes`]; added by
+    /// [`Summary::prepend_notes`]), then those of the solution (the small-deformation check,
+    /// [`crate::small_deformation::SmallDeformation::notes`]; the only ones from
+    /// [`Summary::new`]).
     pub notes: Vec<String>,
     /// The solver report (iterations, residuals, timings).
     pub report: SolveReport,
@@ -113,6 +120,8 @@ impl Summary {
                 .count()
         };
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
+        let small_deformation =
+            crate::small_deformation::SmallDeformation::of(mesh, &solution.u, &strains);
         let cert = &solution.report.certificate;
         Summary {
             version: env!("CARGO_PKG_VERSION").to_string(),
@@ -139,10 +148,18 @@ impl Summary {
             locked_cells,
             max_abs_trace_strain,
             uniqueness: crate::solver::uniqueness::evaluate(problem, settings),
-            notes: Vec::new(),
+            notes: small_deformation.notes(),
+            small_deformation,
             report: solution.report.clone(),
             files: Vec::new(),
         }
+    }
+}
+
+impl Summary {
+    /// Puts `notes` (those of the scenario) before the notes of the solution.
+    pub fn prepend_notes(&mut self, notes: Vec<String>) {
+        self.notes.splice(0..0, notes);
     }
 }
 

@@ -12,10 +12,19 @@
 //!
 //! which is what VTK's readers (and ParaView's, and meshio) expect. The compression level is
 //! fixed, so the same bytes always give the same encoding.
+//!
+//! One compressor is kept per thread and reset before each block: setting one up allocates
+//! and zeroes about 160 KiB of tables, which cost more than compressing the few hundred
+//! bytes of an array of a small mesh (a load path writes thousands of them). Reset, it is
+//! in the state of a new one, so the bytes are those of `compress_to_vec_zlib`.
 
 use crate::error::{Error, Result};
-use miniz_oxide::deflate::compress_to_vec_zlib;
+use miniz_oxide::deflate::core::{
+    compress as deflate, create_comp_flags_from_zip_params, CompressorOxide, TDEFLFlush,
+    TDEFLStatus,
+};
 use miniz_oxide::inflate::decompress_to_vec_zlib_with_limit;
+use std::cell::RefCell;
 
 /// Uncompressed size of a block (bytes): VTK's default.
 pub const BLOCK_SIZE: usize = 32 * 1024;
@@ -28,10 +37,7 @@ const LEVEL: u8 = 6;
 /// Encodes `bytes` as one VTK array: header and zlib-compressed blocks (see the module
 /// documentation). Empty input gives the header `[0, BLOCK_SIZE, 0]` and no block.
 pub fn compress(bytes: &[u8]) -> Vec<u8> {
-    let blocks: Vec<Vec<u8>> = bytes
-        .chunks(BLOCK_SIZE)
-        .map(|block| compress_to_vec_zlib(block, LEVEL))
-        .collect();
+    let blocks: Vec<Vec<u8>> = bytes.chunks(BLOCK_SIZE).map(zlib).collect();
     let mut out =
         Vec::with_capacity(8 * (3 + blocks.len()) + blocks.iter().map(Vec::len).sum::<usize>());
     for word in [blocks.len(), BLOCK_SIZE, bytes.len() % BLOCK_SIZE] {
@@ -44,6 +50,58 @@ pub fn compress(bytes: &[u8]) -> Vec<u8> {
         out.extend_from_slice(b);
     }
     out
+}
+
+thread_local! {
+    /// This thread's compressor at [`LEVEL`] with a zlib header, made on first use.
+    static COMPRESSOR: RefCell<Option<Box<CompressorOxide>>> = const { RefCell::new(None) };
+}
+
+/// `input` compressed as a zlib stream at [`LEVEL`]: the bytes of miniz_oxide's
+/// `compress_to_vec_zlib(input, LEVEL)`, whose loop this is, with this thread's compressor
+/// reset instead of a new one.
+fn zlib(input: &[u8]) -> Vec<u8> {
+    COMPRESSOR.with(|cell| {
+        let mut slot = cell.borrow_mut();
+        let compressor = slot.get_or_insert_with(|| {
+            Box::new(CompressorOxide::new(create_comp_flags_from_zip_params(
+                LEVEL.into(),
+                1,
+                0,
+            )))
+        });
+        compressor.reset();
+        let whole = input;
+        let mut input = input;
+        let mut output = vec![0; (input.len() / 2).max(2)];
+        let mut out_pos = 0;
+        loop {
+            let (status, bytes_in, bytes_out) = deflate(
+                compressor,
+                input,
+                &mut output[out_pos..],
+                TDEFLFlush::Finish,
+            );
+            out_pos += bytes_out;
+            match status {
+                TDEFLStatus::Done => {
+                    output.truncate(out_pos);
+                    return output;
+                }
+                TDEFLStatus::Okay if bytes_in <= input.len() => {
+                    input = &input[bytes_in..];
+                    if output.len().saturating_sub(out_pos) < 30 {
+                        output.resize(output.len() * 2, 0);
+                    }
+                }
+                // Not reached (miniz_oxide panics here too): compressing into a buffer
+                // that grows never fails.
+                _ => {
+                    return miniz_oxide::deflate::compress_to_vec_zlib(whole, LEVEL);
+                }
+            }
+        }
+    })
 }
 
 /// Decodes one VTK array encoded as by [`compress`] (any block size) at the start of
@@ -159,6 +217,22 @@ mod tests {
             assert_eq!(word(0) as usize, n.div_ceil(BLOCK_SIZE), "n = {n}");
             assert_eq!(word(1) as usize, BLOCK_SIZE);
             assert_eq!(word(2) as usize, n % BLOCK_SIZE, "n = {n}");
+        }
+    }
+
+    #[test]
+    fn the_reused_compressor_gives_the_bytes_of_a_new_one() {
+        // Blocks of every kind one after the other: each must not see the ones before.
+        let mut sizes = vec![0, 1, 2, 3, 17, 100, 1000, BLOCK_SIZE - 1, BLOCK_SIZE];
+        sizes.extend([5, BLOCK_SIZE, 64, 3]);
+        for (k, &n) in sizes.iter().enumerate() {
+            let mut data = bytes(n + k);
+            data.truncate(n);
+            if k % 3 == 1 {
+                data.iter_mut().for_each(|b| *b %= 4);
+            }
+            let fresh = miniz_oxide::deflate::compress_to_vec_zlib(&data, LEVEL);
+            assert_eq!(zlib(&data), fresh, "block {k} of {n} bytes");
         }
     }
 

@@ -74,9 +74,11 @@ impl Mesh {
         }
         let boundary = boundary_facets(dim, &cells).map_err(|s| {
             Error::Mesh(format!(
-                "the facet with nodes {:?} is shared by {} cells (at most 2 in a mesh)",
+                "the facet with nodes {:?} is shared by {} cells (at most 2 in a mesh): {}; \
+                 cells must not overlap",
                 &s.facet[..dim],
-                s.cells
+                s.cells,
+                s.describe(dim, &cells, &|c| format!("cell {c}"))
             ))
         })?;
         let untagged: Vec<[u32; 3]> = boundary

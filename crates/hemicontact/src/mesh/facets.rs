@@ -8,6 +8,35 @@ pub(crate) struct SharedFacet {
     pub facet: [u32; 3],
     /// Number of cells it belongs to (3 or more).
     pub cells: usize,
+    /// The cells it belongs to, in increasing order.
+    pub owners: Vec<u32>,
+}
+
+impl SharedFacet {
+    /// The cells sharing the facet in words, `name` naming cell `c`, and the pairs among
+    /// them with the same vertices (a repeated cell): "cell 0, cell 1 and cell 2; cell 2
+    /// repeats cell 0 (the same nodes)". `cells` are the mesh's cells (d + 1 vertices
+    /// each).
+    pub fn describe(&self, d: usize, cells: &[u32], name: &dyn Fn(usize) -> String) -> String {
+        let owners: Vec<usize> = self.owners.iter().map(|&c| c as usize).collect();
+        let mut text = super::list_cells(&owners, name);
+        let vertices = |c: usize| {
+            let mut v = [u32::MAX; 4];
+            v[..=d].copy_from_slice(&cells[(d + 1) * c..(d + 1) * (c + 1)]);
+            v[..=d].sort_unstable();
+            v
+        };
+        for (k, &b) in owners.iter().enumerate() {
+            if let Some(&a) = owners[..k].iter().find(|&&a| vertices(a) == vertices(b)) {
+                text.push_str(&format!(
+                    "; {} repeats {} (the same nodes)",
+                    name(b),
+                    name(a)
+                ));
+            }
+        }
+        text
+    }
 }
 
 /// Every facet of every cell of a mesh of dimension `d` (`cells`: d + 1 vertices each), as
@@ -52,6 +81,7 @@ pub(crate) fn boundary_facets(
                 return Err(SharedFacet {
                     facet: all[i].0,
                     cells: k,
+                    owners: all[i..j].iter().map(|x| x.1).collect(),
                 })
             }
         }

@@ -86,6 +86,28 @@ pub(crate) fn list_cells(cells: &[usize], name: &dyn Fn(usize) -> String) -> Str
     }
 }
 
+/// The pairs of cells `folds` (the two cells of an interior facet, on the same side of it)
+/// in words: "the cells on both sides of N interior facet(s) lie on the same side of it
+/// (they overlap): cell 0 and cell 2; …", at most [`LISTED`] pairs, then how many more.
+fn overlapping_pairs(folds: &[(usize, usize)], name: &dyn Fn(usize) -> String) -> String {
+    let pairs: Vec<String> = folds
+        .iter()
+        .take(LISTED)
+        .map(|&(a, b)| format!("{} and {}", name(a), name(b)))
+        .collect();
+    format!(
+        "the cells on both sides of {} interior facet(s) lie on the same side of it (they \
+         overlap): {}{}",
+        folds.len(),
+        pairs.join("; "),
+        if folds.len() > LISTED {
+            format!(" and {} more", folds.len() - LISTED)
+        } else {
+            String::new()
+        }
+    )
+}
+
 /// Compensated (Neumaier) sum: the rounding error of the sum is ε relative to its value
 /// plus ε² relative to the sum of absolute values, whatever the number of terms.
 #[derive(Clone, Copy, Default)]
@@ -209,7 +231,7 @@ impl Mesh {
             part_names,
         };
         mesh.check_cells(name)?;
-        mesh.facet_cell = mesh.match_boundary_facets()?;
+        mesh.facet_cell = mesh.match_boundary_facets(name)?;
         mesh.check_cover(name)?;
         Ok(mesh)
     }
@@ -301,22 +323,7 @@ impl Mesh {
         let located = if folds.is_empty() {
             String::new()
         } else {
-            let pairs: Vec<String> = folds
-                .iter()
-                .take(LISTED)
-                .map(|&(a, b)| format!("{} and {}", name(a), name(b)))
-                .collect();
-            format!(
-                "; the cells on both sides of {} interior facet(s) lie on the same side of it \
-                 (they overlap): {}{}",
-                folds.len(),
-                pairs.join("; "),
-                if folds.len() > LISTED {
-                    format!(" and {} more", folds.len() - LISTED)
-                } else {
-                    String::new()
-                }
-            )
+            format!("; {}", overlapping_pairs(&folds, name))
         };
         Err(Error::Mesh(format!(
             "the cell {what} sum to {sum:e} but the boundary encloses {measure} of {enclosed:e} \
@@ -359,14 +366,17 @@ impl Mesh {
     }
 
     /// Finds the boundary facets (facets of exactly one cell) and matches them against the
-    /// tagged facets. Returns the owning cell of each tagged facet.
-    fn match_boundary_facets(&self) -> Result<Vec<u32>> {
+    /// tagged facets. Returns the owning cell of each tagged facet. A tagged facet that is
+    /// not on the boundary because cells overlap is reported as the overlap, naming the
+    /// cells by `name`.
+    fn match_boundary_facets(&self, name: &dyn Fn(usize) -> String) -> Result<Vec<u32>> {
         let d = self.dim;
         let boundary = boundary_facets(d, &self.cells).map_err(|shared| {
             Error::Mesh(format!(
-                "facet {:?} is shared by {} cells (non-manifold mesh)",
+                "facet {:?} is shared by {} cells (non-manifold mesh): {}",
                 &shared.facet[..d],
-                shared.cells
+                shared.cells,
+                shared.describe(d, &self.cells, name)
             ))
         })?;
         let mut facet_cell = vec![u32::MAX; self.n_facets()];
@@ -388,19 +398,36 @@ impl Mesh {
             match tagged.binary_search_by(|(k, _)| k.cmp(key)) {
                 Ok(pos) => facet_cell[tagged[pos].1] = *cell,
                 Err(_) => {
-                    return Err(Error::Mesh(format!(
-                        "boundary facet {:?} belongs to no boundary part",
-                        &key[..d]
-                    )))
+                    let untagged =
+                        format!("boundary facet {:?} belongs to no boundary part", &key[..d]);
+                    let folds = self.folded_facets();
+                    if !folds.is_empty() {
+                        return Err(Error::Mesh(format!(
+                            "{untagged}: cells overlap: {}; every point of the domain must be \
+                             covered by exactly one cell",
+                            overlapping_pairs(&folds, name)
+                        )));
+                    }
+                    return Err(Error::Mesh(untagged));
                 }
             }
         }
         if let Some(f) = facet_cell.iter().position(|&c| c == u32::MAX) {
-            return Err(Error::Mesh(format!(
+            let tagged = format!(
                 "tagged facet {:?} (part `{}`) is not on the boundary",
                 self.facet(f),
                 self.part_names[self.facet_part[f] as usize]
-            )));
+            );
+            // Overlapping cells make boundary facets interior: say so, naming them.
+            let folds = self.folded_facets();
+            if !folds.is_empty() {
+                return Err(Error::Mesh(format!(
+                    "{tagged}: cells overlap: {}; every point of the domain must be covered \
+                     by exactly one cell",
+                    overlapping_pairs(&folds, name)
+                )));
+            }
+            return Err(Error::Mesh(tagged));
         }
         Ok(facet_cell)
     }
