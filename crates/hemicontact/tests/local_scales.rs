@@ -94,8 +94,13 @@ mu = {{ law = "constant", mu = {mu} }}
 /// Body A's top pressed down by 0.01 and pushed sideways by 0.004 (part of its bottom
 /// slips); body B's top pulled sideways by `pull` and pressed by 0.01.
 fn two_block_problem(friction: &str, pull: f64) -> Problem {
+    on_two_blocks(&laws(0.3, friction), pull)
+}
+
+/// The two blocks with the material and the contact law of `laws`, loaded as
+/// [`two_block_problem`] says.
+fn on_two_blocks(laws: &Problem, pull: f64) -> Problem {
     let mesh = two_blocks();
-    let laws = laws(0.3, friction);
     let part = |name: &str| mesh.part_index(name).unwrap();
     let mut contact = laws.contact()[0].clone();
     contact.part = part("bottom");
@@ -341,25 +346,7 @@ mu = {{ law = "constant", mu = 0.3 }}
 potential = {potential}
 "#
     ));
-    let mesh = two_blocks();
-    let part = |name: &str| mesh.part_index(name).unwrap();
-    let mut contact = laws.contact()[0].clone();
-    contact.part = part("bottom");
-    Problem::builder(mesh.clone(), laws.material().clone())
-        .plane(laws.plane())
-        .dirichlet(Dirichlet {
-            part: part("a_top"),
-            components: [true, true, false],
-            value: [0.004, -0.01, 0.0],
-        })
-        .dirichlet(Dirichlet {
-            part: part("b_top"),
-            components: [true, true, false],
-            value: [pull, -0.01, 0.0],
-        })
-        .contact(contact)
-        .build()
-        .unwrap()
+    on_two_blocks(&laws, pull)
 }
 
 #[test]

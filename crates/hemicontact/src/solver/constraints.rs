@@ -233,13 +233,14 @@ pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
 pub fn contact_stiffness(problem: &Problem, weight: &[f64]) -> Vec<f64> {
     let s = stiffness_scale(problem);
     let d = problem.mesh.dim();
-    weight
-        .iter()
-        .map(|&w| {
-            let h = if d == 2 { w } else { w.sqrt() };
-            s / h.max(f64::MIN_POSITIVE)
-        })
-        .collect()
+    weight.iter().map(|&w| s / local_size(d, w)).collect()
+}
+
+/// The local mesh size `h = w^{1/(d−1)}` (m) of a contact point of weight `w` in dimension
+/// `d`, at least the smallest positive number.
+fn local_size(d: usize, w: f64) -> f64 {
+    let h = if d == 2 { w } else { w.sqrt() };
+    h.max(f64::MIN_POSITIVE)
 }
 
 /// Penalty r_i (Pa/m) of every contact point of weight `weight[i]` for the penalty factor
@@ -249,10 +250,7 @@ pub fn contact_penalties(problem: &Problem, gamma: f64, weight: &[f64]) -> Vec<f
     let d = problem.mesh.dim();
     weight
         .iter()
-        .map(|&w| {
-            let h = if d == 2 { w } else { w.sqrt() };
-            gamma * s / h.max(f64::MIN_POSITIVE)
-        })
+        .map(|&w| gamma * s / local_size(d, w))
         .collect()
 }
 

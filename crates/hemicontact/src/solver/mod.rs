@@ -282,29 +282,14 @@ fn solve_dimensionless(
         problem,
         &u,
     );
-    let (mut point_force, mut floor) = (Vec::new(), Vec::new());
-    system.point_scales(
+    let (contact, mut certificate) = system.certificate(
         problem,
         &u,
         &frozen,
-        &eval.normal,
+        &eval,
         &eval.body_scale,
-        &mut point_force,
-        &mut floor,
-    );
-    let (contact, mut certificate) = certificate::evaluate(
-        &ca,
-        &certificate::Inputs {
-            u: &u,
-            mu: &mu,
-            grad_bulk: &eval.grad_bulk,
-            f_ext: &system.f_ext,
-            fixed: &|k| system.dofs.is_fixed(k),
-            bodies: &system.bodies,
-            floor: &floor,
-            frozen: frozen.contact(),
-            tolerance: settings.certificate_tolerance,
-        },
+        &mu,
+        settings.certificate_tolerance,
     );
     if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
@@ -437,32 +422,17 @@ pub fn certify(
     system
         .bodies
         .force_scales(d, &eval.grad_bulk, f, &external, &mut body_scale);
-    let (mut point_force, mut floor) = (Vec::new(), Vec::new());
-    system.point_scales(
+    let mu = system
+        .contact_assembler(&scaled)
+        .friction_coefficients(&u)?;
+    let (contact, certificate) = system.certificate(
         &scaled,
         &u,
         &frozen,
-        &eval.normal,
+        &eval,
         &body_scale,
-        &mut point_force,
-        &mut floor,
-    );
-    let mut ca = system.contact_assembler(&scaled);
-    ca.responses = &eval.normal;
-    let mu = ca.friction_coefficients(&u)?;
-    let (contact, certificate) = certificate::evaluate(
-        &ca,
-        &certificate::Inputs {
-            u: &u,
-            mu: &mu,
-            grad_bulk: &eval.grad_bulk,
-            f_ext: &system.f_ext,
-            fixed: &|k| system.dofs.is_fixed(k),
-            bodies: &system.bodies,
-            floor: &floor,
-            frozen: frozen.contact(),
-            tolerance: settings.certificate_tolerance,
-        },
+        &mu,
+        settings.certificate_tolerance,
     );
     let contact = contact
         .iter()

@@ -130,7 +130,7 @@ pub trait ConvexEnergy {
     fn gradient(&self) -> &[f64];
     /// The residual norm and the force scale (N) that makes it dimensionless, at the last
     /// evaluation: for an energy of independent parts (the bodies of a mesh,
-    /// [`super::bodies`]), those of the part farthest from equilibrium relative to its own
+    /// [`super::local_scales`]), those of the part farthest from equilibrium relative to its own
     /// scale.
     fn residual(&self) -> (f64, f64);
     /// The residual norm and force scale (N) that set the accuracy of the linear solves

@@ -4,6 +4,7 @@
 //! its gradient and generalized Hessian for given frozen contact quantities into the work
 //! arrays of an [`Evaluation`], which the outer loop owns.
 
+use super::certificate::{Certificate, ContactResult};
 use super::continuation::Continuation;
 use super::frozen::Frozen;
 use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
@@ -298,6 +299,49 @@ impl System {
                 .unwrap_or(0.0);
             floor.push((FLOW_FLOOR * bulk.nodal_force_sum(u, v, around)).max(BODY_FLOOR * body));
         }
+    }
+
+    /// The contact results and the certificate ([`super::certificate::evaluate`]) of `u` for
+    /// the frozen quantities `frozen`, from the evaluation `eval` at `u` (its bulk gradient
+    /// and the responses of user-defined compliance laws), the force scales of the bodies
+    /// `body_scale`, the friction coefficients `mu` at `u` and the tolerance `tolerance`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn certificate(
+        &self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        eval: &Evaluation,
+        body_scale: &[f64],
+        mu: &[f64],
+        tolerance: f64,
+    ) -> (Vec<ContactResult>, Certificate) {
+        let (mut point_force, mut floor) = (Vec::new(), Vec::new());
+        self.point_scales(
+            problem,
+            u,
+            frozen,
+            &eval.normal,
+            body_scale,
+            &mut point_force,
+            &mut floor,
+        );
+        let mut ca = self.contact_assembler(problem);
+        ca.responses = &eval.normal;
+        super::certificate::evaluate(
+            &ca,
+            &super::certificate::Inputs {
+                u,
+                mu,
+                grad_bulk: &eval.grad_bulk,
+                f_ext: &self.f_ext,
+                fixed: &|k| self.dofs.is_fixed(k),
+                bodies: &self.bodies,
+                floor: &floor,
+                frozen: frozen.contact(),
+                tolerance,
+            },
+        )
     }
 
     /// The ideal-locking term of `problem` with the cell multipliers of `frozen`.
