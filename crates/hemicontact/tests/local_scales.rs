@@ -67,8 +67,14 @@ fn merge(bodies: &[(Mesh, &str)]) -> Mesh {
     Mesh::try_new(2, coords, cells, facets, facet_part, names).unwrap()
 }
 
-/// The scenario whose material and contact law the two-block problems use.
+/// The scenario whose material and contact law the two-block problems use: Signorini
+/// contact and Coulomb friction μ, with the further friction keys `friction`.
 fn laws(mu: f64, friction: &str) -> Problem {
+    laws_of("law = \"signorini\"", mu, friction)
+}
+
+/// As [`laws`] with the normal law `normal` (its keys).
+fn laws_of(normal: &str, mu: f64, friction: &str) -> Problem {
     common::problem(&format!(
         r#"
 [mesh]
@@ -82,7 +88,7 @@ poisson = 0.3
 part = "top"
 [[contact]]
 part = "bottom"
-law = "signorini"
+{normal}
 [contact.friction]
 bound = "coulomb"
 mu = {{ law = "constant", mu = {mu} }}
@@ -325,27 +331,11 @@ fn a_region_of_small_slips_is_regularized_on_its_own_scale() {
 /// The two blocks with normal compliance (c_ν = 10⁵ Pa/m) and Coulomb friction (μ = 0.3)
 /// of potential `potential`, body B pulled by `pull`.
 fn two_block_compliance(potential: &str, pull: f64) -> Problem {
-    let laws = common::problem(&format!(
-        r#"
-[mesh]
-kind = "rectangle"
-size = [1.0, 0.5]
-n = [2, 2]
-[material]
-young = 1000.0
-poisson = 0.3
-[[dirichlet]]
-part = "top"
-[[contact]]
-part = "bottom"
-law = "normal-compliance"
-c_nu = 1.0e5
-[contact.friction]
-bound = "coulomb"
-mu = {{ law = "constant", mu = 0.3 }}
-potential = {potential}
-"#
-    ));
+    let laws = laws_of(
+        "law = \"normal-compliance\"\nc_nu = 1.0e5",
+        0.3,
+        &format!("potential = {potential}"),
+    );
     on_two_blocks(&laws, pull)
 }
 
