@@ -11,7 +11,9 @@
 //! ```
 //!
 //! which is what VTK's readers (and ParaView's, and meshio) expect. The compression level is
-//! fixed, so the same bytes always give the same encoding.
+//! fixed, so the same bytes always give the same encoding. The blocks are independent, so
+//! they are compressed in parallel (rayon); the result does not depend on the number of
+//! threads.
 //!
 //! One compressor is kept per thread and reset before each block: setting one up allocates
 //! and zeroes about 160 KiB of tables, which cost more than compressing the few hundred
@@ -29,15 +31,23 @@ use std::cell::RefCell;
 /// Uncompressed size of a block (bytes): VTK's default.
 pub const BLOCK_SIZE: usize = 32 * 1024;
 
-/// The zlib compression level (0–10 in miniz): 6, zlib's default balance of size and speed.
+/// The zlib compression level (0–10 in miniz): 1, the fastest that still compresses.
+/// The arrays written are mostly floating-point numbers, whose mantissas do not compress:
+/// on the paper square at n = 512 (151 MB of arrays) level 1 gives 42.9 MB in 1.3 s and
+/// zlib's default level 6 gives 41.8 MB in 2.9 s (zlib's own compressor, one thread).
 /// The compressor is miniz_oxide itself (not a back end chosen by cargo features), so the
 /// bytes do not depend on how the program was built.
-const LEVEL: u8 = 6;
+const LEVEL: u8 = 1;
 
 /// Encodes `bytes` as one VTK array: header and zlib-compressed blocks (see the module
 /// documentation). Empty input gives the header `[0, BLOCK_SIZE, 0]` and no block.
 pub fn compress(bytes: &[u8]) -> Vec<u8> {
-    let blocks: Vec<Vec<u8>> = bytes.chunks(BLOCK_SIZE).map(zlib).collect();
+    use rayon::prelude::*;
+    let blocks: Vec<Vec<u8>> = if bytes.len() > 4 * BLOCK_SIZE {
+        bytes.par_chunks(BLOCK_SIZE).map(zlib).collect()
+    } else {
+        bytes.chunks(BLOCK_SIZE).map(zlib).collect()
+    };
     let mut out =
         Vec::with_capacity(8 * (3 + blocks.len()) + blocks.iter().map(Vec::len).sum::<usize>());
     for word in [blocks.len(), BLOCK_SIZE, bytes.len() % BLOCK_SIZE] {
