@@ -24,7 +24,7 @@ use super::legend::{flow, Entry, Swatch};
 use super::scales::{
     arrow_points, chains, contact_spacing, magnification, max_traction, mesh_drawn,
 };
-use super::{Anchor, Figure, Prim, Rgb};
+use super::{raster, Anchor, Figure, Prim, Rgb};
 use crate::problem::Problem;
 use crate::solver::{ContactResult, FrictionState, NormalState, Solution};
 
@@ -457,13 +457,21 @@ fn panel_layout(
                 .collect();
             bands[level(*v, r)].push(ring);
         }
-        for (k, rings) in bands.into_iter().enumerate() {
-            if !rings.is_empty() {
-                prims.push(Prim::Polygons {
-                    rings,
-                    fill: level_color(k),
-                });
-            }
+        let bands: Vec<_> = bands
+            .into_iter()
+            .enumerate()
+            .filter(|(_, rings)| !rings.is_empty())
+            .map(|(k, rings)| (level_color(k), rings))
+            .collect();
+        // Cells too small to draw their edges are too small to draw one by one: the field
+        // is sampled at the resolution of the picture.
+        match (!mesh_drawn).then(|| raster::rasterize(&bands)).flatten() {
+            Some(image) => prims.push(Prim::Raster(image)),
+            None => prims.extend(
+                bands
+                    .into_iter()
+                    .map(|(fill, rings)| Prim::Polygons { rings, fill }),
+            ),
         }
         bar = Some(r);
     }

@@ -7,7 +7,8 @@
 //! [`convergence`] the log–log convergence plot. [`layout`] holds the shared layout rules
 //! (round numbers, ticks, fitted titles, label boxes), [`field`] the colour fields and
 //! their colour bar, [`legend`] the legends set below a panel, [`scales`] the scales of the
-//! deformed drawing (magnification, arrows).
+//! deformed drawing (magnification, arrows), [`raster`] the colour fields of meshes too fine
+//! to draw cell by cell.
 
 pub mod axes;
 pub mod convergence;
@@ -17,6 +18,7 @@ pub mod font;
 pub mod interface;
 pub mod layout;
 pub mod legend;
+pub mod raster;
 pub mod scales;
 #[cfg(test)]
 mod tests;
@@ -89,6 +91,9 @@ pub enum Prim {
         /// Width (px).
         width: f64,
     },
+    /// An image: a colour field sampled at the resolution of the picture
+    /// ([`raster::rasterize`]), embedded in the SVG as a PNG.
+    Raster(raster::Raster),
     /// A filled circle.
     Circle {
         /// Centre.
@@ -147,9 +152,15 @@ impl Figure {
     /// The SVG document.
     pub fn to_svg(&self) -> String {
         let mut s = String::new();
+        // Embedded images are linked the SVG 1.1 way (`xlink:href`), which every viewer reads.
+        let xlink = if self.prims.iter().any(|p| matches!(p, Prim::Raster(_))) {
+            " xmlns:xlink=\"http://www.w3.org/1999/xlink\""
+        } else {
+            ""
+        };
         let _ = writeln!(
             s,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
+            "<svg xmlns=\"http://www.w3.org/2000/svg\"{xlink} width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n\
              <rect width=\"{w}\" height=\"{h}\" fill=\"white\"/>",
             w = self.width,
             h = self.height
@@ -243,6 +254,20 @@ impl Figure {
                         head[2][1],
                         c = hex(*color)
                     );
+                }
+                Prim::Raster(r) => {
+                    if let Some(png) = raster_png(r) {
+                        let _ = writeln!(
+                            s,
+                            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" \
+                             preserveAspectRatio=\"none\" xlink:href=\"data:image/png;base64,{}\"/>",
+                            r.x,
+                            r.y,
+                            r.width,
+                            r.height,
+                            raster::base64(&png)
+                        );
+                    }
                 }
                 Prim::Circle {
                     center,
@@ -394,6 +419,21 @@ impl Figure {
                         pm.fill_path(&path, &paint_of(*color), FillRule::Winding, id, None);
                     }
                 }
+                Prim::Raster(r) => {
+                    let size = tiny_skia::IntSize::from_wh(r.width, r.height);
+                    if let Some(image) =
+                        size.and_then(|size| tiny_skia::Pixmap::from_vec(r.figure_pixels(), size))
+                    {
+                        pm.draw_pixmap(
+                            r.x,
+                            r.y,
+                            image.as_ref(),
+                            &tiny_skia::PixmapPaint::default(),
+                            id,
+                            None,
+                        );
+                    }
+                }
                 Prim::Circle {
                     center,
                     radius,
@@ -431,6 +471,14 @@ impl Figure {
         crate::io::atomic::write(&png, &self.to_png()?)?;
         Ok(vec![svg, png])
     }
+}
+
+/// The image of `r` at its full resolution as a PNG file (`None` if it cannot be encoded).
+fn raster_png(r: &raster::Raster) -> Option<Vec<u8>> {
+    let size = tiny_skia::IntSize::from_wh(r.image_width(), r.image_height())?;
+    tiny_skia::Pixmap::from_vec(r.rgba.clone(), size)?
+        .encode_png()
+        .ok()
 }
 
 /// A tiny-skia path through `points`, closed if `close`.

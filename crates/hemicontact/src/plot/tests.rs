@@ -198,3 +198,30 @@ fn the_interface_is_walked_along_each_part_from_its_lower_end() {
         }
     }
 }
+
+#[test]
+fn a_mesh_too_fine_to_draw_cell_by_cell_is_drawn_as_an_image() {
+    // Cells of 5 px or more are drawn as polygons (with their edges); smaller ones as one
+    // image sampled at the resolution of the picture, in the place the polygons took.
+    let count = |fig: &Figure| {
+        let images = fig
+            .prims
+            .iter()
+            .filter(|p| matches!(p, Prim::Raster(_)))
+            .count();
+        let polygons = fig
+            .prims
+            .iter()
+            .filter(|p| matches!(p, Prim::Polygons { .. }))
+            .count();
+        (images, polygons)
+    };
+    let (problem, solution) = solved(8, 0.4);
+    let (images, polygons) = count(&deformed::figure(&problem, &solution, "coarse"));
+    assert_eq!(images, 0);
+    assert!(polygons > 1, "{polygons} colour bands");
+    let (problem, solution) = solved(128, 0.4);
+    let fig = deformed::figure(&problem, &solution, "fine");
+    assert_eq!(count(&fig), (1, 0));
+    assert!(texts(&fig).iter().any(|t| t.contains("too small to draw")));
+}
