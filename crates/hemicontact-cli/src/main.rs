@@ -476,6 +476,7 @@ fn run_and_write(
         .title
         .clone()
         .unwrap_or_else(|| label.to_string());
+    let t = std::time::Instant::now();
     let extra = solution_figures(&problem, &solution, &title)?;
     ctx.output.with(|set| {
         Ok(write_results(
@@ -489,6 +490,10 @@ fn run_and_write(
             &extra,
         )?)
     })?;
+    c.phase(format_args!(
+        "{prefix}results written in {} s",
+        significant_seconds(t.elapsed().as_secs_f64())
+    ));
     let r = &solution.report;
     if !r.converged {
         c.warn(format_args!(
@@ -638,13 +643,19 @@ fn paper(ctx: &RunContext, n: usize, out: &Path) -> Result<Outcome> {
         .iter()
         .map(|c| (&c.problem, &c.solution, format!("{}, n = {n}", c.label)))
         .collect();
+    let t = std::time::Instant::now();
     let comparison = deformed::side_by_side(&panels);
-    let (svg, png) = (comparison.to_svg(), comparison.to_png()?);
+    let (svg, png) = rayon::join(|| comparison.to_svg(), || comparison.to_png());
+    let png = png?;
     ctx.output.with(|set| {
         set.write("comparison.svg", svg.as_bytes())?;
         set.write("comparison.png", &png)?;
         Ok(())
     })?;
+    c.phase(format_args!(
+        "comparison figure written in {} s",
+        significant_seconds(t.elapsed().as_secs_f64())
+    ));
     print_written(c, out, &ctx.output.commit()?);
     print_table(c, &cases.iter().map(Case::row).collect::<Vec<_>>());
     Ok(outcome(&cases))

@@ -78,7 +78,7 @@ fn solve_off_a_terminal_prints_one_line_per_phase() {
     assert_success(&out);
     let stderr = text(&out.stderr);
     let lines: Vec<&str> = stderr.lines().filter(|l| !l.starts_with("note:")).collect();
-    assert_eq!(lines.len(), 3, "{stderr}");
+    assert_eq!(lines.len(), 4, "{stderr}");
     assert!(lines[0].starts_with("solving ") && lines[0].contains("s.toml"));
     assert!(
         lines[0].contains("81 nodes, 128 triangles, 162 DOFs"),
@@ -94,7 +94,8 @@ fn solve_off_a_terminal_prints_one_line_per_phase() {
         "{}",
         lines[1]
     );
-    assert!(lines[2].starts_with("written to r ("), "{}", lines[2]);
+    assert!(lines[2].starts_with("results written in "), "{}", lines[2]);
+    assert!(lines[3].starts_with("written to r ("), "{}", lines[3]);
     assert!(
         !stderr.contains('\u{1b}'),
         "terminal control sequences:\n{stderr}"
@@ -281,11 +282,19 @@ fn paper_header_gives_area_and_edge() {
         header.contains("h = 0.125 m² (element area)") && header.contains("edge h = 0.5 m"),
         "{header}"
     );
-    // Off a terminal: per case what is solved and how it ended, then where it went.
+    // Off a terminal: per case what is solved, how it ended and how long writing took,
+    // then the comparison figure and where it all went.
     let stderr = text(&out.stderr);
     let phases: Vec<&str> = stderr.lines().filter(|l| !l.starts_with("note:")).collect();
-    assert_eq!(phases.len(), 5, "{stderr}");
-    assert!(phases[4].starts_with("written to p ("), "{stderr}");
+    assert_eq!(phases.len(), 8, "{stderr}");
+    for case in [0, 3] {
+        assert!(phases[case + 2].contains("results written in "), "{stderr}");
+    }
+    assert!(
+        phases[6].starts_with("comparison figure written in "),
+        "{stderr}"
+    );
+    assert!(phases[7].starts_with("written to p ("), "{stderr}");
 }
 
 #[test]

@@ -38,17 +38,19 @@ pub fn write_results(
         }
     };
     let mut written = Vec::new();
-    if vtu {
-        written.push(set.write(
-            &name("solution.vtu"),
-            &solution_vtu(problem, solution, title, 1.0)?.to_bytes(),
-        )?);
+    // The two encodings are independent: made in parallel, written in order.
+    let (vtu_bytes, csv) = rayon::join(
+        || {
+            vtu.then(|| solution_vtu(problem, solution, title, 1.0).map(|v| v.to_bytes()))
+                .transpose()
+        },
+        || (!problem.contact.is_empty()).then(|| contact_csv(problem, solution)),
+    );
+    if let Some(bytes) = vtu_bytes? {
+        written.push(set.write(&name("solution.vtu"), &bytes)?);
     }
-    if !problem.contact.is_empty() {
-        written.push(set.write(
-            &name("contact.csv"),
-            contact_csv(problem, solution).as_bytes(),
-        )?);
+    if let Some(csv) = csv {
+        written.push(set.write(&name("contact.csv"), csv.as_bytes())?);
     }
     for (file, bytes) in extra {
         written.push(set.write(&name(file), bytes)?);
@@ -65,6 +67,9 @@ pub fn write_results(
     Ok(written)
 }
 
+/// A file of a result folder: its name and its bytes.
+pub type File = (&'static str, Vec<u8>);
+
 /// The figures `hemicontact solve` writes beside the results of a solution titled `title`:
 /// the deformed mesh coloured by the von Mises stress, with its interface tractions
 /// (`deformed.svg`, `deformed.png`), and for a 2D problem with contact the contact
@@ -73,21 +78,27 @@ pub fn write_results(
 ///
 /// # Errors
 /// [`crate::Error::Io`] if the PNG cannot be encoded.
-pub fn solution_figures(
-    problem: &Problem,
-    solution: &Solution,
-    title: &str,
-) -> Result<Vec<(&'static str, Vec<u8>)>> {
+pub fn solution_figures(problem: &Problem, solution: &Solution, title: &str) -> Result<Vec<File>> {
     #[cfg(feature = "plot")]
     {
-        let figure = crate::plot::deformed::figure(problem, solution, title);
-        let mut files = vec![
-            ("deformed.svg", figure.to_svg().into_bytes()),
-            ("deformed.png", figure.to_png()?),
-        ];
-        if let Some(figure) = crate::plot::interface::figure(problem, solution, title) {
-            files.push(("interface.svg", figure.to_svg().into_bytes()));
-            files.push(("interface.png", figure.to_png()?));
+        use rayon::prelude::*;
+        let (deformed, interface) = rayon::join(
+            || crate::plot::deformed::figure(problem, solution, title),
+            || crate::plot::interface::figure(problem, solution, title),
+        );
+        let mut figures = vec![("deformed.svg", "deformed.png", deformed)];
+        figures.extend(interface.map(|f| ("interface.svg", "interface.png", f)));
+        // Each figure's SVG and PNG are rendered in parallel, listed in a fixed order.
+        let rendered: Vec<Result<[File; 2]>> = figures
+            .par_iter()
+            .map(|(svg_name, png_name, figure)| {
+                let (svg, png) = rayon::join(|| figure.to_svg(), || figure.to_png());
+                Ok([(*svg_name, svg.into_bytes()), (*png_name, png?)])
+            })
+            .collect();
+        let mut files = Vec::new();
+        for r in rendered {
+            files.extend(r?);
         }
         Ok(files)
     }
