@@ -68,7 +68,7 @@ pub fn write_results(
 }
 
 /// A file of a result folder: its name and its bytes.
-pub type File = (&'static str, Vec<u8>);
+pub type ResultFile = (&'static str, Vec<u8>);
 
 /// The figures `hemicontact solve` writes beside the results of a solution titled `title`:
 /// the deformed mesh coloured by the von Mises stress, with its interface tractions
@@ -78,7 +78,11 @@ pub type File = (&'static str, Vec<u8>);
 ///
 /// # Errors
 /// [`crate::Error::Io`] if the PNG cannot be encoded.
-pub fn solution_figures(problem: &Problem, solution: &Solution, title: &str) -> Result<Vec<File>> {
+pub fn solution_figures(
+    problem: &Problem,
+    solution: &Solution,
+    title: &str,
+) -> Result<Vec<ResultFile>> {
     #[cfg(feature = "plot")]
     {
         use rayon::prelude::*;
@@ -89,7 +93,7 @@ pub fn solution_figures(problem: &Problem, solution: &Solution, title: &str) -> 
         let mut figures = vec![("deformed.svg", "deformed.png", deformed)];
         figures.extend(interface.map(|f| ("interface.svg", "interface.png", f)));
         // Each figure's SVG and PNG are rendered in parallel, listed in a fixed order.
-        let rendered: Vec<Result<[File; 2]>> = figures
+        let rendered: Vec<Result<[ResultFile; 2]>> = figures
             .par_iter()
             .map(|(svg_name, png_name, figure)| {
                 let (svg, png) = rayon::join(|| figure.to_svg(), || figure.to_png());
