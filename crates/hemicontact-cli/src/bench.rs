@@ -3,7 +3,7 @@
 use anyhow::Result;
 use hemicontact::assembly::global::Want;
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
-use hemicontact::linalg::{Cholesky, Ordering};
+use hemicontact::linalg::{Cholesky, Layout, Ordering};
 use hemicontact::scenario::builtin;
 use std::time::Instant;
 
@@ -62,15 +62,25 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
                 rhs[eq as usize] = f[dof];
             }
         }
-        for ordering in [Ordering::NestedDissection, Ordering::Amd] {
+        for (ordering, layout) in [
+            (Ordering::NestedDissection, Layout::Auto),
+            (Ordering::NestedDissection, Layout::Whole),
+            (Ordering::Amd, Layout::Whole),
+        ] {
             let t = Instant::now();
-            let mut chol = Cholesky::analyze(
+            let mut chol = Cholesky::analyze_with(
                 mesh,
                 dofs.equations(),
                 &pattern,
                 ordering,
                 hemicontact::solver::parallelism(threads),
+                layout,
             )?;
+            let name = match (ordering, chol.is_substructured()) {
+                (Ordering::NestedDissection, true) => "ND substructures",
+                (Ordering::NestedDissection, false) => "ND whole",
+                (Ordering::Amd, _) => "AMD whole",
+            };
             let t_sym = t.elapsed().as_secs_f64();
             let mut t_num = Vec::new();
             let mut t_sol = Vec::new();
@@ -100,7 +110,7 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
                 "{:>5} {:>9} {:>18} {:>11} {:>8.3} {:>9.3} {:>9.3} {:>9.3} {:>9.3} {:>9.3}   (residual {:.1e})",
                 n,
                 dofs.n_dofs(),
-                format!("{ordering:?}"),
+                name,
                 chol.nnz_factor(),
                 t_pattern,
                 t_asm,

@@ -6,8 +6,14 @@
 //! numeric factor for new matrix values on the same pattern without allocating, and
 //! [`Cholesky::solve_in_place`] solves with it. The matrix is given by its upper triangle
 //! on a [`SystemPattern`].
+//!
+//! With the nested-dissection ordering, a large 2D system is factorized as two
+//! substructures in parallel and a dense Schur complement on their separator
+//! ([`super::substructures`]) when that adds little work and two threads are there to run
+//! them; otherwise as one matrix by faer's supernodal Cholesky.
 
-use super::ordering::{nested_dissection, Ordering};
+use super::ordering::{nested_dissection, top_bisection, Ordering};
+use super::substructures::Substructured;
 use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
@@ -18,22 +24,51 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
+/// How [`Cholesky::analyze_with`] lays out the factorization.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// Substructures where they add little work and rayon's pool has two threads or more
+    /// (see the module documentation), else the whole matrix.
+    #[default]
+    Auto,
+    /// The whole matrix, by faer's supernodal Cholesky.
+    Whole,
+    /// Two substructures and their separator wherever the nested dissection splits the
+    /// nodes, whatever the extra work (for tests); the whole matrix where it does not.
+    Substructures,
+}
+
 /// A sparse Cholesky factorization on a fixed pattern; see the module documentation.
 pub struct Cholesky {
+    factor: Factor,
+    n: usize,
+    factorized: bool,
+}
+
+/// The two layouts of the factor.
+enum Factor {
+    Whole(Box<Whole>),
+    Substructured(Box<Substructured>),
+}
+
+/// The whole matrix factorized by faer, in the fill-reducing order.
+struct Whole {
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     par: Par,
     factor_stack: MemBuffer,
     solve_stack: MemBuffer,
-    factorized: bool,
 }
 
 impl std::fmt::Debug for Cholesky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Cholesky")
-            .field("n", &self.symbolic.nrows())
-            .field("nnz_factor", &self.l_values.len())
-            .finish()
+        let mut d = f.debug_struct("Cholesky");
+        d.field("n", &self.n)
+            .field("nnz_factor", &self.nnz_factor());
+        if let Factor::Substructured(s) = &self.factor {
+            d.field("substructures", s);
+        }
+        d.finish()
     }
 }
 
@@ -47,9 +82,7 @@ fn equation_permutation(
 ) -> Result<Vec<usize>> {
     let d = mesh.dim();
     let (ptr, adj) = mesh.node_adjacency();
-    let free_nodes: Vec<u32> = (0..mesh.n_nodes() as u32)
-        .filter(|&v| (0..d).any(|i| equations[d * v as usize + i] != u32::MAX))
-        .collect();
+    let free_nodes = free_nodes(mesh, equations);
     let node_order = match ordering {
         Ordering::NestedDissection => nested_dissection(mesh.coords(), d, &ptr, &adj, free_nodes),
         Ordering::Amd => amd_nodes(&ptr, &adj, &free_nodes)?,
@@ -111,11 +144,137 @@ fn amd_nodes(ptr: &[usize], adj: &[u32], nodes: &[u32]) -> Result<Vec<u32>> {
 impl Cholesky {
     /// Symbolic analysis of `pattern` (the reduced system of `mesh` with equation numbers
     /// `equations`, see [`crate::fem::dofs::DofMap::equations`]) with the given ordering,
-    /// using `par` for the numeric factorization and solves.
+    /// using `par` for the numeric factorization and solves; the layout is chosen
+    /// ([`Layout::Auto`]).
     ///
     /// # Errors
     /// [`Error::OutOfMemory`] if the factor or its workspace cannot be allocated.
     pub fn analyze(
+        mesh: &Mesh,
+        equations: &[u32],
+        pattern: &SystemPattern,
+        ordering: Ordering,
+        par: Par,
+    ) -> Result<Self> {
+        Self::analyze_with(mesh, equations, pattern, ordering, par, Layout::Auto)
+    }
+
+    /// [`Cholesky::analyze`] with the layout `layout`.
+    ///
+    /// # Errors
+    /// [`Error::OutOfMemory`] if the factor or its workspace cannot be allocated.
+    pub fn analyze_with(
+        mesh: &Mesh,
+        equations: &[u32],
+        pattern: &SystemPattern,
+        ordering: Ordering,
+        par: Par,
+        layout: Layout,
+    ) -> Result<Self> {
+        let n = pattern.n();
+        let wanted = match layout {
+            Layout::Auto => rayon::current_num_threads() >= 2,
+            Layout::Whole => false,
+            Layout::Substructures => true,
+        };
+        if ordering == Ordering::NestedDissection && wanted {
+            let d = mesh.dim();
+            let (ptr, adj) = mesh.node_adjacency();
+            let bisection =
+                top_bisection(mesh.coords(), d, &ptr, &adj, free_nodes(mesh, equations));
+            if let Some(bisection) = bisection {
+                let forced = layout == Layout::Substructures;
+                if let Some(sub) =
+                    Substructured::new(pattern, equations, d, &bisection, par, forced)?
+                {
+                    return Ok(Cholesky {
+                        factor: Factor::Substructured(Box::new(sub)),
+                        n,
+                        factorized: false,
+                    });
+                }
+            }
+        }
+        Ok(Cholesky {
+            factor: Factor::Whole(Box::new(Whole::analyze(
+                mesh, equations, pattern, ordering, par,
+            )?)),
+            n,
+            factorized: false,
+        })
+    }
+
+    /// Whether the factorization is laid out as two substructures and their separator.
+    pub fn is_substructured(&self) -> bool {
+        matches!(self.factor, Factor::Substructured(_))
+    }
+
+    /// Number of stored entries of the factor L (with substructures: both substructures'
+    /// factors and the dense blocks of the separator).
+    pub fn nnz_factor(&self) -> usize {
+        match &self.factor {
+            Factor::Whole(w) => w.l_values.len(),
+            Factor::Substructured(s) => s.nnz_factor(),
+        }
+    }
+
+    /// Number of equations.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Numeric factorization of the matrix with upper-triangle `values` on `pattern`
+    /// (the pattern given to [`Cholesky::analyze`]).
+    ///
+    /// # Errors
+    /// [`Error::NotPositiveDefinite`] if a pivot is not positive, [`Error::Breakdown`] if a
+    /// value is not finite.
+    ///
+    /// # Panics
+    /// If `values.len() != pattern.nnz()`.
+    #[track_caller]
+    pub fn factorize(&mut self, pattern: &SystemPattern, values: &[f64]) -> Result<()> {
+        assert_eq!(values.len(), pattern.nnz());
+        self.factorized = false;
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Error::Breakdown(format!(
+                "matrix entry {k} is {}",
+                values[k]
+            )));
+        }
+        match &mut self.factor {
+            Factor::Whole(w) => w.factorize(pattern, values)?,
+            Factor::Substructured(s) => s.factorize(values)?,
+        }
+        self.factorized = true;
+        Ok(())
+    }
+
+    /// Solves `A x = b` in place (`rhs` holds b on entry, x on exit).
+    ///
+    /// # Panics
+    /// If the matrix has not been factorized successfully, or `rhs.len() != n`.
+    #[track_caller]
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
+        assert!(self.factorized, "solve before a successful factorization");
+        assert_eq!(rhs.len(), self.n);
+        match &mut self.factor {
+            Factor::Whole(w) => w.solve_in_place(rhs),
+            Factor::Substructured(s) => s.solve_in_place(rhs),
+        }
+    }
+}
+
+/// The nodes of `mesh` with at least one free equation.
+fn free_nodes(mesh: &Mesh, equations: &[u32]) -> Vec<u32> {
+    let d = mesh.dim();
+    (0..mesh.n_nodes() as u32)
+        .filter(|&v| (0..d).any(|i| equations[d * v as usize + i] != u32::MAX))
+        .collect()
+}
+
+impl Whole {
+    fn analyze(
         mesh: &Mesh,
         equations: &[u32],
         pattern: &SystemPattern,
@@ -150,45 +309,16 @@ impl Cholesky {
         .map_err(|_| Error::OutOfMemory("Cholesky workspace".into()))?;
         let solve_stack = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| Error::OutOfMemory("Cholesky solve workspace".into()))?;
-        Ok(Cholesky {
+        Ok(Whole {
             symbolic,
             l_values,
             par,
             factor_stack,
             solve_stack,
-            factorized: false,
         })
     }
 
-    /// Number of stored entries of the factor L.
-    pub fn nnz_factor(&self) -> usize {
-        self.l_values.len()
-    }
-
-    /// Number of equations.
-    pub fn n(&self) -> usize {
-        self.symbolic.nrows()
-    }
-
-    /// Numeric factorization of the matrix with upper-triangle `values` on `pattern`
-    /// (the pattern given to [`Cholesky::analyze`]).
-    ///
-    /// # Errors
-    /// [`Error::NotPositiveDefinite`] if a pivot is not positive, [`Error::Breakdown`] if a
-    /// value is not finite.
-    ///
-    /// # Panics
-    /// If `values.len() != pattern.nnz()`.
-    #[track_caller]
-    pub fn factorize(&mut self, pattern: &SystemPattern, values: &[f64]) -> Result<()> {
-        assert_eq!(values.len(), pattern.nnz());
-        self.factorized = false;
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
-            return Err(Error::Breakdown(format!(
-                "matrix entry {k} is {}",
-                values[k]
-            )));
-        }
+    fn factorize(&mut self, pattern: &SystemPattern, values: &[f64]) -> Result<()> {
         let n = pattern.n();
         let sym =
             SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
@@ -206,19 +336,11 @@ impl Cholesky {
             .map_err(|e| Error::NotPositiveDefinite {
                 context: format!("{e:?}"),
             })?;
-        self.factorized = true;
         Ok(())
     }
 
-    /// Solves `A x = b` in place (`rhs` holds b on entry, x on exit).
-    ///
-    /// # Panics
-    /// If the matrix has not been factorized successfully, or `rhs.len() != n`.
-    #[track_caller]
-    pub fn solve_in_place(&mut self, rhs: &mut [f64]) {
-        assert!(self.factorized, "solve before a successful factorization");
-        let n = self.n();
-        assert_eq!(rhs.len(), n);
+    fn solve_in_place(&mut self, rhs: &mut [f64]) {
+        let n = rhs.len();
         let llt = LltRef::<'_, usize, f64>::new(&self.symbolic, &self.l_values);
         llt.solve_in_place_with_conj(
             Conj::No,

@@ -14,9 +14,10 @@ pub mod multigrid;
 pub mod ordering;
 pub mod pcg;
 pub mod solver;
+pub mod substructures;
 
 pub use choice::{LinearSolver, PrepareOptions};
-pub use cholesky::Cholesky;
+pub use cholesky::{Cholesky, Layout};
 pub use direct::DirectSolver;
 pub use iterative::{MultigridCg, ITERATIVE_MAX_ITERATIONS};
 pub use multigrid::Multigrid;

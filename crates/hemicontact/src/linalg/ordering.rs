@@ -45,6 +45,47 @@ pub fn nested_dissection(
     out
 }
 
+/// The first bisection of a nested dissection: two parts that no edge joins, each in its
+/// own nested-dissection order, and the separator between them. `[first, second,
+/// separator]` is exactly the order [`nested_dissection`] returns for the same nodes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Bisection {
+    /// Nodes of the first part, in elimination order.
+    pub first: Vec<u32>,
+    /// Nodes of the second part, in elimination order.
+    pub second: Vec<u32>,
+    /// Nodes of the separator: every edge from the first part to the second passes
+    /// through it.
+    pub separator: Vec<u32>,
+}
+
+/// The first bisection of the nested dissection of `nodes` (arguments as
+/// [`nested_dissection`]); `None` when `nodes` is too small to be dissected.
+pub fn top_bisection(
+    coords: &[f64],
+    dim: usize,
+    ptr: &[usize],
+    adj: &[u32],
+    mut nodes: Vec<u32>,
+) -> Option<Bisection> {
+    if nodes.len() <= LEAF_SIZE {
+        return None;
+    }
+    let mut mark = vec![0u8; ptr.len() - 1];
+    let (n_interior, n_left) = bisect(coords, dim, ptr, adj, &mut nodes, &mut mark);
+    let (left, right) = nodes.split_at_mut(n_left);
+    let (interior, separator) = left.split_at_mut(n_interior);
+    let mut first = Vec::with_capacity(interior.len());
+    dissect(coords, dim, ptr, adj, interior, &mut mark, &mut first);
+    let mut second = Vec::with_capacity(right.len());
+    dissect(coords, dim, ptr, adj, right, &mut mark, &mut second);
+    Some(Bisection {
+        first,
+        second,
+        separator: separator.to_vec(),
+    })
+}
+
 fn dissect(
     coords: &[f64],
     dim: usize,
@@ -58,6 +99,27 @@ fn dissect(
         out.extend_from_slice(set);
         return;
     }
+    let (n_interior, n_left) = bisect(coords, dim, ptr, adj, set, mark);
+    let (left, right) = set.split_at_mut(n_left);
+    let (interior, separator) = left.split_at_mut(n_interior);
+    dissect(coords, dim, ptr, adj, interior, mark, out);
+    dissect(coords, dim, ptr, adj, right, mark, out);
+    out.extend_from_slice(separator);
+}
+
+/// One bisection of `set` (more than [`LEAF_SIZE`] nodes) by a plane normal to its longest
+/// axis, reordering it in place as `[left interior | separator | right]`: the separator is
+/// the left nodes with a right neighbour, so no left-interior node is adjacent to a right
+/// node. Returns `(n_interior, n_left)`: the left interior is `set[..n_interior]`, the
+/// separator `set[n_interior..n_left]`, the right part `set[n_left..]`.
+fn bisect(
+    coords: &[f64],
+    dim: usize,
+    ptr: &[usize],
+    adj: &[u32],
+    set: &mut [u32],
+    mark: &mut [u8],
+) -> (usize, usize) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for &v in set.iter() {
@@ -107,9 +169,5 @@ fn dissect(
     for &v in set.iter() {
         mark[v as usize] = 0;
     }
-    let (left, right) = set.split_at_mut(n_left);
-    let (interior, separator) = left.split_at_mut(n_left - n_sep);
-    dissect(coords, dim, ptr, adj, interior, mark, out);
-    dissect(coords, dim, ptr, adj, right, mark, out);
-    out.extend_from_slice(separator);
+    (n_left - n_sep, n_left)
 }

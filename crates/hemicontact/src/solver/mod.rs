@@ -54,10 +54,13 @@ pub struct SolverSettings {
     /// two chunks assemble 1.6× faster than one (`examples`-free measurement in
     /// `hemicontact bench`).
     pub threads: usize,
-    /// Threads for the sparse Cholesky factorization and solves (0: all cores). Default 1:
-    /// faer's parallel supernodal factorization was measured *slower* than the sequential one
-    /// on the 2-core target (paper square, n = 512: 1.5–1.7 s against 1.1 s; n = 128: 80 ms
-    /// against 35 ms), the two cores contending for memory bandwidth.
+    /// Threads inside the dense blocks of the sparse Cholesky factorization and solves (0:
+    /// all cores). Default 1: faer's parallel supernodal factorization was measured *slower*
+    /// than the sequential one on the 2-core target (paper square, n = 512: 1.5–1.7 s
+    /// against 1.1 s; n = 128: 80 ms against 35 ms), the two cores contending for memory
+    /// bandwidth. A factorization laid out as two substructures
+    /// ([`crate::linalg::substructures`]) runs them side by side on rayon's pool whatever
+    /// this setting.
     pub factorization_threads: usize,
     /// Linear solver of the Newton systems (`[solver] linear_solver = "direct"`,
     /// `"iterative"` or `"auto"`). Default `auto`; see [`LinearSolver`].
