@@ -10,6 +10,7 @@ pub mod cholesky;
 pub mod csr;
 pub mod direct;
 pub mod iterative;
+pub mod lanczos;
 pub mod multigrid;
 pub mod ordering;
 pub mod pcg;
