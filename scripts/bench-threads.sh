@@ -2,7 +2,8 @@
 # Thread scaling of whole runs (docs/performance.md, "Threads"): for each thread count T
 # (RAYON_NUM_THREADS), `paper --n 512` and `solve scenarios/hertz3d.toml` (wall time, solve
 # and writing times), the numeric factorization of the paper square at n = 512
-# (`bench --n 512 --threads T`), and `scenarios/paper.toml` at n = 512 with
+# (`bench --n 512` on T threads: as two substructures side by side, and as one matrix with
+# faer's parallelism inside its dense blocks, `--threads T`), and `scenarios/paper.toml` at n = 512 with
 # `factorization_threads` 1 and 0 (its solver timings from summary.json).
 #
 # Usage: scripts/bench-threads.sh [BIN] [T ...]   (default target/release/hemicontact, 1 2 4 8 16)
@@ -32,8 +33,10 @@ for t in $THREADS; do
   rm -rf "$W/h"
 done
 for t in $THREADS; do
-  echo "bench --n 512 --threads $t:"
-  "$B" bench --n 512 --repeat 3 --threads "$t" 2> /dev/null | grep -E '^ +(n|512) '
+  echo "bench --n 512, $t threads (RAYON_NUM_THREADS), dense blocks on 1 thread (--threads 1):"
+  RAYON_NUM_THREADS=$t "$B" bench --n 512 --repeat 3 --threads 1 2> /dev/null | grep -E '^ +(n|512) '
+  echo "bench --n 512, $t threads, dense blocks on $t threads (--threads $t):"
+  RAYON_NUM_THREADS=$t "$B" bench --n 512 --repeat 3 --threads "$t" 2> /dev/null | grep -E '^ +(n|512) '
 done
 for ft in 1 0; do
   sed 's/^n = \[128, 128\]/n = [512, 512]/' scenarios/paper.toml > "$W/p.toml"
