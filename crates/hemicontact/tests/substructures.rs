@@ -60,19 +60,10 @@ fn residual(system: &System, values: &[f64], x: &[f64], b: &[f64]) -> f64 {
     norm(&r) / norm(b)
 }
 
-/// Deterministic pseudo-random numbers in (−1, 1).
+/// Reproducible pseudo-random numbers in (−1, 1).
 fn vector(n: usize, seed: u64) -> Vec<f64> {
-    let mut s = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    (0..n)
-        .map(|_| {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        })
-        .collect()
+    let mut rng = common::Rng::new(seed);
+    (0..n).map(|_| rng.uniform(-1.0, 1.0)).collect()
 }
 
 /// The paper's square (nearly locking, normal compliance, slip-dependent friction) on an

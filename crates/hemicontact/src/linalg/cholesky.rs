@@ -12,7 +12,7 @@
 //! ([`super::substructures`]) when that adds little work and two threads are there to run
 //! them; otherwise as one matrix by faer's supernodal Cholesky.
 
-use super::ordering::{nested_dissection, top_bisection, Ordering};
+use super::ordering::{top_bisection, Ordering};
 use super::substructures::Substructured;
 use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
@@ -72,23 +72,16 @@ impl std::fmt::Debug for Cholesky {
     }
 }
 
-/// Equation permutation (`perm[new] = old`) from a node ordering of `mesh`: each node's free
-/// equations, in component order, at the node's position.
+/// Equation permutation (`perm[new] = old`) from a node order of a mesh of dimension `d`:
+/// each node's free equations, in component order, at the node's position.
 fn equation_permutation(
-    mesh: &Mesh,
+    d: usize,
     equations: &[u32],
     pattern: &SystemPattern,
-    ordering: Ordering,
-) -> Result<Vec<usize>> {
-    let d = mesh.dim();
-    let (ptr, adj) = mesh.node_adjacency();
-    let free_nodes = free_nodes(mesh, equations);
-    let node_order = match ordering {
-        Ordering::NestedDissection => nested_dissection(mesh.coords(), d, &ptr, &adj, free_nodes),
-        Ordering::Amd => amd_nodes(&ptr, &adj, &free_nodes)?,
-    };
+    node_order: &[u32],
+) -> Vec<usize> {
     let mut perm = Vec::with_capacity(pattern.n());
-    for v in node_order {
+    for &v in node_order {
         for i in 0..d {
             let e = equations[d * v as usize + i];
             if e != u32::MAX {
@@ -97,7 +90,7 @@ fn equation_permutation(
         }
     }
     debug_assert_eq!(perm.len(), pattern.n());
-    Ok(perm)
+    perm
 }
 
 /// Approximate minimum degree ordering of the subgraph induced by `nodes`.
@@ -177,28 +170,37 @@ impl Cholesky {
             Layout::Whole => false,
             Layout::Substructures => true,
         };
-        if ordering == Ordering::NestedDissection && wanted {
-            let d = mesh.dim();
-            let (ptr, adj) = mesh.node_adjacency();
-            let bisection =
-                top_bisection(mesh.coords(), d, &ptr, &adj, free_nodes(mesh, equations));
-            if let Some(bisection) = bisection {
-                let forced = layout == Layout::Substructures;
-                if let Some(sub) =
-                    Substructured::new(pattern, equations, d, &bisection, par, forced)?
-                {
-                    return Ok(Cholesky {
-                        factor: Factor::Substructured(Box::new(sub)),
-                        n,
-                        factorized: false,
-                    });
+        // The fill-reducing node order; with nested dissection, its first bisection is
+        // also where the substructures split.
+        let d = mesh.dim();
+        let (ptr, adj) = mesh.node_adjacency();
+        let free = free_nodes(mesh, equations);
+        let node_order = match ordering {
+            Ordering::NestedDissection => {
+                match top_bisection(mesh.coords(), d, &ptr, &adj, free.clone()) {
+                    None => free,
+                    Some(bisection) => {
+                        if wanted {
+                            let forced = layout == Layout::Substructures;
+                            if let Some(sub) =
+                                Substructured::new(pattern, equations, d, &bisection, par, forced)?
+                            {
+                                return Ok(Cholesky {
+                                    factor: Factor::Substructured(Box::new(sub)),
+                                    n,
+                                    factorized: false,
+                                });
+                            }
+                        }
+                        bisection.into_order()
+                    }
                 }
             }
-        }
+            Ordering::Amd => amd_nodes(&ptr, &adj, &free)?,
+        };
+        let perm = equation_permutation(d, equations, pattern, &node_order);
         Ok(Cholesky {
-            factor: Factor::Whole(Box::new(Whole::analyze(
-                mesh, equations, pattern, ordering, par,
-            )?)),
+            factor: Factor::Whole(Box::new(Whole::analyze(pattern, &perm, par)?)),
             n,
             factorized: false,
         })
@@ -265,6 +267,54 @@ impl Cholesky {
     }
 }
 
+/// The values of the factor of `symbolic` and the workspace of its numeric factorization.
+///
+/// # Errors
+/// [`Error::OutOfMemory`] if either cannot be allocated.
+pub(super) fn factor_storage<I: faer::Index>(
+    symbolic: &SymbolicCholesky<I>,
+    par: Par,
+) -> Result<(Vec<f64>, MemBuffer)> {
+    let len = symbolic.len_val();
+    let mut l_values = Vec::new();
+    l_values
+        .try_reserve_exact(len)
+        .map_err(|_| Error::OutOfMemory(format!("Cholesky factor of {len} entries")))?;
+    l_values.resize(len, 0.0);
+    let stack =
+        MemBuffer::try_new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()))
+            .map_err(|_| Error::OutOfMemory("Cholesky workspace".into()))?;
+    Ok((l_values, stack))
+}
+
+/// faer's numeric factorization `L Lᵀ` of the matrix `a` (upper triangle) into `l_values`
+/// on the analysis `symbolic`, with its workspace `stack`.
+///
+/// # Errors
+/// [`Error::NotPositiveDefinite`] if a pivot is not positive.
+pub(super) fn numeric_llt<I: faer::Index>(
+    symbolic: &SymbolicCholesky<I>,
+    l_values: &mut [f64],
+    a: SparseColMatRef<'_, I, f64>,
+    par: Par,
+    stack: &mut MemBuffer,
+) -> Result<()> {
+    symbolic
+        .factorize_numeric_llt::<f64>(
+            l_values,
+            a,
+            Side::Upper,
+            Default::default(),
+            par,
+            MemStack::new(stack),
+            Default::default(),
+        )
+        .map_err(|e| Error::NotPositiveDefinite {
+            context: format!("{e:?}"),
+        })?;
+    Ok(())
+}
+
 /// The nodes of `mesh` with at least one free equation.
 fn free_nodes(mesh: &Mesh, equations: &[u32]) -> Vec<u32> {
     let d = mesh.dim();
@@ -274,22 +324,16 @@ fn free_nodes(mesh: &Mesh, equations: &[u32]) -> Vec<u32> {
 }
 
 impl Whole {
-    fn analyze(
-        mesh: &Mesh,
-        equations: &[u32],
-        pattern: &SystemPattern,
-        ordering: Ordering,
-        par: Par,
-    ) -> Result<Self> {
+    /// The symbolic analysis of `pattern` in the equation order `perm` (`perm[new] = old`).
+    fn analyze(pattern: &SystemPattern, perm: &[usize], par: Par) -> Result<Self> {
         let n = pattern.n();
-        let perm = equation_permutation(mesh, equations, pattern, ordering)?;
         let mut perm_inv = vec![0usize; n];
         for (new, &old) in perm.iter().enumerate() {
             perm_inv[old] = new;
         }
         let a =
             SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-        let p = faer::perm::PermRef::new_checked(&perm, &perm_inv, n);
+        let p = faer::perm::PermRef::new_checked(perm, &perm_inv, n);
         let symbolic = factorize_symbolic_cholesky(
             a,
             Side::Upper,
@@ -297,16 +341,7 @@ impl Whole {
             Default::default(),
         )
         .map_err(|e| Error::OutOfMemory(format!("symbolic Cholesky analysis: {e:?}")))?;
-        let len = symbolic.len_val();
-        let mut l_values = Vec::new();
-        l_values
-            .try_reserve_exact(len)
-            .map_err(|_| Error::OutOfMemory(format!("Cholesky factor of {len} entries")))?;
-        l_values.resize(len, 0.0);
-        let factor_stack = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|_| Error::OutOfMemory("Cholesky workspace".into()))?;
+        let (l_values, factor_stack) = factor_storage(&symbolic, par)?;
         let solve_stack = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| Error::OutOfMemory("Cholesky solve workspace".into()))?;
         Ok(Whole {
@@ -322,21 +357,13 @@ impl Whole {
         let n = pattern.n();
         let sym =
             SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-        let a = SparseColMatRef::new(sym, values);
-        self.symbolic
-            .factorize_numeric_llt::<f64>(
-                &mut self.l_values,
-                a,
-                Side::Upper,
-                Default::default(),
-                self.par,
-                MemStack::new(&mut self.factor_stack),
-                Default::default(),
-            )
-            .map_err(|e| Error::NotPositiveDefinite {
-                context: format!("{e:?}"),
-            })?;
-        Ok(())
+        numeric_llt(
+            &self.symbolic,
+            &mut self.l_values,
+            SparseColMatRef::new(sym, values),
+            self.par,
+            &mut self.factor_stack,
+        )
     }
 
     fn solve_in_place(&mut self, rhs: &mut [f64]) {

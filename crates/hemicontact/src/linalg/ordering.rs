@@ -36,13 +36,10 @@ pub fn nested_dissection(
     dim: usize,
     ptr: &[usize],
     adj: &[u32],
-    mut nodes: Vec<u32>,
+    nodes: Vec<u32>,
 ) -> Vec<u32> {
-    let n_all = ptr.len() - 1;
-    let mut mark = vec![0u8; n_all];
-    let mut out = Vec::with_capacity(nodes.len());
-    dissect(coords, dim, ptr, adj, &mut nodes, &mut mark, &mut out);
-    out
+    let small = nodes.clone();
+    top_bisection(coords, dim, ptr, adj, nodes).map_or(small, Bisection::into_order)
 }
 
 /// The first bisection of a nested dissection: two parts that no edge joins, each in its
@@ -57,6 +54,16 @@ pub struct Bisection {
     /// Nodes of the separator: every edge from the first part to the second passes
     /// through it.
     pub separator: Vec<u32>,
+}
+
+impl Bisection {
+    /// The whole elimination order `[first, second, separator]`.
+    pub fn into_order(self) -> Vec<u32> {
+        let mut order = self.first;
+        order.extend_from_slice(&self.second);
+        order.extend_from_slice(&self.separator);
+        order
+    }
 }
 
 /// The first bisection of the nested dissection of `nodes` (arguments as

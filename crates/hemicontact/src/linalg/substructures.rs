@@ -209,16 +209,7 @@ impl Substructure {
                 "a substructure's factorization is not supernodal".into(),
             ));
         };
-        let len = symbolic.len_val();
-        let mut l_values = Vec::new();
-        l_values
-            .try_reserve_exact(len)
-            .map_err(|_| Error::OutOfMemory(format!("Cholesky factor of {len} entries")))?;
-        l_values.resize(len, 0.0);
-        let factor_stack = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|_| out_of_memory("Cholesky workspace"))?;
+        let (l_values, factor_stack) = super::cholesky::factor_storage(&symbolic, par)?;
         let solve_stack = MemBuffer::try_new(supernodal.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| out_of_memory("Cholesky solve workspace"))?;
         let s = separator.len();
@@ -250,19 +241,13 @@ impl Substructure {
         }
         let m = self.work.len();
         let sym = SymbolicSparseColMatRef::new_checked(m, m, &self.col_ptr, None, &self.row_idx);
-        self.symbolic
-            .factorize_numeric_llt::<f64>(
-                &mut self.l_values,
-                SparseColMatRef::new(sym, &self.values),
-                Side::Upper,
-                Default::default(),
-                self.par,
-                MemStack::new(&mut self.factor_stack),
-                Default::default(),
-            )
-            .map_err(|e| Error::NotPositiveDefinite {
-                context: format!("{e:?}"),
-            })?;
+        super::cholesky::numeric_llt(
+            &self.symbolic,
+            &mut self.l_values,
+            SparseColMatRef::new(sym, &self.values),
+            self.par,
+            &mut self.factor_stack,
+        )?;
         // Kᵢ: the columns of the factor at or after the first separator equation.
         let first = self.interior.len();
         let mut k = std::mem::replace(&mut self.k, Mat::new());
