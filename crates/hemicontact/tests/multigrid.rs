@@ -1,7 +1,9 @@
 //! The geometric multigrid preconditioner (`linalg::multigrid`): the V-cycle is symmetric
 //! and positive, multigrid-preconditioned CG agrees with the direct solve, its iteration
 //! counts stay bounded under refinement, and a nonlinear 3D solve with the iterative linear
-//! solver reproduces the direct one.
+//! solver reproduces the direct one. Lagged set-ups (new fine operator, old coarse levels)
+//! solve changed matrices to the requested residual, and give way to a full set-up when
+//! they stop paying or stop converging.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::linalg::{Cholesky, Multigrid};
@@ -297,5 +299,127 @@ fn the_smoother_interval_covers_the_spectrum_on_a_graded_mesh() {
     assert!(
         EIGENVALUE_SAFETY * power < exact,
         "power {power}, λ_max {exact}"
+    );
+}
+
+/// Solves `H x = b` with `solver` to `eta`, checks the residual independently, and returns
+/// whether the multigrid operators were set up fully for it.
+fn solve_checked(
+    solver: &mut hemicontact::linalg::MultigridCg,
+    system: &System,
+    hess: &[f64],
+    b: &[f64],
+    eta: f64,
+) -> (bool, usize) {
+    use hemicontact::linalg::{SolveRequest, SpdSolver};
+    let mut x = vec![0.0; b.len()];
+    let request = SolveRequest {
+        eta,
+        reuse_iterations: 8,
+    };
+    let stats = solver
+        .solve(&system.pattern, hess, b, &mut x, &request)
+        .unwrap();
+    let mut ax = vec![0.0; b.len()];
+    system.pattern.sym_matvec(hess, &x, &mut ax);
+    let r: Vec<f64> = ax.iter().zip(b).map(|(a, b)| b - a).collect();
+    let res = (dot(&r, &r) / dot(b, b)).sqrt();
+    assert!(res <= eta, "residual {res:e} > {eta:e}");
+    (stats.refactorized, stats.iterations)
+}
+
+/// Adds `c` times the cell's own stiffness pattern, all ones (`c 𝟙𝟙ᵀ` on its DOFs), to
+/// every `every`-th cell: a stiff term coupling all of a cell's DOFs, as a locking penalty
+/// does.
+fn stiffen_cells(p: &Problem, system: &System, hess: &mut [f64], every: usize, c: f64) {
+    for cell in (0..p.mesh().n_cells()).step_by(every) {
+        for &s in system.pattern.cell_slots(cell) {
+            if s != u32::MAX {
+                hess[s as usize] += c;
+            }
+        }
+    }
+}
+
+#[test]
+fn lagged_set_ups_solve_changed_matrices_with_fewer_full_set_ups() {
+    // Newton matrices that change at some nodes from step to step (a contact stiffness
+    // switching on and growing): the fine operator is refilled, the coarse levels kept.
+    let p = box_problem(6);
+    let (system, h0, b) = linear_system(&p);
+    let mut solver =
+        hemicontact::linalg::MultigridCg::new(p.mesh(), system.dofs.equations(), &system.pattern);
+    let n = system.pattern.n();
+    let (full, _) = solve_checked(&mut solver, &system, &h0, &b, 1e-8);
+    assert!(full, "the first solve sets up");
+    let mut full_set_ups = 0;
+    for k in 1..=10 {
+        let mut h = h0.clone();
+        for eq in (k..n).step_by(41) {
+            h[system.pattern.diagonal_slot(eq)] *= 1.0 + 0.3 * k as f64;
+        }
+        let (full, iterations) = solve_checked(&mut solver, &system, &h, &b, 1e-8);
+        assert!(iterations > 0);
+        full_set_ups += usize::from(full);
+    }
+    assert!(
+        full_set_ups <= 3,
+        "{full_set_ups} full set-ups in 10 changed solves"
+    );
+}
+
+#[test]
+fn a_lagged_v_cycle_far_from_the_matrix_gives_way_to_a_full_set_up() {
+    // Stiff terms coupling all DOFs of many cells lift the top of the spectrum of D⁻¹A far
+    // above the smoothing interval of the old set-up: the lagged V-cycle cannot converge,
+    // and the solver must set up fully, within the same solve or by the next one, and
+    // still meet the residual.
+    let p = box_problem(6);
+    let (system, h0, b) = linear_system(&p);
+    let mut solver =
+        hemicontact::linalg::MultigridCg::new(p.mesh(), system.dofs.equations(), &system.pattern);
+    solve_checked(&mut solver, &system, &h0, &b, 1e-8);
+    let scale = h0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut h1 = h0.clone();
+    stiffen_cells(&p, &system, &mut h1, 3, 10.0 * scale);
+    let (first, _) = solve_checked(&mut solver, &system, &h1, &b, 1e-8);
+    let mut h2 = h1.clone();
+    stiffen_cells(&p, &system, &mut h2, 5, 10.0 * scale);
+    let (second, _) = solve_checked(&mut solver, &system, &h2, &b, 1e-8);
+    assert!(
+        first || second,
+        "no full set-up for matrices far from the set-up's"
+    );
+}
+
+#[test]
+fn lagged_solves_that_cost_more_iterations_than_a_set_up_end_in_one() {
+    // A matrix drifting away from the set-up's (small stiff terms on more and more cells):
+    // each lagged solve converges, within its cap, but with iterations beyond a fresh
+    // set-up's; once their sum reaches the cost of a set-up, the solver sets up fully again
+    // (without the cost count, every solve here would be lagged).
+    let p = box_problem(6);
+    let (system, h0, b) = linear_system(&p);
+    let mut solver =
+        hemicontact::linalg::MultigridCg::new(p.mesh(), system.dofs.equations(), &system.pattern);
+    let (_, fresh) = solve_checked(&mut solver, &system, &h0, &b, 1e-8);
+    let scale = h0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut h = h0.clone();
+    let mut log = Vec::new();
+    for k in 1..=12 {
+        stiffen_cells(&p, &system, &mut h, 7 + k, 0.005 * scale);
+        log.push(solve_checked(&mut solver, &system, &h, &b, 1e-8));
+    }
+    let full = log.iter().filter(|(f, _)| *f).count();
+    let lagged_extra: usize = log
+        .iter()
+        .filter(|(f, _)| !f)
+        .map(|(_, k)| k.saturating_sub(fresh))
+        .sum();
+    assert!(full >= 1, "never set up again: {log:?} (fresh {fresh})");
+    assert!(full < log.len(), "never lagged: {log:?}");
+    assert!(
+        lagged_extra > 0,
+        "lagged solves cost nothing extra: {log:?}"
     );
 }

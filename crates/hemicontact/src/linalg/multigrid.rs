@@ -32,7 +32,7 @@
 //!
 //! **Use.** [`Multigrid::new`] builds the grids and prolongations once per mesh and DOF
 //! map; [`Multigrid::update`] refills the operators from new Hessian values on the same
-//! [`SystemPattern`]; [`Multigrid::solve`] runs preconditioned conjugate gradients ([`super::pcg`]).
+//! [`SystemPattern`] ([`Multigrid::update_fine`] only the fine one); [`Multigrid::solve`] runs preconditioned conjugate gradients ([`super::pcg`]).
 
 use super::csr::multiply;
 pub use super::csr::Csr;
@@ -244,6 +244,19 @@ impl Level {
 
     /// Jacobi scaling and the Chebyshev interval from the current operator values.
     fn prepare_smoother(&mut self) -> Result<()> {
+        self.jacobi()?;
+        // Lanczos on D⁻¹A from a fixed, non-smooth start (deterministic).
+        let lambda = largest_eigenvalue(&self.a, &self.inv_diag, LANCZOS_STEPS, &mut self.lanczos)
+            .filter(|l| *l > 0.0 && l.is_finite())
+            .ok_or_else(|| {
+                Error::Breakdown("multigrid: eigenvalue estimate of the smoother failed".into())
+            })?;
+        self.lambda = EIGENVALUE_SAFETY * lambda;
+        Ok(())
+    }
+
+    /// The Jacobi scaling `D⁻¹` from the current operator values.
+    fn jacobi(&mut self) -> Result<()> {
         self.a.diagonal(&mut self.inv_diag);
         for v in self.inv_diag.iter_mut() {
             if !(*v > 0.0 && v.is_finite()) {
@@ -253,13 +266,6 @@ impl Level {
             }
             *v = 1.0 / *v;
         }
-        // Lanczos on D⁻¹A from a fixed, non-smooth start (deterministic).
-        let lambda = largest_eigenvalue(&self.a, &self.inv_diag, LANCZOS_STEPS, &mut self.lanczos)
-            .filter(|l| *l > 0.0 && l.is_finite())
-            .ok_or_else(|| {
-                Error::Breakdown("multigrid: eigenvalue estimate of the smoother failed".into())
-            })?;
-        self.lambda = EIGENVALUE_SAFETY * lambda;
         Ok(())
     }
 
@@ -486,6 +492,41 @@ impl Multigrid {
             level.prepare_smoother()?;
         }
         self.coarse = Some(coarse_factor(&self.levels[last].a)?);
+        Ok(())
+    }
+
+    /// The lagged set-up: refills the fine operator from the upper-triangle values `hess`
+    /// and its Jacobi scaling, keeping the Chebyshev interval, the coarse operators and the
+    /// coarsest factor of the last [`Multigrid::update`]. The V-cycle then smooths the
+    /// current matrix and corrects with the coarse levels of an earlier one: still
+    /// symmetric, and a good preconditioner while the matrix changed little (contact nodes
+    /// and locked cells between Newton steps), for the price of one pass over the fine
+    /// operator instead of the Galerkin products and eigenvalue estimates. It is no longer
+    /// guaranteed to be positive definite (a new stiff term may lift the top of the
+    /// spectrum of `D⁻¹A` above the smoothing interval): its caller
+    /// ([`super::MultigridCg`]) caps the iterations and sets up fully when they run out.
+    /// Keeping the interval was measured against a new Lanczos estimate: the same PCG
+    /// iterations on `paper3d.toml` (n = 24) and its graded variant (n = 32), 2 % more on
+    /// the frictional Hertz problem (n = 32), for a third of the lagged set-up's time.
+    ///
+    /// # Errors
+    /// As [`Multigrid::update`]; and [`Error::Breakdown`] if there was no update before.
+    pub fn update_fine(&mut self, hess: &[f64]) -> Result<()> {
+        if self.coarse.is_none() {
+            return Err(Error::Breakdown(
+                "multigrid: lagged set-up before the first set-up".into(),
+            ));
+        }
+        let last = self.levels.len() - 1;
+        let a0 = &mut self.levels[0].a;
+        for (v, &s) in a0.val.iter_mut().zip(&self.fine_slots) {
+            *v = hess[s as usize];
+        }
+        if last > 0 {
+            self.levels[0].jacobi()?;
+        } else {
+            self.coarse = Some(coarse_factor(&self.levels[0].a)?);
+        }
         Ok(())
     }
 

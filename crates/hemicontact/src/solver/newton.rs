@@ -35,7 +35,9 @@ pub struct NewtonSettings {
     /// before the Hessian is refactorized. Default 8: one triangular solve costs about a
     /// tenth of a factorization, and changes of the active sets (locking cells, contact and
     /// stick nodes) are low-rank updates that PCG resolves in about as many iterations as
-    /// their rank. 0 disables PCG (every changed Hessian is refactorized).
+    /// their rank. 0 disables PCG (every changed Hessian is refactorized) and, with the
+    /// iterative solver, the lagged multigrid set-up (every changed Hessian is set up
+    /// fully).
     pub pcg_iterations: usize,
     /// Largest relative residual PCG may stop at (the loosest forcing term of the inexact
     /// Newton method; the actual one is `min(pcg_tolerance, 0.1 · tolerance / residual)`, so
