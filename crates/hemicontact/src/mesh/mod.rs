@@ -607,27 +607,45 @@ impl Mesh {
     pub fn node_adjacency(&self) -> (Vec<usize>, Vec<u32>) {
         let n = self.n_nodes();
         let nv = self.dim + 1;
-        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(self.n_cells() * nv * (nv - 1));
+        // Bucket the other vertices of every cell by node (counting sort), then sort and
+        // deduplicate each node's short list: linear in the cells, where one sort of all
+        // vertex pairs was not.
+        let mut start = vec![0usize; n + 1];
+        for c in 0..self.n_cells() {
+            for &a in self.cell(c) {
+                start[a as usize + 1] += nv - 1;
+            }
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut bucket = vec![0u32; start[n]];
         for c in 0..self.n_cells() {
             let cell = self.cell(c);
             for &a in cell {
                 for &b in cell {
                     if a != b {
-                        pairs.push((a, b));
+                        bucket[fill[a as usize]] = b;
+                        fill[a as usize] += 1;
                     }
                 }
             }
         }
-        pairs.sort_unstable();
-        pairs.dedup();
-        let mut ptr = vec![0usize; n + 1];
-        for &(a, _) in &pairs {
-            ptr[a as usize + 1] += 1;
+        let mut ptr = Vec::with_capacity(n + 1);
+        ptr.push(0);
+        let mut adj = Vec::with_capacity(bucket.len() / 2);
+        for a in 0..n {
+            let list = &mut bucket[start[a]..fill[a]];
+            list.sort_unstable();
+            let first = adj.len();
+            for &b in list.iter() {
+                if adj.len() == first || adj[adj.len() - 1] != b {
+                    adj.push(b);
+                }
+            }
+            ptr.push(adj.len());
         }
-        for i in 0..n {
-            ptr[i + 1] += ptr[i];
-        }
-        let adj = pairs.into_iter().map(|(_, b)| b).collect();
         (ptr, adj)
     }
 }
