@@ -128,6 +128,7 @@ impl SpdSolver for MultigridCg {
                 }
                 // Not converged, or a curvature breakdown (an indefinite V-cycle from
                 // coarse levels too far from the new matrix): set up fully and solve again.
+                // A breakdown's iterations are counted as the cap, an upper bound.
                 Ok(o) => stats.iterations = o.iterations,
                 Err(_) => stats.iterations = cap,
             }

@@ -32,7 +32,8 @@
 //!
 //! **Use.** [`Multigrid::new`] builds the grids and prolongations once per mesh and DOF
 //! map; [`Multigrid::update`] refills the operators from new Hessian values on the same
-//! [`SystemPattern`] ([`Multigrid::update_fine`] only the fine one); [`Multigrid::solve`] runs preconditioned conjugate gradients ([`super::pcg`]).
+//! [`SystemPattern`] ([`Multigrid::update_fine`] only the fine one); [`Multigrid::solve`]
+//! runs preconditioned conjugate gradients ([`super::pcg`]).
 
 use super::csr::multiply;
 pub use super::csr::Csr;
