@@ -1,0 +1,284 @@
+/* The C side of hemicontact's PETSc bindings: a few functions with fixed-width argument
+ * types (int64_t indices, double values) over PETSc's API, so that the Rust side never
+ * depends on PetscInt's width, on PETSc's macros (PETSC_COMM_SELF, PetscCall) or on its
+ * struct layouts. Every function returns a PETSc error code (0: success); the message of
+ * the first error is kept for hc_last_error(). */
+
+#include <petscksp.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char last_error[2048];
+
+/* Error handler: records the message of an error where it is raised (not the traceback
+ * lines of the callers it returns through) instead of printing it. */
+static PetscErrorCode record_error(MPI_Comm comm, int line, const char *func, const char *file,
+                                   PetscErrorCode code, PetscErrorType type, const char *mess,
+                                   void *ctx)
+{
+  (void)comm; (void)line; (void)file; (void)ctx;
+  if (type == PETSC_ERROR_INITIAL) {
+    snprintf(last_error, sizeof last_error, "%s (PETSc error %d in %s)", mess ? mess : "",
+             (int)code, func ? func : "?");
+  }
+  return code;
+}
+
+const char *hc_last_error(void) { return last_error; }
+
+static void finalize_at_exit(void)
+{
+  PetscBool finalized = PETSC_TRUE;
+  if (PetscFinalized(&finalized) == 0 && !finalized) PetscFinalize();
+}
+
+/* PETSc and MPI, once per process: without PETSc's signal handler (a Ctrl-C stays the
+ * application's), errors recorded rather than printed, finalized at exit. */
+int hc_initialize(void)
+{
+  static int argc = 2;
+  static char arg0[] = "hemicontact";
+  static char arg1[] = "-no_signal_handler";
+  static char *args[] = {arg0, arg1, NULL};
+  static char **argv = args;
+  PetscBool done = PETSC_FALSE;
+  PetscErrorCode ierr = PetscInitialized(&done);
+  if (ierr) return (int)ierr;
+  if (done) return 0;
+  ierr = PetscInitialize(&argc, &argv, NULL, NULL);
+  if (ierr) {
+    snprintf(last_error, sizeof last_error, "PetscInitialize failed (PETSc error %d)", (int)ierr);
+    return (int)ierr;
+  }
+  ierr = PetscPushErrorHandler(record_error, NULL);
+  if (ierr) return (int)ierr;
+  atexit(finalize_at_exit);
+  return 0;
+}
+
+/* The PETSc version as major * 10000 + minor * 100 + subminor, and sizeof(PetscInt). */
+int hc_version(void) { return PETSC_VERSION_MAJOR * 10000 + PETSC_VERSION_MINOR * 100 + PETSC_VERSION_SUBMINOR; }
+int hc_int_size(void) { return (int)sizeof(PetscInt); }
+
+/* A symmetric positive definite system on a fixed pattern with its Krylov solver. */
+typedef struct {
+  Mat A;
+  KSP ksp;
+  Vec x, b;
+  PetscInt n;
+  PetscInt *row_ptr, *cols;
+  PetscBool fixed_rtol;  /* the options set -ksp_rtol: the per-solve tolerance is not imposed */
+  PetscBool fixed_maxit; /* the options set -ksp_max_it: the per-solve cap is not imposed */
+  PetscBool true_residual_cg; /* CG on the unpreconditioned residual: a kept (lagged)
+                               * preconditioner cannot give a wrong answer, only iterations */
+} hc_system;
+
+static PetscErrorCode copy_indices(PetscInt count, const int64_t *from, PetscInt **to)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(count > 0 ? count : 1, to));
+  for (PetscInt k = 0; k < count; k++) {
+    PetscCheck(from[k] >= 0 && from[k] <= (int64_t)PETSC_MAX_INT, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "index %lld does not fit PETSc's %d-byte integers", (long long)from[k], (int)sizeof(PetscInt));
+    (*to)[k] = (PetscInt)from[k];
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode system_create(int64_t n, int64_t block_size, const int64_t *row_ptr,
+                                    const int64_t *cols, const double *coordinates,
+                                    const char *prefix, const char *options, hc_system **out)
+{
+  hc_system *s;
+  Vec coords;
+  MatNullSpace near_null;
+  PC pc;
+  KSPType ksp_type;
+  PetscBool has_norm, is_cg;
+  PetscScalar *array;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  *out = s;
+  s->n = (PetscInt)n;
+  PetscCall(copy_indices(n + 1, row_ptr, &s->row_ptr));
+  PetscCall(copy_indices(row_ptr[n], cols, &s->cols));
+
+  /* The matrix: AIJ with the pattern preallocated exactly, in blocks of one node's DOFs. */
+  PetscCall(MatCreate(PETSC_COMM_SELF, &s->A));
+  PetscCall(MatSetSizes(s->A, s->n, s->n, s->n, s->n));
+  PetscCall(MatSetBlockSize(s->A, (PetscInt)block_size));
+  PetscCall(MatSetType(s->A, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocationCSR(s->A, s->row_ptr, s->cols, NULL));
+  PetscCall(MatMPIAIJSetPreallocationCSR(s->A, s->row_ptr, s->cols, NULL));
+  PetscCall(MatSetOption(s->A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatSetOption(s->A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(s->A, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  PetscCall(MatSetOption(s->A, MAT_SPD, PETSC_TRUE));
+  PetscCall(MatSetOption(s->A, MAT_SPD_ETERNAL, PETSC_TRUE));
+
+  /* The rigid-body modes of the nodes' coordinates: the near-null space of elasticity that
+   * smoothed aggregation interpolates exactly. */
+  PetscCall(MatCreateVecs(s->A, &s->x, &s->b));
+  PetscCall(VecDuplicate(s->x, &coords));
+  PetscCall(VecSetBlockSize(coords, (PetscInt)block_size));
+  PetscCall(VecGetArray(coords, &array));
+  for (PetscInt k = 0; k < s->n; k++) array[k] = coordinates[k];
+  PetscCall(VecRestoreArray(coords, &array));
+  PetscCall(MatNullSpaceCreateRigidBody(coords, &near_null));
+  PetscCall(MatSetNearNullSpace(s->A, near_null));
+  PetscCall(MatNullSpaceDestroy(&near_null));
+  PetscCall(VecDestroy(&coords));
+
+  /* The defaults (CG + GAMG), then the user's options under this system's prefix. GAMG
+   * builds a new interpolation at every set-up: reusing it (-pc_gamg_reuse_interpolation,
+   * on by default in PETSc 3.18) was measured to make the V-cycle indefinite on the
+   * contact problems of hemicontact, whose matrix changes between Newton steps. */
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &s->ksp));
+  PetscCall(KSPSetOptionsPrefix(s->ksp, prefix));
+  PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
+  PetscCall(KSPSetType(s->ksp, KSPCG));
+  PetscCall(KSPGetPC(s->ksp, &pc));
+  PetscCall(PCSetType(pc, PCGAMG));
+  PetscCall(PCGAMGSetReuseInterpolation(pc, PETSC_FALSE));
+  PetscCall(PetscOptionsPrefixPush(NULL, prefix));
+  PetscCall(PetscOptionsInsertString(NULL, options));
+  PetscCall(PetscOptionsPrefixPop(NULL));
+  PetscCall(KSPSetFromOptions(s->ksp));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ksp_rtol", &s->fixed_rtol));
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ksp_max_it", &s->fixed_maxit));
+  /* CG measures the true residual ||b - A x|| / ||b||, the relative residual the Newton
+   * method asks for, unless the options chose another norm. */
+  PetscCall(PetscOptionsHasName(NULL, prefix, "-ksp_norm_type", &has_norm));
+  PetscCall(KSPGetType(s->ksp, &ksp_type));
+  PetscCall(PetscStrcmp(ksp_type, KSPCG, &is_cg));
+  if (is_cg && !has_norm) PetscCall(KSPSetNormType(s->ksp, KSP_NORM_UNPRECONDITIONED));
+  s->true_residual_cg = (PetscBool)(is_cg && !has_norm);
+  PetscFunctionReturn(0);
+}
+
+void hc_system_destroy(hc_system *s)
+{
+  if (!s) return;
+  KSPDestroy(&s->ksp);
+  MatDestroy(&s->A);
+  VecDestroy(&s->x);
+  VecDestroy(&s->b);
+  PetscFree(s->row_ptr);
+  PetscFree(s->cols);
+  PetscFree(s);
+}
+
+/* Creates the system of order n with the CSR pattern (row_ptr, cols) (both triangles,
+ * sorted columns), the nodes' coordinates in DOF order (block_size per node) for the
+ * rigid-body modes, the options prefix and the options string. */
+int hc_system_create(int64_t n, int64_t block_size, const int64_t *row_ptr, const int64_t *cols,
+                     const double *coordinates, const char *prefix, const char *options,
+                     hc_system **out)
+{
+  *out = NULL;
+  PetscErrorCode ierr = system_create(n, block_size, row_ptr, cols, coordinates, prefix, options, out);
+  if (ierr) {
+    hc_system_destroy(*out);
+    *out = NULL;
+  }
+  return (int)ierr;
+}
+
+static PetscErrorCode set_values(hc_system *s, const double *values)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < s->n; i++) {
+    PetscInt start = s->row_ptr[i], count = s->row_ptr[i + 1] - start;
+    PetscCall(MatSetValues(s->A, 1, &i, count, s->cols + start, values + start, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(0);
+}
+
+/* Replaces the matrix values (CSR order of the pattern). The preconditioner is not touched:
+ * hc_system_setup() builds it for them, or a solve with reuse keeps the old one. */
+int hc_system_set_values(hc_system *s, const double *values) { return (int)set_values(s, values); }
+
+static PetscErrorCode setup(hc_system *s)
+{
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetReusePreconditioner(s->ksp, PETSC_FALSE));
+  PetscCall(KSPSetUp(s->ksp));
+  PetscCall(KSPGetPC(s->ksp, &pc));
+  PetscCall(PCSetUp(pc));
+  PetscFunctionReturn(0);
+}
+
+/* Sets the preconditioner up for the current matrix values. */
+int hc_system_setup(hc_system *s) { return (int)setup(s); }
+
+/* Whether the KSP is CG measuring the true residual (then a kept preconditioner changes the
+ * iterations, never the answer's accuracy). */
+int hc_system_can_keep_preconditioner(hc_system *s) { return (int)s->true_residual_cg; }
+
+static PetscErrorCode solve(hc_system *s, double rtol, int64_t max_iterations, int keep,
+                            const double *b, double *x, int64_t *iterations, int *reason,
+                            double *residual)
+{
+  PetscScalar *array;
+  const PetscScalar *result;
+  PetscInt its;
+  PetscReal rnorm;
+  KSPConvergedReason why;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetReusePreconditioner(s->ksp, keep ? PETSC_TRUE : PETSC_FALSE));
+  if (!s->fixed_rtol) PetscCall(KSPSetTolerances(s->ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  if (!s->fixed_maxit && max_iterations > 0)
+    PetscCall(KSPSetTolerances(s->ksp, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, (PetscInt)max_iterations));
+  PetscCall(VecGetArray(s->b, &array));
+  for (PetscInt k = 0; k < s->n; k++) array[k] = b[k];
+  PetscCall(VecRestoreArray(s->b, &array));
+  PetscCall(KSPSolve(s->ksp, s->b, s->x));
+  PetscCall(VecGetArrayRead(s->x, &result));
+  for (PetscInt k = 0; k < s->n; k++) x[k] = result[k];
+  PetscCall(VecRestoreArrayRead(s->x, &result));
+  PetscCall(KSPGetIterationNumber(s->ksp, &its));
+  PetscCall(KSPGetConvergedReason(s->ksp, &why));
+  PetscCall(KSPGetResidualNorm(s->ksp, &rnorm));
+  *iterations = (int64_t)its;
+  *reason = (int)why;
+  *residual = (double)rnorm;
+  PetscFunctionReturn(0);
+}
+
+/* Solves A x = b from zero to the relative residual rtol in at most max_iterations
+ * iterations (unless the options fixed -ksp_rtol or -ksp_max_it), with the preconditioner
+ * kept as it is (keep != 0) or set up for changed values. The iterations, KSP's converged
+ * reason (negative: diverged) and the final residual norm (in the KSP's norm) are
+ * returned. */
+int hc_system_solve(hc_system *s, double rtol, int64_t max_iterations, int keep, const double *b,
+                    double *x, int64_t *iterations, int *reason, double *residual)
+{
+  return (int)solve(s, rtol, max_iterations, keep, b, x, iterations, reason, residual);
+}
+
+/* The name of a KSP converged reason. */
+const char *hc_converged_reason(int reason) { return KSPConvergedReasons[reason]; }
+
+/* "ksp <type>, pc <type>[, <factor package>]" into buf. */
+int hc_system_describe(hc_system *s, char *buf, size_t size)
+{
+  KSPType ksp_type;
+  PCType pc_type;
+  MatSolverType package = NULL;
+  PC pc;
+  PetscErrorCode ierr = KSPGetType(s->ksp, &ksp_type);
+  if (!ierr) ierr = KSPGetPC(s->ksp, &pc);
+  if (!ierr) ierr = PCGetType(pc, &pc_type);
+  if (ierr) return (int)ierr;
+  PCFactorGetMatSolverType(pc, &package);
+  snprintf(buf, size, "ksp %s, pc %s%s%s", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?",
+           package ? ", " : "", package ? package : "");
+  return 0;
+}
