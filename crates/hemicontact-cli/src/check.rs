@@ -26,14 +26,15 @@ pub fn check(ctx: &RunContext, file: &Path) -> Result<()> {
     for motion in problem.rigid_motions()?.describe_all() {
         say!(c, "free rigid motion carried by contact: {motion}");
     }
-    let iterative =
-        hemicontact::solver::system::resolved_linear_solver(&problem, settings.linear_solver)
-            == hemicontact::solver::LinearSolver::Iterative;
+    let iterative = !settings
+        .linear_solver
+        .cholesky_affordable(problem.mesh().dim(), problem.dof_map().n_free());
     if !problem.contact().is_empty() && iterative {
         say!(
             c,
             "uniqueness (Theorem 4): not checked — the discrete trace constant needs a Cholesky \
-             factorization, and this scenario uses the iterative linear solver"
+             factorization, and this scenario uses an iterative linear solver at a size \
+             where the factorization is not affordable"
         );
     } else if !problem.contact().is_empty() {
         print_uniqueness(

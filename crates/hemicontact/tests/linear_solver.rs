@@ -91,3 +91,50 @@ fn auto_resolves_by_free_equations() {
     let bound = LinearSolver::Auto.memory_lower_bound(3, 3 * nodes as usize, nodes, cells);
     assert!(bound <= auto(t - 1) && bound <= auto(t));
 }
+
+/// A small 3D scenario with the given `[solver]` lines.
+fn with_solver(lines: &str) -> String {
+    format!(
+        "[mesh]\nkind = \"box\"\nsize = [1.0, 1.0, 1.0]\nn = [2, 2, 2]\n\
+         [material]\nyoung = 1000.0\npoisson = 0.3\n\
+         [[dirichlet]]\npart = \"bottom\"\n\
+         [[loads.traction]]\npart = \"top\"\nvalue = [0.0, 0.0, -30.0]\n\
+         [solver]\n{lines}\n"
+    )
+}
+
+/// The first error of reading `text` and resolving its settings.
+fn settings_error(text: &str) -> String {
+    match Scenario::from_str(text, "petsc.toml").and_then(|s| s.settings()) {
+        Ok(_) => panic!("accepted:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+/// Without the cargo feature `petsc`, `linear_solver = "petsc"` is refused naming the file,
+/// the field and how to get the backend.
+#[cfg(not(feature = "petsc"))]
+#[test]
+fn petsc_needs_its_feature() {
+    let e = settings_error(&with_solver("linear_solver = \"petsc\""));
+    assert!(
+        e.contains("petsc.toml") && e.contains("linear_solver") && e.contains("--features petsc"),
+        "{e}"
+    );
+}
+
+/// `[solver.petsc] options` must read as PETSc's command line: `-option [value]` words.
+#[test]
+fn petsc_options_are_checked() {
+    let ok = with_solver("[solver.petsc]\noptions = \"-pc_type hypre -ksp_monitor\"");
+    assert!(Scenario::from_str(&ok, "petsc.toml")
+        .unwrap()
+        .settings()
+        .is_ok());
+    for bad in ["pc_type hypre", "-pc_type\\u0007hypre"] {
+        let e = settings_error(&with_solver(&format!(
+            "[solver.petsc]\noptions = \"{bad}\""
+        )));
+        assert!(e.contains("solver.petsc.options"), "{bad}: {e}");
+    }
+}

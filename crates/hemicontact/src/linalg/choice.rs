@@ -1,4 +1,5 @@
-//! The linear-solver setting (`[solver] linear_solver = "direct" | "iterative" | "auto"`):
+//! The linear-solver setting (`[solver] linear_solver = "direct" | "iterative" | "auto" |
+//! "petsc"`):
 //! the one place where `auto` is decided ([`LinearSolver::resolve`]), and where the chosen
 //! solver is prepared ([`LinearSolver::prepare`]) and its memory estimated
 //! ([`LinearSolver::memory_estimate`]). A new backend adds a variant here with one arm in
@@ -28,15 +29,64 @@ pub enum LinearSolver {
     /// iterative above.
     #[default]
     Auto,
+    /// PETSc's Krylov solvers and preconditioners (conjugate gradients with GAMG by
+    /// default, any other through [`PetscSettings::options`]); needs the cargo feature
+    /// `petsc` (see `super::petsc`).
+    Petsc,
+}
+
+/// Whether this build has the PETSc backend (cargo feature `petsc`).
+pub const HAS_PETSC: bool = cfg!(feature = "petsc");
+
+/// Settings of the PETSc linear solver (`[solver.petsc]`).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PetscSettings {
+    /// PETSc options in its command-line syntax, applied after the defaults (CG with GAMG)
+    /// and before the `PETSC_OPTIONS` environment variable, e.g. `"-pc_type hypre"` or
+    /// `"-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps"`. Default
+    /// empty.
+    pub options: String,
+}
+
+impl PetscSettings {
+    /// Longest options string accepted (characters).
+    pub const MAX_OPTIONS: usize = 4096;
+
+    /// Checks the options: printable text (no control characters) of at most
+    /// [`PetscSettings::MAX_OPTIONS`] characters, made of `-option [value]` words.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming `options`.
+    pub fn validate(&self) -> Result<()> {
+        let o = &self.options;
+        let well_formed = o.chars().count() <= Self::MAX_OPTIONS
+            && !o.chars().any(|c| c.is_control() && c != ' ' && c != '\t')
+            && o.split_whitespace()
+                .next()
+                .is_none_or(|w| w.starts_with('-'));
+        crate::error::require(
+            well_formed,
+            "options",
+            format!("{o:?}"),
+            &format!(
+                "PETSc options as on its command line (e.g. \"-pc_type hypre\"): words \
+                 starting with '-' and their values, at most {} characters",
+                Self::MAX_OPTIONS
+            ),
+        )
+    }
 }
 
 /// What the preparation of a linear solver needs besides the system.
 #[derive(Clone, Copy, Debug)]
-pub struct PrepareOptions {
+pub struct PrepareOptions<'a> {
     /// Fill-reducing ordering of the direct solver.
     pub ordering: Ordering,
     /// Parallelism of the direct solver's factorization and solves.
     pub par: faer::Par,
+    /// PETSc options of the PETSc solver ([`PetscSettings::options`]).
+    pub petsc_options: &'a str,
 }
 
 impl LinearSolver {
@@ -63,13 +113,47 @@ impl LinearSolver {
         }
     }
 
+    /// Whether a Cholesky factorization of the stiffness is affordable for a check beside
+    /// the solve (the uniqueness estimate): with the direct solver, and with PETSc where
+    /// `auto` would choose the direct solver.
+    pub fn cholesky_affordable(self, dim: usize, n_free: usize) -> bool {
+        match self {
+            LinearSolver::Petsc => LinearSolver::Auto.resolve(dim, n_free) == LinearSolver::Direct,
+            other => other.resolve(dim, n_free) == LinearSolver::Direct,
+        }
+    }
+
+    /// Checks that this build has the solver: `petsc` needs the cargo feature `petsc`.
+    ///
+    /// # Errors
+    /// [`crate::Error::Invalid`] naming `linear_solver`.
+    pub fn validate(self) -> Result<()> {
+        if self == LinearSolver::Petsc && !HAS_PETSC {
+            return Err(Self::no_petsc());
+        }
+        Ok(())
+    }
+
+    /// The error of `linear_solver = "petsc"` in a build without PETSc.
+    fn no_petsc() -> crate::Error {
+        crate::Error::invalid(
+            "linear_solver",
+            "\"petsc\"",
+            "\"direct\", \"iterative\" or \"auto\": this build of hemicontact has no PETSc \
+             backend (build it with `--features petsc`, see docs/distributed.md)",
+        )
+    }
+
     /// Prepares the solver this setting resolves to ([`LinearSolver::resolve`] with
     /// `pattern.n()` free equations) for `pattern`, the reduced system of `mesh` with
     /// equation numbers `equations`: the symbolic Cholesky analysis for the direct solver,
-    /// the multigrid grids and prolongations for the iterative one.
+    /// the multigrid grids and prolongations for the iterative one, PETSc's matrix and KSP
+    /// for PETSc.
     ///
     /// # Errors
-    /// [`crate::Error::OutOfMemory`] if the factor cannot be allocated.
+    /// [`crate::Error::OutOfMemory`] if the factor cannot be allocated;
+    /// [`crate::Error::Invalid`] for PETSc options that PETSc refuses, or `petsc` in a
+    /// build without it.
     pub fn prepare(
         self,
         mesh: &Mesh,
@@ -79,6 +163,15 @@ impl LinearSolver {
     ) -> Result<Box<dyn SpdSolver>> {
         Ok(match self.resolve(mesh.dim(), pattern.n()) {
             LinearSolver::Iterative => Box::new(MultigridCg::new(mesh, equations, pattern)),
+            #[cfg(feature = "petsc")]
+            LinearSolver::Petsc => Box::new(super::petsc::PetscSolver::new(
+                mesh,
+                equations,
+                pattern,
+                options.petsc_options,
+            )?),
+            #[cfg(not(feature = "petsc"))]
+            LinearSolver::Petsc => return Err(Self::no_petsc()),
             LinearSolver::Direct | LinearSolver::Auto => Box::new(DirectSolver::new(
                 mesh,
                 equations,
@@ -94,7 +187,12 @@ impl LinearSolver {
     /// equations (see [`LinearSolver::resolve`]).
     pub fn memory_estimate(self, dim: usize, n_free: usize, nodes: u64, cells: u64) -> u64 {
         match self.resolve(dim, n_free) {
-            LinearSolver::Iterative => MultigridCg::memory_estimate(dim, nodes, cells),
+            // PETSc with GAMG was measured below the in-house multigrid (whole process,
+            // `scripts/bench-petsc`: 537 MB against 697 MB at 107 811 DOFs), whose model
+            // therefore bounds it.
+            LinearSolver::Iterative | LinearSolver::Petsc => {
+                MultigridCg::memory_estimate(dim, nodes, cells)
+            }
             LinearSolver::Direct | LinearSolver::Auto => {
                 DirectSolver::memory_estimate(dim, nodes, cells)
             }

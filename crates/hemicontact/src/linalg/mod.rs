@@ -14,10 +14,12 @@ pub mod lanczos;
 pub mod multigrid;
 pub mod ordering;
 pub mod pcg;
+#[cfg(feature = "petsc")]
+pub mod petsc;
 pub mod solver;
 pub mod substructures;
 
-pub use choice::{LinearSolver, PrepareOptions};
+pub use choice::{LinearSolver, PetscSettings, PrepareOptions, HAS_PETSC};
 pub use cholesky::{Cholesky, Layout};
 pub use direct::DirectSolver;
 pub use iterative::{MultigridCg, ITERATIVE_MAX_ITERATIONS};

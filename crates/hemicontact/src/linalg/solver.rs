@@ -3,8 +3,9 @@
 //! new matrix values on that pattern to a relative residual.
 //!
 //! The implementations are [`super::direct::DirectSolver`] (sparse Cholesky, reused while
-//! the matrix changes little) and [`super::iterative::MultigridCg`]
-//! (multigrid-preconditioned conjugate gradients). [`super::LinearSolver`] (the setting)
+//! the matrix changes little), [`super::iterative::MultigridCg`]
+//! (multigrid-preconditioned conjugate gradients) and, with the cargo feature `petsc`,
+//! `super::petsc::PetscSolver` (PETSc's KSP). [`super::LinearSolver`] (the setting)
 //! chooses and prepares one of them. A trait object rather than an enum: a new backend is
 //! a new type implementing [`SpdSolver`] plus one arm in the setting's `prepare` and
 //! `memory_estimate`, and the system holding it does not change.
@@ -42,8 +43,8 @@ pub struct SolveStats {
 
 /// A solver of symmetric positive definite systems on a fixed sparsity pattern.
 pub trait SpdSolver: std::fmt::Debug + Send {
-    /// Which solver this is: [`super::LinearSolver::Direct`] or
-    /// [`super::LinearSolver::Iterative`] (never `Auto`).
+    /// Which solver this is: [`super::LinearSolver::Direct`],
+    /// [`super::LinearSolver::Iterative`] or [`super::LinearSolver::Petsc`] (never `Auto`).
     fn kind(&self) -> super::LinearSolver;
 
     /// Solves `A x = b` for the matrix with upper-triangle `values` on `pattern` (the
@@ -61,6 +62,12 @@ pub trait SpdSolver: std::fmt::Debug + Send {
         x: &mut [f64],
         request: &SolveRequest,
     ) -> Result<SolveStats>;
+
+    /// The solver in words: `direct`, `iterative`, or `petsc (ksp cg, pc gamg)` with the
+    /// backend's own method and preconditioner.
+    fn describe(&self) -> String {
+        format!("{:?}", self.kind()).to_lowercase()
+    }
 
     /// Stored entries of the Cholesky factor (0 without one).
     fn nnz_factor(&self) -> usize {

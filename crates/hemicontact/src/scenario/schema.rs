@@ -60,12 +60,15 @@
 //!
 //! [solver]                  # all optional, see SolverSettings
 //! ordering = "nested-dissection"
-//! linear_solver = "auto"    # "direct", "iterative" (multigrid CG) or "auto" (3D ≥ 30k eq.)
+//! linear_solver = "auto"    # "direct", "iterative" (multigrid CG) or "auto" (3D ≥ 30k eq.),
+//!                           # or "petsc" (builds with the `petsc` feature)
 //! certificate_tolerance = 1e-6   # every certificate residual (relative) must be below it
 //! [solver.constraints]      # exact constraints (augmented Lagrangian)
 //! locking_penalty = 1000.0  # dimensionless factors γ (ideal locking; Signorini and
 //! contact_penalty = 100.0   #   exact friction) and γ₀ of the continuation
 //! initial_penalty = 1.0
+//! [solver.petsc]            # with linear_solver = "petsc": PETSc options (after the
+//! options = "-pc_type gamg" #   defaults CG + GAMG, before the PETSC_OPTIONS variable)
 //!
 //! [output]
 //! dir = "out/example"       # default: given on the command line

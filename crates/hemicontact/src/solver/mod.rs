@@ -24,7 +24,7 @@ pub mod scaling;
 pub mod system;
 pub mod uniqueness;
 
-pub use crate::linalg::LinearSolver;
+pub use crate::linalg::{LinearSolver, PetscSettings};
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
 pub use constraints::ConstraintSettings;
 pub use frozen::Frozen;
@@ -63,8 +63,11 @@ pub struct SolverSettings {
     /// this setting.
     pub factorization_threads: usize,
     /// Linear solver of the Newton systems (`[solver] linear_solver = "direct"`,
-    /// `"iterative"` or `"auto"`). Default `auto`; see [`LinearSolver`].
+    /// `"iterative"`, `"auto"` or `"petsc"`). Default `auto`; see [`LinearSolver`].
     pub linear_solver: LinearSolver,
+    /// Settings of the PETSc linear solver (`[solver.petsc]`), used with
+    /// `linear_solver = "petsc"`.
+    pub petsc: PetscSettings,
     /// Newton method settings.
     pub newton: NewtonSettings,
     /// Outer (convexification) loop settings.
@@ -85,6 +88,7 @@ impl Default for SolverSettings {
             threads: 0,
             factorization_threads: 1,
             linear_solver: LinearSolver::default(),
+            petsc: PetscSettings::default(),
             newton: NewtonSettings::default(),
             outer: OuterSettings::default(),
             constraints: ConstraintSettings::default(),
@@ -103,7 +107,8 @@ impl SolverSettings {
     /// # Errors
     /// [`crate::Error::Invalid`] naming the setting by its path from here (e.g.
     /// `newton.armijo`): `certificate_tolerance` in [1e-14, 1), thread counts up to
-    /// [`MAX_THREADS`], and the ranges of [`NewtonSettings::validate`],
+    /// [`MAX_THREADS`], `linear_solver` available in this build ([`LinearSolver::validate`]),
+    /// [`PetscSettings::validate`], and the ranges of [`NewtonSettings::validate`],
     /// [`OuterSettings::validate`] and [`ConstraintSettings::validate`].
     pub fn validate(&self) -> Result<()> {
         use crate::error::require;
@@ -125,6 +130,8 @@ impl SolverSettings {
                 &format!("a thread count from 0 (all cores) to {MAX_THREADS}"),
             )?;
         }
+        self.linear_solver.validate()?;
+        self.petsc.validate().map_err(|e| e.within("petsc"))?;
         self.newton.validate().map_err(|e| e.within("newton"))?;
         self.outer.validate().map_err(|e| e.within("outer"))?;
         self.constraints

@@ -77,6 +77,9 @@ pub struct SolveReport {
     pub n_equations: usize,
     /// Stored entries of the matrix (upper triangle).
     pub nnz_matrix: usize,
+    /// The linear solver that solved the Newton systems: `direct`, `iterative`, or
+    /// `petsc (ksp cg, pc gamg)` with PETSc's Krylov method and preconditioner.
+    pub linear_solver: String,
     /// Stored entries of the Cholesky factor (0 with the iterative linear solver).
     pub nnz_factor: usize,
     /// Equations per multigrid level, finest first, with the iterative linear solver
@@ -143,6 +146,7 @@ impl SolveReport {
             n_dofs: system.dofs.n_dofs(),
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
+            linear_solver: system.linear_solver.describe(),
             nnz_factor: system.linear_solver.nnz_factor(),
             multigrid_levels: system.linear_solver.level_sizes(),
             outer: Vec::new(),

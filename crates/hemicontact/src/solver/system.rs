@@ -182,6 +182,7 @@ impl System {
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
+            petsc_options: &settings.petsc.options,
         };
         let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();

@@ -251,7 +251,8 @@ fn sup_on_part(problem: &Problem, part: usize, mu: &crate::contact::FrictionCoef
 /// the laws (`lhs`, `margin` NaN, written as `null`):
 /// - no contact boundary: there is no friction term, nothing to check;
 /// - a Coulomb-type bound (see [`check`]);
-/// - the iterative linear solver (large 3D problems): ‖γ‖ needs a Cholesky factorization
+/// - an iterative linear solver at a size where `auto` would choose it (large 3D
+///   problems): ‖γ‖ needs a Cholesky factorization
 ///   of the ε–ε stiffness, which that choice exists to avoid;
 /// - the computation of ‖γ‖ failed (the error is quoted).
 ///
@@ -273,12 +274,14 @@ pub fn evaluate(problem: &Problem, settings: &super::SolverSettings) -> Uniquene
     if !u.applies {
         return u;
     }
-    let iterative = super::system::resolved_linear_solver(problem, settings.linear_solver)
-        == super::LinearSolver::Iterative;
+    let iterative = !settings
+        .linear_solver
+        .cholesky_affordable(problem.mesh.dim(), problem.dof_map().n_free());
     if iterative && u.factor > 0.0 {
         return not_evaluated(
             "not evaluated: the trace constant ‖γ‖ needs a Cholesky factorization of the ε–ε \
-             stiffness, and this problem uses the iterative linear solver"
+             stiffness, and this problem uses an iterative linear solver at a size where \
+             the factorization is not affordable"
                 .to_string(),
         );
     }

@@ -1,0 +1,305 @@
+//! The PETSc linear solver (`[solver] linear_solver = "petsc"`, cargo feature `petsc`): the
+//! Newton matrix and right-hand side handed to a PETSc KSP, by default conjugate gradients
+//! preconditioned by smoothed-aggregation algebraic multigrid (GAMG) with the rigid-body
+//! modes as near-null space; any KSP and PC of PETSc through `[solver.petsc] options` and
+//! the `PETSC_OPTIONS` environment variable (MUMPS's Cholesky:
+//! `-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps`).
+//!
+//! PETSc gets the **whole** DOF system, in blocks of one node's `d` DOFs (what GAMG's
+//! aggregation and the rigid-body modes expect): the free equations as assembled, and an
+//! identity row scaled by the mean diagonal of the free ones for each prescribed DOF, with a
+//! zero right-hand side there, so the prescribed DOFs solve to zero and decouple. The
+//! pattern is given to PETSc once (exact preallocation); every changed matrix replaces the
+//! values in place.
+//!
+//! A changed matrix does not always get a new preconditioner: a GAMG set-up costs about
+//! [`SETUP_COST`] CG iterations, and between Newton steps the matrix changes only at the
+//! contact points and locked cells. The choice is the one of the in-house iterative solver
+//! ([`super::iterative`], a ski rental counted in iterations): the first solve after a
+//! set-up gives the iterations per decade of residual reduction of a fresh preconditioner;
+//! a solve with the kept one pays the iterations beyond that rate, and may spend what is
+//! left of one set-up's cost before it is abandoned for a set-up and solved again; once the
+//! extra iterations add up to a set-up, the next changed matrix is set up. The kept
+//! preconditioner is used only with conjugate gradients on the true residual (the
+//! default), where it costs iterations and never accuracy: other KSPs (`preonly` with a
+//! factorization, say) are set up for every changed matrix. `newton.pcg_iterations = 0`
+//! sets up every changed matrix too. An unchanged matrix (within
+//! [`super::direct::UNCHANGED`]) keeps the preconditioner.
+
+use super::direct::UNCHANGED;
+use super::solver::{SolveRequest, SolveStats, SpdSolver};
+use super::ITERATIVE_MAX_ITERATIONS;
+use crate::assembly::SystemPattern;
+use crate::error::{Error, Result};
+use crate::fem::dofs::FIXED;
+use crate::mesh::Mesh;
+use hemicontact_petsc::KspSystem;
+use std::time::Instant;
+
+/// Source marker of the diagonal entry of a prescribed DOF's identity row.
+const PRESCRIBED: u32 = u32::MAX;
+
+/// The PETSc linear solver; see the module documentation.
+#[derive(Debug)]
+pub struct PetscSolver {
+    /// PETSc's matrix and KSP.
+    system: KspSystem,
+    /// For every entry of PETSc's CSR matrix (DOF numbering, both triangles), the slot of
+    /// its value in the upper-triangle values of [`SystemPattern`], or [`PRESCRIBED`].
+    source: Vec<u32>,
+    /// The CSR values handed to PETSc.
+    csr_values: Vec<f64>,
+    /// Slots of the diagonal of the free equations (for the prescribed rows' scale).
+    diagonal: Vec<usize>,
+    /// Equation number of every DOF ([`FIXED`] for prescribed DOFs).
+    equations: Vec<u32>,
+    /// Right-hand side and solution in DOF numbering.
+    b_dofs: Vec<f64>,
+    /// Solution in DOF numbering.
+    x_dofs: Vec<f64>,
+    /// Matrix values of the current preconditioner (empty: none yet).
+    factored: Vec<f64>,
+    /// The options as given, for messages.
+    options: String,
+    /// Whether the KSP may keep a preconditioner of other values
+    /// ([`KspSystem::can_keep_preconditioner`]).
+    can_keep: bool,
+    /// CG iterations per decade of residual reduction of the first solve after the last
+    /// set-up (0: not measured yet).
+    fresh_rate: f64,
+    /// Iterations beyond that rate spent with a kept preconditioner since the last set-up.
+    rent: f64,
+    /// Whether the next changed matrix gets a set-up.
+    setup_next: bool,
+}
+
+/// Cost of a PETSc preconditioner set-up in CG iterations with it. Measured for GAMG:
+/// see `docs/distributed.md`.
+pub const SETUP_COST: f64 = 50.0;
+
+impl PetscSolver {
+    /// Hands the pattern of `pattern` (the reduced system of `mesh` with equation numbers
+    /// `equations`) to PETSc, with the nodes' coordinates for the rigid-body modes, and
+    /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] (field `petsc.options`) when PETSc refuses the options or cannot
+    /// be initialized.
+    pub fn new(
+        mesh: &Mesh,
+        equations: &[u32],
+        pattern: &SystemPattern,
+        options: &str,
+    ) -> Result<Self> {
+        let n = equations.len();
+        let mut dof_of = vec![0u32; pattern.n()];
+        for (dof, &eq) in equations.iter().enumerate() {
+            if eq != FIXED {
+                dof_of[eq as usize] = dof as u32;
+            }
+        }
+        let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+        // Entries per DOF row: both triangles of the free block, one diagonal entry for
+        // each prescribed DOF.
+        let mut row_ptr = vec![0usize; n + 1];
+        for (dof, &eq) in equations.iter().enumerate() {
+            if eq == FIXED {
+                row_ptr[dof + 1] += 1;
+            }
+        }
+        for j in 0..pattern.n() {
+            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+                row_ptr[dof_of[j] as usize + 1] += 1;
+                if i != j {
+                    row_ptr[dof_of[i] as usize + 1] += 1;
+                }
+            }
+        }
+        for r in 0..n {
+            row_ptr[r + 1] += row_ptr[r];
+        }
+        let nnz = row_ptr[n];
+        let mut entries = vec![(0u32, 0u32); nnz];
+        let mut next = row_ptr.clone();
+        let mut push = |row: usize, col: u32, src: u32| {
+            entries[next[row]] = (col, src);
+            next[row] += 1;
+        };
+        for (dof, &eq) in equations.iter().enumerate() {
+            if eq == FIXED {
+                push(dof, dof as u32, PRESCRIBED);
+            }
+        }
+        for j in 0..pattern.n() {
+            for (k, &i) in row_idx[col_ptr[j]..col_ptr[j + 1]].iter().enumerate() {
+                let slot = (col_ptr[j] + k) as u32;
+                push(dof_of[j] as usize, dof_of[i], slot);
+                if i != j {
+                    push(dof_of[i] as usize, dof_of[j], slot);
+                }
+            }
+        }
+        for r in 0..n {
+            entries[row_ptr[r]..row_ptr[r + 1]].sort_unstable();
+        }
+        let cols: Vec<usize> = entries.iter().map(|&(c, _)| c as usize).collect();
+        let source = entries.iter().map(|&(_, s)| s).collect();
+        let system =
+            KspSystem::new(&row_ptr, &cols, mesh.coords(), mesh.dim(), options).map_err(|e| {
+                Error::Invalid {
+                    field: "petsc.options".into(),
+                    value: format!("{options:?}"),
+                    allowed: format!("options PETSc accepts: {e}"),
+                }
+            })?;
+        Ok(PetscSolver {
+            source,
+            csr_values: vec![0.0; nnz],
+            diagonal: (0..pattern.n()).map(|j| col_ptr[j + 1] - 1).collect(),
+            equations: equations.to_vec(),
+            b_dofs: vec![0.0; n],
+            x_dofs: vec![0.0; n],
+            factored: Vec::new(),
+            options: options.to_string(),
+            can_keep: system.can_keep_preconditioner(),
+            system,
+            fresh_rate: 0.0,
+            rent: 0.0,
+            setup_next: false,
+        })
+    }
+
+    fn breakdown(&self, what: &str, e: &hemicontact_petsc::Error) -> Error {
+        Error::Breakdown(format!(
+            "PETSc ({}) {what}: {e}; options {:?}",
+            self.system.describe(),
+            self.options
+        ))
+    }
+}
+
+impl SpdSolver for PetscSolver {
+    fn kind(&self) -> super::LinearSolver {
+        super::LinearSolver::Petsc
+    }
+
+    /// `petsc (ksp cg, pc gamg)`: the Krylov method and preconditioner in use.
+    fn describe(&self) -> String {
+        format!("petsc ({})", self.system.describe())
+    }
+
+    /// # Errors
+    /// [`Error::Breakdown`] when PETSc fails (e.g. a zero pivot in a factorization) or its
+    /// KSP does not converge to `request.eta`.
+    fn solve(
+        &mut self,
+        _pattern: &SystemPattern,
+        values: &[f64],
+        b: &[f64],
+        x: &mut [f64],
+        request: &SolveRequest,
+    ) -> Result<SolveStats> {
+        let mut stats = SolveStats::default();
+        let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let unchanged = !self.factored.is_empty()
+            && values
+                .iter()
+                .zip(&self.factored)
+                .all(|(a, c)| (a - c).abs() <= UNCHANGED * scale);
+        let eta = request.eta;
+        // Decades of residual reduction asked for (at least one).
+        let decades = (1.0 / eta).log10().max(1.0);
+        if !unchanged {
+            let t = Instant::now();
+            let mean = self.diagonal.iter().map(|&s| values[s].abs()).sum::<f64>()
+                / self.diagonal.len().max(1) as f64;
+            let prescribed = if mean > 0.0 { mean } else { 1.0 };
+            for (v, &s) in self.csr_values.iter_mut().zip(&self.source) {
+                *v = if s == PRESCRIBED {
+                    prescribed
+                } else {
+                    values[s as usize]
+                };
+            }
+            self.system
+                .set_values(&self.csr_values)
+                .map_err(|e| self.breakdown("refused the matrix", &e))?;
+            self.factored.clear();
+            self.factored.extend_from_slice(values);
+            // Copying values is part of the solve; only set-ups count as factorizations.
+            stats.solve_time = t.elapsed().as_secs_f64();
+        }
+        for (dof, &eq) in self.equations.iter().enumerate() {
+            self.b_dofs[dof] = if eq == FIXED { 0.0 } else { b[eq as usize] };
+        }
+        let keep = !unchanged
+            && self.can_keep
+            && request.reuse_iterations > 0
+            && !self.setup_next
+            && self.fresh_rate > 0.0;
+        let mut solved = false;
+        if keep {
+            let t = Instant::now();
+            let expected = self.fresh_rate * decades;
+            // What is left of one set-up's cost may be spent before giving up.
+            let cap = (expected + SETUP_COST - self.rent).ceil() as usize + 1;
+            let outcome = self
+                .system
+                .solve(&self.b_dofs, &mut self.x_dofs, eta, cap, true)
+                .map_err(|e| self.breakdown("failed", &e))?;
+            stats.solve_time += t.elapsed().as_secs_f64();
+            stats.iterations = outcome.iterations;
+            if outcome.converged() {
+                self.rent += (outcome.iterations as f64 - expected).max(0.0);
+                self.setup_next = self.rent >= SETUP_COST;
+                solved = true;
+            }
+        }
+        if !solved {
+            if !unchanged {
+                let t = Instant::now();
+                self.system
+                    .setup()
+                    .map_err(|e| self.breakdown("could not set the preconditioner up", &e))?;
+                stats.factorization_time += t.elapsed().as_secs_f64();
+                stats.refactorized = true;
+                self.rent = 0.0;
+                self.setup_next = false;
+            }
+            let t = Instant::now();
+            let outcome = self
+                .system
+                .solve(
+                    &self.b_dofs,
+                    &mut self.x_dofs,
+                    eta,
+                    ITERATIVE_MAX_ITERATIONS,
+                    true,
+                )
+                .map_err(|e| self.breakdown("failed", &e))?;
+            stats.solve_time += t.elapsed().as_secs_f64();
+            stats.iterations += outcome.iterations;
+            if !outcome.converged() {
+                return Err(Error::Breakdown(format!(
+                    "PETSc ({}) did not reach the relative residual {eta:e}: {} after {} \
+                     iterations (residual norm {:e}, right-hand side norm {:e}); options {:?}",
+                    self.system.describe(),
+                    outcome.reason_name,
+                    outcome.iterations,
+                    outcome.residual_norm,
+                    b.iter().map(|v| v * v).sum::<f64>().sqrt(),
+                    self.options
+                )));
+            }
+            if stats.refactorized {
+                self.fresh_rate = outcome.iterations.max(1) as f64 / decades;
+            }
+        }
+        for (dof, &eq) in self.equations.iter().enumerate() {
+            if eq != FIXED {
+                x[eq as usize] = self.x_dofs[dof];
+            }
+        }
+        Ok(stats)
+    }
+}
