@@ -191,10 +191,37 @@ impl RunContext {
     }
 }
 
+/// The rank and size of an MPI launch with more than one process, from the variables that
+/// OpenMPI (`OMPI_COMM_WORLD_RANK`, `OMPI_COMM_WORLD_SIZE`) and MPICH's launcher
+/// (`PMI_RANK`, `PMI_SIZE`) set for each process; `None` for a single process.
+fn mpi_launch() -> Option<(usize, usize)> {
+    let var = |name: &str| std::env::var(name).ok()?.trim().parse::<usize>().ok();
+    [
+        ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),
+        ("PMI_RANK", "PMI_SIZE"),
+    ]
+    .iter()
+    .find_map(|&(rank, size)| Some((var(rank).unwrap_or(0), var(size)?)))
+    .filter(|&(_, size)| size > 1)
+}
+
 fn main() -> ExitCode {
     let output = output::Output::new();
     output.install_interrupt_handler();
     let cli = Cli::parse();
+    // Every rank of an MPI launch would solve the whole problem alone and write the same
+    // results: refused until the solve is distributed. Rank 0 says why; all exit with 1.
+    if let Some((rank, size)) = mpi_launch() {
+        if rank == 0 {
+            eprintln!(
+                "error: started as {size} MPI processes (mpirun -np {size}): hemicontact does not \
+                 distribute a solve across processes yet, and each process would solve the \
+                 whole problem alone; run it as one process (PETSc's solvers included, \
+                 docs/distributed.md)"
+            );
+        }
+        return ExitCode::from(1);
+    }
     let verbosity = match (cli.quiet, cli.verbose) {
         (true, _) => Verbosity::Quiet,
         (false, true) => Verbosity::Verbose,

@@ -176,3 +176,53 @@ value = [0.0, -1.0]
         .unwrap_or_default();
     assert!(written.is_empty(), "files written: {written:?}");
 }
+
+/// Started as several MPI processes (`mpirun -np 2`, seen through the variables OpenMPI and
+/// MPICH set for each process), the program refuses to run rather than solve the whole
+/// problem once per process: rank 0 says why, every rank exits with 1 and writes nothing.
+/// A launch of one process runs as usual.
+#[test]
+fn several_mpi_processes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("paper.toml");
+    std::fs::write(&file, hemicontact::scenario::builtin::paper(4, 1.0e4)).unwrap();
+    for (rank_var, size_var) in [
+        ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),
+        ("PMI_RANK", "PMI_SIZE"),
+    ] {
+        for rank in ["0", "1"] {
+            let out = bin()
+                .current_dir(dir.path())
+                .args(["solve", "paper.toml", "--out", "out"])
+                .env(rank_var, rank)
+                .env(size_var, "2")
+                .output()
+                .unwrap();
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{rank_var}={rank}: {stderr}");
+            if rank == "0" {
+                assert!(
+                    stderr.contains("2 MPI processes") && stderr.contains("distributed.md"),
+                    "{stderr}"
+                );
+            } else {
+                assert!(stderr.is_empty(), "rank {rank}: {stderr}");
+            }
+            assert!(!dir.path().join("out").exists());
+        }
+    }
+    let one = bin()
+        .current_dir(dir.path())
+        .args(["solve", "paper.toml", "--out", "out"])
+        .env("OMPI_COMM_WORLD_RANK", "0")
+        .env("OMPI_COMM_WORLD_SIZE", "1")
+        .output()
+        .unwrap();
+    assert_eq!(
+        one.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&one.stderr)
+    );
+    assert!(dir.path().join("out/summary.json").exists());
+}
