@@ -10,8 +10,6 @@
 //! The crate is built only by hemicontact's `petsc` feature; it needs PETSc (≥ 3.18) found
 //! by pkg-config.
 
-#![warn(missing_docs)]
-
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::sync::Mutex;
 
@@ -29,14 +27,26 @@ mod ffi {
         pub fn hc_last_error() -> *const c_char;
         pub fn hc_version() -> c_int;
         pub fn hc_int_size() -> c_int;
+        pub fn hc_world(rank: *mut c_int, size: *mut c_int) -> c_int;
+        pub fn hc_allreduce(values: *mut f64, n: i64, op: c_int) -> c_int;
+        pub fn hc_allgatherv(
+            local: *const f64,
+            n_local: i64,
+            global: *mut f64,
+            n_global: i64,
+        ) -> c_int;
+        pub fn hc_abort(code: c_int);
         pub fn hc_system_create(
             n: i64,
+            n_global: i64,
+            first: i64,
             block_size: i64,
             row_ptr: *const i64,
             cols: *const i64,
             coordinates: *const f64,
             prefix: *const c_char,
             options: *const c_char,
+            distributed: c_int,
             out: *mut *mut System,
         ) -> c_int;
         pub fn hc_system_destroy(system: *mut System);
@@ -134,6 +144,96 @@ pub fn index_bytes() -> usize {
     unsafe { ffi::hc_int_size() as usize }
 }
 
+/// The processes of an MPI launch (`PETSC_COMM_WORLD`, which is `MPI_COMM_WORLD`): this
+/// process's rank, their number, and the few collective operations a distributed solve
+/// needs. Every method but [`World::rank`] and [`World::size`] is collective: every process
+/// must call it, in the same order. A single process (no `mpirun`) is a world of size 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct World {
+    rank: usize,
+    size: usize,
+}
+
+impl World {
+    /// Initializes PETSc and MPI ([`initialize`]) and returns the world.
+    ///
+    /// # Errors
+    /// If PETSc or MPI cannot be initialized.
+    pub fn get() -> Result<World, Error> {
+        let _guard = lock();
+        // SAFETY: under the lock; the shim initializes at most once.
+        check(unsafe { ffi::hc_initialize() })?;
+        let (mut rank, mut size) = (0 as c_int, 0 as c_int);
+        // SAFETY: two valid out-pointers.
+        check(unsafe { ffi::hc_world(&mut rank, &mut size) })?;
+        Ok(World {
+            rank: rank as usize,
+            size: size as usize,
+        })
+    }
+
+    /// This process's rank, 0 to `size − 1`.
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// Number of processes.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    fn allreduce(&self, values: &mut [f64], op: c_int) -> Result<(), Error> {
+        let _guard = lock();
+        // SAFETY: the slice's pointer and length.
+        check(unsafe { ffi::hc_allreduce(values.as_mut_ptr(), values.len() as i64, op) })
+    }
+
+    /// `values` ← their element-wise sum over the processes (same length on every one).
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn sum(&self, values: &mut [f64]) -> Result<(), Error> {
+        self.allreduce(values, 0)
+    }
+
+    /// `values` ← their element-wise maximum over the processes.
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn max(&self, values: &mut [f64]) -> Result<(), Error> {
+        self.allreduce(values, 1)
+    }
+
+    /// The concatenation of every process's `local` values, in rank order, on every process
+    /// (`total`: its length, the sum of the local lengths).
+    ///
+    /// # Errors
+    /// MPI's; a `total` other than the sum of the local lengths.
+    pub fn all_gather(&self, local: &[f64], total: usize) -> Result<Vec<f64>, Error> {
+        let mut global = vec![0.0; total];
+        let _guard = lock();
+        // SAFETY: `local` and `global` with their lengths; the shim checks the total.
+        check(unsafe {
+            ffi::hc_allgatherv(
+                local.as_ptr(),
+                local.len() as i64,
+                global.as_mut_ptr(),
+                total as i64,
+            )
+        })?;
+        Ok(global)
+    }
+
+    /// Ends every process of the world with exit code `code` (`MPI_Abort`): the way out of
+    /// a failure that only some processes see, which would otherwise leave the others
+    /// waiting in a collective operation.
+    pub fn abort(&self, code: i32) -> ! {
+        // SAFETY: MPI_Abort does not return on a conforming MPI.
+        unsafe { ffi::hc_abort(code) };
+        std::process::exit(code)
+    }
+}
+
 /// The outcome of one Krylov solve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Outcome {
@@ -191,6 +291,51 @@ impl KspSystem {
         options: &str,
     ) -> Result<Self, Error> {
         let n = row_ptr.len().saturating_sub(1);
+        Self::create(n, 0, row_ptr, cols, coordinates, block_size, options, false)
+    }
+
+    /// As [`KspSystem::new`] for a system of order `n_global` distributed over the
+    /// processes of the [`World`] (collective): this process holds the rows `first ..
+    /// first + row_ptr.len() − 1` (a whole number of `block_size` blocks), with their
+    /// pattern in global column numbers and the coordinates of their nodes; the vectors of
+    /// [`KspSystem::solve`] are then this process's part.
+    ///
+    /// # Errors
+    /// As [`KspSystem::new`]; rows that do not add up to `n_global` over the processes.
+    pub fn new_distributed(
+        n_global: usize,
+        first: usize,
+        row_ptr: &[usize],
+        cols: &[usize],
+        coordinates: &[f64],
+        block_size: usize,
+        options: &str,
+    ) -> Result<Self, Error> {
+        Self::create(
+            n_global,
+            first,
+            row_ptr,
+            cols,
+            coordinates,
+            block_size,
+            options,
+            true,
+        )
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn create(
+        n_global: usize,
+        first: usize,
+        row_ptr: &[usize],
+        cols: &[usize],
+        coordinates: &[f64],
+        block_size: usize,
+        options: &str,
+        distributed: bool,
+    ) -> Result<Self, Error> {
+        let n = row_ptr.len().saturating_sub(1);
+        let n_global = if distributed { n_global } else { n };
         let nnz = row_ptr.last().copied().unwrap_or(0);
         let invalid = |message: String| Err(Error { code: -1, message });
         if row_ptr.is_empty() || cols.len() != nnz || coordinates.len() != n {
@@ -201,12 +346,18 @@ impl KspSystem {
                 coordinates.len()
             ));
         }
-        if !(1..=3).contains(&block_size) || !n.is_multiple_of(block_size) {
+        if !(1..=3).contains(&block_size)
+            || !n.is_multiple_of(block_size)
+            || !first.is_multiple_of(block_size)
+            || first + n > n_global
+        {
             return invalid(format!(
-                "block size {block_size} does not divide the order {n} (allowed: 1 to 3)"
+                "rows {first} to {} of {n_global} are not whole blocks of {block_size} (allowed \
+                 block sizes: 1 to 3)",
+                first + n
             ));
         }
-        if row_ptr.windows(2).any(|w| w[0] > w[1]) || cols.iter().any(|&c| c >= n) {
+        if row_ptr.windows(2).any(|w| w[0] > w[1]) || cols.iter().any(|&c| c >= n_global) {
             return invalid("row pointers not monotone or a column out of range".into());
         }
         let mut env = String::new();
@@ -231,12 +382,15 @@ impl KspSystem {
         check(unsafe {
             ffi::hc_system_create(
                 n as i64,
+                n_global as i64,
+                first as i64,
                 block_size as i64,
                 row_ptr.as_ptr(),
                 cols.as_ptr(),
                 coordinates.as_ptr(),
                 c_prefix.as_ptr(),
                 c_options.as_ptr(),
+                c_int::from(distributed),
                 &mut raw,
             )
         })?;
@@ -248,7 +402,7 @@ impl KspSystem {
         })
     }
 
-    /// Order of the system.
+    /// Rows of the system held by this process (its order, unless distributed).
     pub fn n(&self) -> usize {
         self.n
     }

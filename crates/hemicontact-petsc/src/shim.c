@@ -62,12 +62,56 @@ int hc_initialize(void)
 int hc_version(void) { return PETSC_VERSION_MAJOR * 10000 + PETSC_VERSION_MINOR * 100 + PETSC_VERSION_SUBMINOR; }
 int hc_int_size(void) { return (int)sizeof(PetscInt); }
 
+/* This process's rank and the number of processes of PETSC_COMM_WORLD (MPI_COMM_WORLD). */
+int hc_world(int *rank, int *size)
+{
+  PetscErrorCode ierr = (PetscErrorCode)MPI_Comm_rank(PETSC_COMM_WORLD, rank);
+  if (!ierr) ierr = (PetscErrorCode)MPI_Comm_size(PETSC_COMM_WORLD, size);
+  return (int)ierr;
+}
+
+/* values <- the sum (op 0), maximum (1) or minimum (2) over the processes, element-wise. */
+int hc_allreduce(double *values, int64_t n, int op)
+{
+  MPI_Op mpi_op = op == 1 ? MPI_MAX : op == 2 ? MPI_MIN : MPI_SUM;
+  return MPI_Allreduce(MPI_IN_PLACE, values, (int)n, MPI_DOUBLE, mpi_op, PETSC_COMM_WORLD);
+}
+
+/* global <- the concatenation of every process's local values in rank order; n_global is
+ * the length of global, checked against the sum of the local lengths. */
+int hc_allgatherv(const double *local, int64_t n_local, double *global, int64_t n_global)
+{
+  int size, count = (int)n_local, *counts, *displs, ierr;
+  int64_t total = 0;
+  ierr = MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  if (ierr) return ierr;
+  counts = (int *)malloc(2 * (size_t)size * sizeof(int));
+  if (!counts) return PETSC_ERR_MEM;
+  displs = counts + size;
+  ierr = MPI_Allgather(&count, 1, MPI_INT, counts, 1, MPI_INT, PETSC_COMM_WORLD);
+  for (int r = 0; !ierr && r < size; r++) {
+    displs[r] = (int)total;
+    total += counts[r];
+  }
+  if (!ierr && total != n_global) {
+    snprintf(last_error, sizeof last_error, "allgather of %lld values into %lld", (long long)total, (long long)n_global);
+    ierr = PETSC_ERR_ARG_SIZ;
+  }
+  if (!ierr) ierr = MPI_Allgatherv(local, count, MPI_DOUBLE, global, counts, displs, MPI_DOUBLE, PETSC_COMM_WORLD);
+  free(counts);
+  return ierr;
+}
+
+/* Ends every process of PETSC_COMM_WORLD with the exit code. */
+void hc_abort(int code) { MPI_Abort(PETSC_COMM_WORLD, code); }
+
 /* A symmetric positive definite system on a fixed pattern with its Krylov solver. */
 typedef struct {
   Mat A;
   KSP ksp;
   Vec x, b;
-  PetscInt n;
+  PetscInt n;     /* rows of this process */
+  PetscInt first; /* global number of its first row */
   PetscInt *row_ptr, *cols;
   PetscBool fixed_rtol;  /* the options set -ksp_rtol: the per-solve tolerance is not imposed */
   PetscBool fixed_maxit; /* the options set -ksp_max_it: the per-solve cap is not imposed */
@@ -87,10 +131,12 @@ static PetscErrorCode copy_indices(PetscInt count, const int64_t *from, PetscInt
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode system_create(int64_t n, int64_t block_size, const int64_t *row_ptr,
-                                    const int64_t *cols, const double *coordinates,
-                                    const char *prefix, const char *options, hc_system **out)
+static PetscErrorCode system_create(int64_t n, int64_t n_global, int64_t first, int64_t block_size,
+                                    const int64_t *row_ptr, const int64_t *cols,
+                                    const double *coordinates, const char *prefix,
+                                    const char *options, int distributed, hc_system **out)
 {
+  MPI_Comm comm = distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
   hc_system *s;
   Vec coords;
   MatNullSpace near_null;
@@ -103,12 +149,14 @@ static PetscErrorCode system_create(int64_t n, int64_t block_size, const int64_t
   PetscCall(PetscNew(&s));
   *out = s;
   s->n = (PetscInt)n;
+  s->first = (PetscInt)first;
   PetscCall(copy_indices(n + 1, row_ptr, &s->row_ptr));
   PetscCall(copy_indices(row_ptr[n], cols, &s->cols));
 
-  /* The matrix: AIJ with the pattern preallocated exactly, in blocks of one node's DOFs. */
-  PetscCall(MatCreate(PETSC_COMM_SELF, &s->A));
-  PetscCall(MatSetSizes(s->A, s->n, s->n, s->n, s->n));
+  /* The matrix: AIJ with the pattern preallocated exactly, in blocks of one node's DOFs;
+   * distributed, each process holds its rows (columns in global numbers). */
+  PetscCall(MatCreate(comm, &s->A));
+  PetscCall(MatSetSizes(s->A, s->n, s->n, (PetscInt)n_global, (PetscInt)n_global));
   PetscCall(MatSetBlockSize(s->A, (PetscInt)block_size));
   PetscCall(MatSetType(s->A, MATAIJ));
   PetscCall(MatSeqAIJSetPreallocationCSR(s->A, s->row_ptr, s->cols, NULL));
@@ -136,7 +184,7 @@ static PetscErrorCode system_create(int64_t n, int64_t block_size, const int64_t
    * builds a new interpolation at every set-up: reusing it (-pc_gamg_reuse_interpolation,
    * on by default in PETSc 3.18) was measured to make the V-cycle indefinite on the
    * contact problems of hemicontact, whose matrix changes between Newton steps. */
-  PetscCall(KSPCreate(PETSC_COMM_SELF, &s->ksp));
+  PetscCall(KSPCreate(comm, &s->ksp));
   PetscCall(KSPSetOptionsPrefix(s->ksp, prefix));
   PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
   PetscCall(KSPSetType(s->ksp, KSPCG));
@@ -171,15 +219,18 @@ void hc_system_destroy(hc_system *s)
   PetscFree(s);
 }
 
-/* Creates the system of order n with the CSR pattern (row_ptr, cols) (both triangles,
- * sorted columns), the nodes' coordinates in DOF order (block_size per node) for the
- * rigid-body modes, the options prefix and the options string. */
-int hc_system_create(int64_t n, int64_t block_size, const int64_t *row_ptr, const int64_t *cols,
-                     const double *coordinates, const char *prefix, const char *options,
-                     hc_system **out)
+/* Creates the system of order n_global, of which this process holds the n rows from
+ * global row first on, with their CSR pattern (row_ptr, cols) (both triangles, sorted
+ * global columns), the nodes' coordinates of these rows in DOF order (block_size per node)
+ * for the rigid-body modes, the options prefix and the options string: on
+ * PETSC_COMM_WORLD (collective) if distributed, else on PETSC_COMM_SELF (n = n_global). */
+int hc_system_create(int64_t n, int64_t n_global, int64_t first, int64_t block_size,
+                     const int64_t *row_ptr, const int64_t *cols, const double *coordinates,
+                     const char *prefix, const char *options, int distributed, hc_system **out)
 {
   *out = NULL;
-  PetscErrorCode ierr = system_create(n, block_size, row_ptr, cols, coordinates, prefix, options, out);
+  PetscErrorCode ierr = system_create(n, n_global, first, block_size, row_ptr, cols, coordinates,
+                                      prefix, options, distributed, out);
   if (ierr) {
     hc_system_destroy(*out);
     *out = NULL;
@@ -191,8 +242,8 @@ static PetscErrorCode set_values(hc_system *s, const double *values)
 {
   PetscFunctionBeginUser;
   for (PetscInt i = 0; i < s->n; i++) {
-    PetscInt start = s->row_ptr[i], count = s->row_ptr[i + 1] - start;
-    PetscCall(MatSetValues(s->A, 1, &i, count, s->cols + start, values + start, INSERT_VALUES));
+    PetscInt row = s->first + i, start = s->row_ptr[i], count = s->row_ptr[i + 1] - start;
+    PetscCall(MatSetValues(s->A, 1, &row, count, s->cols + start, values + start, INSERT_VALUES));
   }
   PetscCall(MatAssemblyBegin(s->A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(s->A, MAT_FINAL_ASSEMBLY));
