@@ -94,6 +94,7 @@ pub mod loading;
 pub mod material;
 pub mod mesh;
 pub mod norms;
+pub mod parallel;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod problem;

@@ -101,10 +101,16 @@ impl LinearSolver {
 
     /// The solver used for a system of dimension `dim` with `n_free` free equations (the
     /// unknowns after the Dirichlet elimination: `DofMap::n_free`, the order of the
-    /// system pattern): [`LinearSolver::Direct`] or [`LinearSolver::Iterative`]. The only
+    /// system pattern): [`LinearSolver::Direct`] or [`LinearSolver::Iterative`], or
+    /// [`LinearSolver::Petsc`] when run as several MPI processes
+    /// ([`crate::parallel::Processes`]). The only
     /// place where `auto` is decided; every caller passes the number of free equations.
     pub fn resolve(self, dim: usize, n_free: usize) -> LinearSolver {
         match self {
+            // Several MPI processes: the distributed solver.
+            LinearSolver::Auto if crate::parallel::Processes::current().size() > 1 => {
+                LinearSolver::Petsc
+            }
             LinearSolver::Auto if dim == 3 && n_free >= Self::AUTO_ITERATIVE_EQUATIONS => {
                 LinearSolver::Iterative
             }
@@ -123,7 +129,8 @@ impl LinearSolver {
         }
     }
 
-    /// Checks that this build has the solver: `petsc` needs the cargo feature `petsc`.
+    /// Checks that this build has the solver (`petsc` needs the cargo feature `petsc`), and
+    /// that it is distributed when run as several MPI processes.
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming `linear_solver`.
@@ -131,7 +138,16 @@ impl LinearSolver {
         if self == LinearSolver::Petsc && !HAS_PETSC {
             return Err(Self::no_petsc());
         }
-        Ok(())
+        let processes = crate::parallel::Processes::current().size();
+        crate::error::require(
+            processes == 1 || matches!(self, LinearSolver::Petsc | LinearSolver::Auto),
+            "linear_solver",
+            format!("{:?}", format!("{self:?}").to_lowercase()),
+            &format!(
+                "\"petsc\" or \"auto\" when run as {processes} MPI processes: only PETSc's \
+                 solvers are distributed"
+            ),
+        )
     }
 
     /// The error of `linear_solver = "petsc"` in a build without PETSc.

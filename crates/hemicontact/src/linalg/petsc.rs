@@ -12,6 +12,12 @@
 //! pattern is given to PETSc once (exact preallocation); every changed matrix replaces the
 //! values in place.
 //!
+//! Run as several MPI processes ([`crate::parallel`]), each rank hands PETSc the rows of
+//! its range of nodes ([`Processes::node_range`]) of a distributed matrix (MatMPIAIJ), the
+//! Krylov solve runs on all of them, and the solution is gathered on every rank, which runs
+//! the rest of the Newton step on the whole of it. On one process the same code holds every
+//! row.
+//!
 //! A changed matrix does not always get a new preconditioner: a GAMG set-up costs about
 //! [`SETUP_COST`] CG iterations, and between Newton steps the matrix changes only at the
 //! contact points and locked cells. The choice is the one of the in-house iterative solver
@@ -33,6 +39,7 @@ use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::fem::dofs::FIXED;
 use crate::mesh::Mesh;
+use crate::parallel::Processes;
 use hemicontact_petsc::KspSystem;
 use std::time::Instant;
 
@@ -44,19 +51,26 @@ const PRESCRIBED: u32 = u32::MAX;
 pub struct PetscSolver {
     /// PETSc's matrix and KSP.
     system: KspSystem,
-    /// For every entry of PETSc's CSR matrix (DOF numbering, both triangles), the slot of
-    /// its value in the upper-triangle values of [`SystemPattern`], or [`PRESCRIBED`].
+    /// For every entry of this rank's rows of PETSc's CSR matrix (DOF numbering, both
+    /// triangles), the slot of its value in the upper-triangle values of
+    /// [`SystemPattern`], or [`PRESCRIBED`].
     source: Vec<u32>,
-    /// The CSR values handed to PETSc.
+    /// The CSR values of this rank's rows handed to PETSc.
     csr_values: Vec<f64>,
     /// Slots of the diagonal of the free equations (for the prescribed rows' scale).
     diagonal: Vec<usize>,
     /// Equation number of every DOF ([`FIXED`] for prescribed DOFs).
     equations: Vec<u32>,
-    /// Right-hand side and solution in DOF numbering.
-    b_dofs: Vec<f64>,
-    /// Solution in DOF numbering.
-    x_dofs: Vec<f64>,
+    /// The DOFs whose rows this rank holds (every DOF on one process).
+    rows: std::ops::Range<usize>,
+    /// Right-hand side of this rank's rows.
+    b_local: Vec<f64>,
+    /// Solution of this rank's rows.
+    x_local: Vec<f64>,
+    /// The whole solution gathered from every rank, in DOF numbering (several processes).
+    x_all: Vec<f64>,
+    /// The processes of the run.
+    processes: Processes,
     /// Matrix values of the current preconditioner (empty: none yet).
     factored: Vec<f64>,
     /// The options as given, for messages.
@@ -142,23 +156,43 @@ impl PetscSolver {
         for r in 0..n {
             entries[row_ptr[r]..row_ptr[r + 1]].sort_unstable();
         }
-        let cols: Vec<usize> = entries.iter().map(|&(c, _)| c as usize).collect();
-        let source = entries.iter().map(|&(_, s)| s).collect();
-        let system =
-            KspSystem::new(&row_ptr, &cols, mesh.coords(), mesh.dim(), options).map_err(|e| {
-                Error::Invalid {
-                    field: "petsc.options".into(),
-                    value: format!("{options:?}"),
-                    allowed: format!("options PETSc accepts: {e}"),
-                }
-            })?;
+        // This rank's rows: the DOFs of its nodes (all of them on one process).
+        let processes = Processes::current();
+        let d = mesh.dim();
+        let nodes = processes.node_range(mesh.n_nodes());
+        let rows = d * nodes.start..d * nodes.end;
+        let (first, last) = (row_ptr[rows.start], row_ptr[rows.end]);
+        let local_ptr: Vec<usize> = row_ptr[rows.start..=rows.end]
+            .iter()
+            .map(|&p| p - first)
+            .collect();
+        let cols: Vec<usize> = entries[first..last]
+            .iter()
+            .map(|&(c, _)| c as usize)
+            .collect();
+        let source = entries[first..last].iter().map(|&(_, s)| s).collect();
+        let coordinates = &mesh.coords()[rows.clone()];
+        let created = if processes.size() > 1 {
+            KspSystem::new_distributed(n, rows.start, &local_ptr, &cols, coordinates, d, options)
+        } else {
+            KspSystem::new(&local_ptr, &cols, coordinates, d, options)
+        };
+        let system = created.map_err(|e| Error::Invalid {
+            field: "petsc.options".into(),
+            value: format!("{options:?}"),
+            allowed: format!("options PETSc accepts: {e}"),
+        })?;
+        let local = rows.len();
         Ok(PetscSolver {
             source,
-            csr_values: vec![0.0; nnz],
+            csr_values: vec![0.0; last - first],
             diagonal: (0..pattern.n()).map(|j| col_ptr[j + 1] - 1).collect(),
             equations: equations.to_vec(),
-            b_dofs: vec![0.0; n],
-            x_dofs: vec![0.0; n],
+            rows,
+            b_local: vec![0.0; local],
+            x_local: vec![0.0; local],
+            x_all: Vec::new(),
+            processes,
             factored: Vec::new(),
             options: options.to_string(),
             can_keep: system.can_keep_preconditioner(),
@@ -229,8 +263,12 @@ impl SpdSolver for PetscSolver {
             // Copying values is part of the solve; only set-ups count as factorizations.
             stats.solve_time = t.elapsed().as_secs_f64();
         }
-        for (dof, &eq) in self.equations.iter().enumerate() {
-            self.b_dofs[dof] = if eq == FIXED { 0.0 } else { b[eq as usize] };
+        for (bl, &eq) in self
+            .b_local
+            .iter_mut()
+            .zip(&self.equations[self.rows.clone()])
+        {
+            *bl = if eq == FIXED { 0.0 } else { b[eq as usize] };
         }
         let keep = !unchanged
             && self.can_keep
@@ -245,7 +283,7 @@ impl SpdSolver for PetscSolver {
             let cap = (expected + SETUP_COST - self.rent).ceil() as usize + 1;
             let outcome = self
                 .system
-                .solve(&self.b_dofs, &mut self.x_dofs, eta, cap, true)
+                .solve(&self.b_local, &mut self.x_local, eta, cap, true)
                 .map_err(|e| self.breakdown("failed", &e))?;
             stats.solve_time += t.elapsed().as_secs_f64();
             stats.iterations = outcome.iterations;
@@ -270,8 +308,8 @@ impl SpdSolver for PetscSolver {
             let outcome = self
                 .system
                 .solve(
-                    &self.b_dofs,
-                    &mut self.x_dofs,
+                    &self.b_local,
+                    &mut self.x_local,
                     eta,
                     ITERATIVE_MAX_ITERATIONS,
                     true,
@@ -295,9 +333,17 @@ impl SpdSolver for PetscSolver {
                 self.fresh_rate = outcome.iterations.max(1) as f64 / decades;
             }
         }
+        let x_dofs = if self.processes.size() > 1 {
+            self.x_all = self
+                .processes
+                .all_gather(&self.x_local, self.equations.len())?;
+            &self.x_all
+        } else {
+            &self.x_local
+        };
         for (dof, &eq) in self.equations.iter().enumerate() {
             if eq != FIXED {
-                x[eq as usize] = self.x_dofs[dof];
+                x[eq as usize] = x_dofs[dof];
             }
         }
         Ok(stats)

@@ -80,6 +80,8 @@ pub struct SolveReport {
     /// The linear solver that solved the Newton systems: `direct`, `iterative`, or
     /// `petsc (ksp cg, pc gamg)` with PETSc's Krylov method and preconditioner.
     pub linear_solver: String,
+    /// MPI processes that ran the solve (1 without MPI; see [`crate::parallel`]).
+    pub processes: usize,
     /// Stored entries of the Cholesky factor (0 with the iterative linear solver).
     pub nnz_factor: usize,
     /// Equations per multigrid level, finest first, with the iterative linear solver
@@ -147,6 +149,7 @@ impl SolveReport {
             n_equations: system.dofs.n_free(),
             nnz_matrix: system.pattern.nnz(),
             linear_solver: system.linear_solver.describe(),
+            processes: crate::parallel::Processes::current().size(),
             nnz_factor: system.linear_solver.nnz_factor(),
             multigrid_levels: system.linear_solver.level_sizes(),
             outer: Vec::new(),

@@ -1,0 +1,156 @@
+//! The processes a run is made of: one, or the ranks of an MPI launch (`mpirun -np N`,
+//! with the cargo feature `petsc`, whose PETSc brings the MPI).
+//!
+//! [`Processes`] is the one seam through which the rest of the program learns its rank and
+//! the number of processes, and the few collective operations it needs. Its one-process
+//! form is trivial (rank 0 of 1, every reduction the identity), so a run without MPI pays
+//! nothing for it. What is distributed today is the linear solve: every rank holds the
+//! whole mesh and runs the whole outer loop on the same data (so every rank takes the same
+//! decisions without communicating), and PETSc's distributed matrix holds each rank's
+//! rows, by contiguous ranges of nodes ([`Processes::node_range`]).
+
+use crate::error::{Error, Result};
+use std::sync::OnceLock;
+
+/// The rank and size of this process's MPI world, once it was started by
+/// [`Processes::launch`].
+static WORLD: OnceLock<(usize, usize)> = OnceLock::new();
+
+/// The processes of this run; see the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Processes {
+    rank: usize,
+    size: usize,
+}
+
+/// The rank and size of an MPI launch with more than one process, from the variables that
+/// OpenMPI (`OMPI_COMM_WORLD_RANK`, `OMPI_COMM_WORLD_SIZE`) and MPICH's launcher
+/// (`PMI_RANK`, `PMI_SIZE`) set for each process; `None` for a single process.
+pub fn mpi_launch() -> Option<(usize, usize)> {
+    let var = |name: &str| std::env::var(name).ok()?.trim().parse::<usize>().ok();
+    [
+        ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),
+        ("PMI_RANK", "PMI_SIZE"),
+    ]
+    .iter()
+    .find_map(|&(rank, size)| Some((var(rank).unwrap_or(0), var(size)?)))
+    .filter(|&(_, size)| size > 1)
+}
+
+impl Processes {
+    /// The processes of this run: those of the MPI launch that started it
+    /// ([`mpi_launch`]; MPI initialized through PETSc), else this process alone. Called
+    /// once, first thing, by a program that may run under `mpirun`.
+    ///
+    /// # Errors
+    /// [`Error::Invalid`] for an MPI launch of a build without the feature `petsc`;
+    /// MPI's errors.
+    pub fn launch() -> Result<Processes> {
+        let Some((_, size)) = mpi_launch() else {
+            return Ok(Self::current());
+        };
+        #[cfg(feature = "petsc")]
+        {
+            let world = hemicontact_petsc::World::get().map_err(|e| {
+                Error::Breakdown(format!("MPI could not be initialized through PETSc: {e}"))
+            })?;
+            let _ = WORLD.set((world.rank(), world.size()));
+            let _ = size;
+            Ok(Self::current())
+        }
+        #[cfg(not(feature = "petsc"))]
+        Err(Error::invalid(
+            "processes",
+            size,
+            "1: this build of hemicontact runs as one process (an MPI launch needs the cargo \
+             feature `petsc`, see docs/distributed.md)",
+        ))
+    }
+
+    /// The processes as launched (rank 0 of 1 before or without [`Processes::launch`]).
+    pub fn current() -> Processes {
+        let (rank, size) = WORLD.get().copied().unwrap_or((0, 1));
+        Processes { rank, size }
+    }
+
+    /// This process's rank, 0 to `size − 1`.
+    pub fn rank(&self) -> usize {
+        self.rank
+    }
+
+    /// Number of processes.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// Whether this is rank 0, the one that prints and writes the results.
+    pub fn is_root(&self) -> bool {
+        self.rank == 0
+    }
+
+    /// The nodes `first..last` this rank owns of `nodes`: contiguous ranges of (almost)
+    /// equal size, in rank order.
+    pub fn node_range(&self, nodes: usize) -> std::ops::Range<usize> {
+        self.rank * nodes / self.size..(self.rank + 1) * nodes / self.size
+    }
+
+    /// `values` ← their element-wise maximum over the processes (collective; the identity
+    /// on one process).
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn max(&self, values: &mut [f64]) -> Result<()> {
+        if self.size == 1 {
+            return Ok(());
+        }
+        #[cfg(feature = "petsc")]
+        {
+            let world = hemicontact_petsc::World::get().map_err(mpi_error)?;
+            world.max(values).map_err(mpi_error)
+        }
+        #[cfg(not(feature = "petsc"))]
+        {
+            let _ = values;
+            Ok(())
+        }
+    }
+
+    /// The concatenation of every rank's `local` values in rank order, on every rank
+    /// (collective; a copy on one process). `total` is the sum of the local lengths.
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn all_gather(&self, local: &[f64], total: usize) -> Result<Vec<f64>> {
+        if self.size == 1 {
+            return Ok(local.to_vec());
+        }
+        #[cfg(feature = "petsc")]
+        {
+            let world = hemicontact_petsc::World::get().map_err(mpi_error)?;
+            world.all_gather(local, total).map_err(mpi_error)
+        }
+        #[cfg(not(feature = "petsc"))]
+        {
+            let _ = total;
+            Ok(local.to_vec())
+        }
+    }
+
+    /// Ends every process with exit code `code`: the way out of a failure that only some
+    /// ranks may see, which would leave the others waiting in a collective operation. On
+    /// one process, `std::process::exit`.
+    pub fn abort(&self, code: i32) -> ! {
+        #[cfg(feature = "petsc")]
+        if self.size > 1 {
+            if let Ok(world) = hemicontact_petsc::World::get() {
+                world.abort(code);
+            }
+        }
+        std::process::exit(code)
+    }
+}
+
+#[cfg(feature = "petsc")]
+fn mpi_error(e: hemicontact_petsc::Error) -> Error {
+    Error::Breakdown(format!("MPI: {e}"))
+}
