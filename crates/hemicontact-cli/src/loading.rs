@@ -97,18 +97,18 @@ pub fn solve_path(
             summary.prepend_notes(notes.clone());
             let step_title = format!("{title}, load factor {}", significant(s.factor));
             let mut extra = Vec::new();
-            if output.vtu {
+            if output.vtu && ctx.output.writes() {
                 extra.push((
                     "solution.vtu",
                     solution_vtu(&s.problem, &s.solution, &step_title, s.factor)?.to_bytes(),
                 ));
                 datasets.push((s.factor, format!("{folder}/solution.vtu")));
             }
-            if s.step == n || !r.converged {
+            if (s.step == n || !r.converged) && ctx.output.writes() {
                 extra.extend(solution_figures(&s.problem, &s.solution, &step_title)?);
             }
             let written = ctx.output.with(|set| {
-                Ok(write_results(
+                Ok(Some(write_results(
                     set,
                     &folder,
                     &s.problem,
@@ -117,12 +117,13 @@ pub fn solve_path(
                     output.summary.then_some(&summary),
                     false,
                     &extra,
-                ))
+                )))
             });
             match written {
-                Ok(files) => {
+                Ok(Some(files)) => {
                     files?;
                 }
+                Ok(None) => {}
                 // The output's own error (no result set): kept, and the path stopped.
                 Err(e) => {
                     let text = e.to_string();

@@ -191,38 +191,41 @@ impl RunContext {
     }
 }
 
-/// The rank and size of an MPI launch with more than one process, from the variables that
-/// OpenMPI (`OMPI_COMM_WORLD_RANK`, `OMPI_COMM_WORLD_SIZE`) and MPICH's launcher
-/// (`PMI_RANK`, `PMI_SIZE`) set for each process; `None` for a single process.
-fn mpi_launch() -> Option<(usize, usize)> {
-    let var = |name: &str| std::env::var(name).ok()?.trim().parse::<usize>().ok();
-    [
-        ("OMPI_COMM_WORLD_RANK", "OMPI_COMM_WORLD_SIZE"),
-        ("PMI_RANK", "PMI_SIZE"),
-    ]
-    .iter()
-    .find_map(|&(rank, size)| Some((var(rank).unwrap_or(0), var(size)?)))
-    .filter(|&(_, size)| size > 1)
-}
-
 fn main() -> ExitCode {
-    let output = output::Output::new();
+    // The processes of an MPI launch (one without `mpirun`): rank 0 prints and writes, the
+    // other ranks compute the same and stay silent.
+    let processes = match hemicontact::parallel::Processes::launch() {
+        Ok(p) => p,
+        Err(e) => {
+            if hemicontact::parallel::mpi_launch().is_none_or(|(rank, _)| rank == 0) {
+                eprintln!("error: {e}");
+            }
+            return ExitCode::from(1);
+        }
+    };
+    if processes.size() > 1 {
+        // The same number of threads on every rank: the assembly's sums are reproducible
+        // for a given number of parallel chunks, and every rank must compute the same
+        // numbers to take the same decisions.
+        let own = std::env::var("RAYON_NUM_THREADS")
+            .ok()
+            .and_then(|v| v.trim().parse::<usize>().ok())
+            .filter(|&n| n > 0)
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+        let mut threads = [own as f64];
+        if let Err(e) = processes.max(&mut threads) {
+            eprintln!("error: {e}");
+            processes.abort(1);
+        }
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads[0] as usize)
+            .build_global();
+    }
+    let output = output::Output::new(processes.is_root());
     output.install_interrupt_handler();
     let cli = Cli::parse();
-    // Every rank of an MPI launch would solve the whole problem alone and write the same
-    // results: refused until the solve is distributed. Rank 0 says why; all exit with 1.
-    if let Some((rank, size)) = mpi_launch() {
-        if rank == 0 {
-            eprintln!(
-                "error: started as {size} MPI processes (mpirun -np {size}): hemicontact does not \
-                 distribute a solve across processes yet, and each process would solve the \
-                 whole problem alone; run it as one process (PETSc's solvers included, \
-                 docs/distributed.md)"
-            );
-        }
-        return ExitCode::from(1);
-    }
     let verbosity = match (cli.quiet, cli.verbose) {
+        _ if !processes.is_root() => Verbosity::Quiet,
         (true, _) => Verbosity::Quiet,
         (false, true) => Verbosity::Verbose,
         (false, false) => Verbosity::Normal,
@@ -285,9 +288,29 @@ fn main() -> ExitCode {
     };
     ctx.output.discard();
     match result {
-        Ok(Outcome::Done) => ExitCode::SUCCESS,
-        Ok(Outcome::NotConverged) => ExitCode::from(3),
+        Ok(outcome) => {
+            // Every rank waits for rank 0's results to be in place before it exits (an MPI
+            // launcher ends the others when one process exits with an error code).
+            if let Err(e) = processes.max(&mut [0.0]) {
+                eprintln!("error: {e}");
+                processes.abort(1);
+            }
+            match outcome {
+                Outcome::Done => ExitCode::SUCCESS,
+                Outcome::NotConverged => ExitCode::from(3),
+            }
+        }
         Err(e) => {
+            if processes.size() > 1 {
+                // Possibly this rank's alone: end every rank rather than leave them waiting.
+                eprintln!(
+                    "error on rank {} of {}: {}",
+                    processes.rank(),
+                    processes.size(),
+                    error_chain(&e)
+                );
+                processes.abort(1);
+            }
             eprintln!("error: {}", error_chain(&e));
             ExitCode::from(1)
         }
@@ -504,7 +527,11 @@ fn run_and_write(
         .clone()
         .unwrap_or_else(|| label.to_string());
     let t = std::time::Instant::now();
-    let extra = solution_figures(&problem, &solution, &title)?;
+    let extra = if ctx.output.writes() {
+        solution_figures(&problem, &solution, &title)?
+    } else {
+        Vec::new()
+    };
     ctx.output.with(|set| {
         Ok(write_results(
             set,

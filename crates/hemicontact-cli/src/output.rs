@@ -23,14 +23,20 @@ enum State {
 }
 
 /// This run's output: a handle shared (by cloning) between the commands and the Ctrl-C
-/// handler.
+/// handler, and whether this process writes (rank 0 of an MPI launch writes; the other
+/// ranks compute the same results and write nothing).
 #[derive(Clone)]
-pub struct Output(Arc<Mutex<State>>);
+pub struct Output(Arc<Mutex<State>>, bool);
 
 impl Output {
-    /// No result set begun yet.
-    pub fn new() -> Self {
-        Output(Arc::new(Mutex::new(State::None)))
+    /// No result set begun yet; `writes`: whether this process writes results.
+    pub fn new(writes: bool) -> Self {
+        Output(Arc::new(Mutex::new(State::None)), writes)
+    }
+
+    /// Whether this process writes results (rank 0, or the only process).
+    pub fn writes(&self) -> bool {
+        self.1
     }
 
     fn state(&self) -> MutexGuard<'_, State> {
@@ -41,13 +47,20 @@ impl Output {
     /// another run writes there or the folder cannot be written). Nothing in `dir` changes
     /// until [`Output::commit`]; see [`hemicontact::io::result_set`].
     pub fn begin(&self, dir: &Path) -> Result<()> {
+        if !self.1 {
+            return Ok(());
+        }
         let set = ResultSet::begin(dir)?;
         *self.state() = State::Writing(set);
         Ok(())
     }
 
-    /// Runs `f` on this run's result set (begun by [`Output::begin`]).
-    pub fn with<T>(&self, f: impl FnOnce(&mut ResultSet) -> Result<T>) -> Result<T> {
+    /// Runs `f` on this run's result set (begun by [`Output::begin`]); in a process that
+    /// does not write, nothing (`T::default()`).
+    pub fn with<T: Default>(&self, f: impl FnOnce(&mut ResultSet) -> Result<T>) -> Result<T> {
+        if !self.1 {
+            return Ok(T::default());
+        }
         match &mut *self.state() {
             State::Writing(set) => f(set),
             _ => anyhow::bail!("internal error: no result set is being written"),
@@ -56,6 +69,9 @@ impl Output {
 
     /// Puts this run's result set in place as a unit. Returns the final paths of its files.
     pub fn commit(&self) -> Result<Vec<PathBuf>> {
+        if !self.1 {
+            return Ok(Vec::new());
+        }
         let mut state = self.state();
         match std::mem::replace(&mut *state, State::None) {
             State::Writing(set) => {
@@ -107,7 +123,10 @@ impl Output {
                     dir.display()
                 ),
             };
-            eprintln!("{message}");
+            // One message per run: an MPI launch's other ranks exit silently.
+            if output.1 {
+                eprintln!("{message}");
+            }
             std::process::exit(INTERRUPTED);
         });
     }

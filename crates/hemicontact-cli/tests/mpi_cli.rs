@@ -1,0 +1,218 @@
+//! `mpirun -np N hemicontact solve` (cargo feature `petsc`): 1, 2 and 3 processes (3
+//! oversubscribed on two cores) give the serial direct solver's displacement to 1e-8 on
+//! the paper's example, its 3D analogue, Hertz 3D and a Gmsh scenario; a given number of
+//! processes is bitwise reproducible; one result set is written, by rank 0, and the summary
+//! says how many processes ran; an invalid scenario and a solve that does not converge end
+//! every process with the serial program's message and exit code, without hanging.
+#![cfg(feature = "petsc")]
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+mod common;
+
+#[allow(dead_code)] // The reader's other arrays are not read here.
+#[path = "../../hemicontact/tests/common/vtu.rs"]
+mod vtu;
+
+use common::{bin, repo_root};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// `mpirun -np N` of this build's program (as root too, oversubscribed), with a time limit
+/// that turns a hang into a failure.
+fn mpirun(np: usize) -> Command {
+    let mut c = Command::new("timeout");
+    c.args(["600", "mpirun", "-np", &np.to_string(), "--oversubscribe"])
+        .arg(env!("CARGO_BIN_EXE_hemicontact"))
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1");
+    c
+}
+
+/// A copy of `scenarios/NAME` as `dir/copy` with `lines` added to its `[solver]` table and
+/// its mesh file (if any) referred to by absolute path.
+fn variant(dir: &Path, name: &str, copy: &str, lines: &str) -> PathBuf {
+    let scenarios = repo_root().join("scenarios");
+    let mut text = std::fs::read_to_string(scenarios.join(name)).unwrap();
+    text = text.replace(
+        "file = \"meshes/",
+        &format!("file = \"{}/meshes/", scenarios.display()),
+    );
+    text = if text.contains("\n[solver]\n") {
+        text.replace("\n[solver]\n", &format!("\n[solver]\n{lines}\n"))
+    } else {
+        format!("{text}\n[solver]\n{lines}\n")
+    };
+    let file = dir.join(copy);
+    std::fs::write(&file, text).unwrap();
+    file
+}
+
+fn displacement(dir: &Path) -> Vec<f64> {
+    vtu::f64s(
+        &std::fs::read(dir.join("solution.vtu")).unwrap(),
+        "displacement",
+    )
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[track_caller]
+fn assert_exit(out: &Output, code: i32) {
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "stdout:\n{}\nstderr:\n{}",
+        common::text(&out.stdout),
+        common::text(&out.stderr)
+    );
+}
+
+/// The serial direct solve of a scenario against 1, 2 and 3 processes.
+fn agrees_across_processes(name: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let direct = variant(
+        dir.path(),
+        name,
+        "direct.toml",
+        "linear_solver = \"direct\"",
+    );
+    let serial = dir.path().join("serial");
+    let out = bin()
+        .args(["solve", "-q"])
+        .arg(&direct)
+        .arg("--out")
+        .arg(&serial)
+        .output()
+        .unwrap();
+    assert_exit(&out, 0);
+    let reference = displacement(&serial);
+    let scale = reference.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    // `auto` is PETSc's solver when run as several processes (and the direct one on one).
+    let file = variant(dir.path(), name, "auto.toml", "");
+    for np in [1, 2, 3] {
+        let folder = dir.path().join(format!("np{np}"));
+        let out = mpirun(np)
+            .args(["solve", "-q"])
+            .arg(&file)
+            .arg("--out")
+            .arg(&folder)
+            .output()
+            .unwrap();
+        assert_exit(&out, 0);
+        let s = summary(&folder);
+        assert_eq!(s["report"]["processes"], np, "{name}, {np} processes");
+        assert_eq!(s["report"]["converged"], true, "{name}, {np} processes");
+        let u = displacement(&folder);
+        let diff = u
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / scale;
+        eprintln!(
+            "{name}, np = {np} ({}): max relative difference from the serial direct \
+             solve {diff:.1e}",
+            s["report"]["linear_solver"]
+        );
+        assert!(diff <= 1e-8, "{name}, {np} processes: {diff:e}");
+    }
+}
+
+#[test]
+fn paper_across_processes() {
+    agrees_across_processes("paper.toml");
+}
+
+#[test]
+fn paper3d_across_processes() {
+    agrees_across_processes("paper3d.toml");
+}
+
+#[test]
+fn hertz3d_across_processes() {
+    agrees_across_processes("hertz3d.toml");
+}
+
+#[test]
+fn gmsh_half_disc_across_processes() {
+    agrees_across_processes("half-disc.toml");
+}
+
+/// Two runs on 2 processes write the same bytes of displacement; the output folder holds
+/// one result set (no other rank wrote anything beside it).
+#[test]
+fn two_processes_are_bitwise_reproducible() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = variant(dir.path(), "paper3d.toml", "paper3d.toml", "");
+    let mut fields = Vec::new();
+    for run in ["a", "b"] {
+        let folder = dir.path().join(run);
+        let out = mpirun(2)
+            .args(["solve", "-q"])
+            .arg(&file)
+            .arg("--out")
+            .arg(&folder)
+            .output()
+            .unwrap();
+        assert_exit(&out, 0);
+        fields.push(displacement(&folder));
+    }
+    assert!(fields[0] == fields[1], "two runs on 2 processes differ");
+    let mut entries: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    entries.sort();
+    assert_eq!(entries, ["a", "b", "paper3d.toml"]);
+}
+
+/// An invalid scenario: every process stops with the serial program's message (once or
+/// from several ranks) and exit code 1, within the time limit.
+#[test]
+fn an_invalid_scenario_ends_every_process() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = variant(
+        dir.path(),
+        "paper3d.toml",
+        "paper3d.toml",
+        "certificate_tolerance = 2.0",
+    );
+    let out = mpirun(3)
+        .args(["solve"])
+        .arg(&file)
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    assert_exit(&out, 1);
+    let stderr = common::text(&out.stderr);
+    assert!(stderr.contains("certificate_tolerance"), "{stderr}");
+    assert!(!dir.path().join("out").exists());
+}
+
+/// A solve that does not converge: exit code 3 from every process, and rank 0's results
+/// written, marked not converged.
+#[test]
+fn a_solve_that_does_not_converge_is_written_and_exits_3() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = variant(
+        dir.path(),
+        "paper3d.toml",
+        "paper3d.toml",
+        "[solver.outer]\nmax_iterations = 1",
+    );
+    let folder = dir.path().join("out");
+    let out = mpirun(2)
+        .args(["solve", "-q"])
+        .arg(&file)
+        .arg("--out")
+        .arg(&folder)
+        .output()
+        .unwrap();
+    assert_exit(&out, 3);
+    let s = summary(&folder);
+    assert_eq!(s["report"]["converged"], false);
+    assert_eq!(s["report"]["processes"], 2);
+}
