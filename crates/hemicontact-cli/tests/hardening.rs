@@ -33,34 +33,37 @@ fn oversized_mesh_fails_fast_with_memory_estimate() {
     assert!(elapsed < Duration::from_secs(2), "took {elapsed:?}");
 }
 
-/// Ctrl-C during a solve: exit code 130, a message saying the folder was left as it was,
-/// and nothing in the work folder: no output folder, no temporary, no lock.
+/// Ctrl-C (SIGINT) during a solve, or SIGTERM (what `kill` and MPI launchers send):
+/// exit code 130, a message saying the folder was left as it was, and nothing in the work
+/// folder: no output folder, no temporary, no lock.
 #[test]
 fn interrupt_exits_130_and_leaves_no_partial_files() {
-    let dir = tempfile::tempdir().unwrap();
-    let out_dir = dir.path().join("out");
-    let child = bin()
-        .args(["paper", "--n", "512", "--out"])
-        .arg(&out_dir)
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    std::thread::sleep(Duration::from_millis(1500));
-    let status = Command::new("kill")
-        .args(["-INT", &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let out = child.wait_with_output().unwrap();
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(130), "{stderr}");
-    assert!(stderr.contains("was left as it was"), "{stderr}");
-    let left: Vec<_> = std::fs::read_dir(dir.path())
-        .unwrap()
-        .flatten()
-        .map(|e| e.file_name())
-        .collect();
-    assert!(left.is_empty(), "left behind: {left:?}");
+    for signal in ["-INT", "-TERM"] {
+        let dir = tempfile::tempdir().unwrap();
+        let out_dir = dir.path().join("out");
+        let child = bin()
+            .args(["paper", "--n", "512", "--out"])
+            .arg(&out_dir)
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(Duration::from_millis(1500));
+        let status = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(130), "{signal}: {stderr}");
+        assert!(stderr.contains("was left as it was"), "{signal}: {stderr}");
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert!(left.is_empty(), "{signal}: left behind: {left:?}");
+    }
 }
 
 /// A device that never ends (`/dev/zero`) is refused at once as a scenario: it is not a
