@@ -1,9 +1,10 @@
 //! `mpirun -np N hemicontact solve` (cargo feature `petsc`): 1, 2 and 3 processes (3
 //! oversubscribed on two cores) give the serial direct solver's displacement to 1e-8 on
-//! the paper's example, its 3D analogue, Hertz 3D and a Gmsh scenario; a given number of
-//! processes is bitwise reproducible; one result set is written, by rank 0, and the summary
-//! says how many processes ran; an invalid scenario and a solve that does not converge end
-//! every process with the serial program's message and exit code, without hanging.
+//! the paper's example, its 3D analogue, Hertz 3D, Hertz 2D (a free rigid motion carried
+//! by contact) and a Gmsh scenario; a given number of processes is bitwise reproducible;
+//! one result set is written, by rank 0, and the summary says how many processes ran; an
+//! invalid scenario and a solve that does not converge end every process with the serial
+//! program's message and exit code, without hanging.
 #![cfg(feature = "petsc")]
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -89,6 +90,7 @@ fn agrees_across_processes(name: &str) {
     assert_exit(&out, 0);
     let reference = displacement(&serial);
     let scale = reference.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let shift = summary(&serial)["report"]["rigid_shift"].as_f64().unwrap();
     // `auto` is PETSc's solver when run as several processes (and the direct one on one).
     let file = variant(dir.path(), name, "auto.toml", "");
     for np in [1, 2, 3] {
@@ -117,6 +119,13 @@ fn agrees_across_processes(name: &str) {
             s["report"]["linear_solver"]
         );
         assert!(diff <= 1e-8, "{name}, {np} processes: {diff:e}");
+        // The Newton shift on free rigid motions is the largest diagonal entry on them,
+        // found from each process's complete rows.
+        let s_np = s["report"]["rigid_shift"].as_f64().unwrap();
+        assert!(
+            (s_np - shift).abs() <= 1e-12 * shift,
+            "{name}, {np} processes: rigid shift {s_np:e}, serial {shift:e}"
+        );
     }
 }
 
@@ -133,6 +142,13 @@ fn paper3d_across_processes() {
 #[test]
 fn hertz3d_across_processes() {
     agrees_across_processes("hertz3d.toml");
+}
+
+/// A body whose vertical translation only contact carries: the Newton matrix is shifted on
+/// that motion.
+#[test]
+fn hertz2d_free_rigid_motion_across_processes() {
+    agrees_across_processes("hertz2d.toml");
 }
 
 #[test]

@@ -4,10 +4,13 @@
 //! [`Processes`] is the one seam through which the rest of the program learns its rank and
 //! the number of processes, and the few collective operations it needs. Its one-process
 //! form is trivial (rank 0 of 1, every reduction the identity), so a run without MPI pays
-//! nothing for it. What is distributed today is the linear solve: every rank holds the
-//! whole mesh and runs the whole outer loop on the same data (so every rank takes the same
-//! decisions without communicating), and PETSc's distributed matrix holds each rank's
-//! rows, by contiguous ranges of nodes ([`Processes::node_range`]).
+//! nothing for it. What is distributed today is the assembly of the Newton matrix and the
+//! linear solve: each rank owns a contiguous range of nodes ([`Processes::node_range`]),
+//! assembles the cells around them (its [`Subdomain`]) and hands PETSc's distributed matrix
+//! their rows; the bulk energy and gradient are completed by two collective operations per
+//! evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank still holds the
+//! whole mesh and runs the whole outer loop on the same (gathered) data, so every rank takes
+//! the same decisions without further communication.
 
 use crate::error::{Error, Result};
 use std::sync::OnceLock;
@@ -94,6 +97,29 @@ impl Processes {
         self.rank * nodes / self.size..(self.rank + 1) * nodes / self.size
     }
 
+    /// `values` ← their element-wise sum over the processes (collective; the identity on
+    /// one process). The partial values are gathered and added in rank order on every
+    /// process, so that the sum is the same to the last bit on every rank and in every run
+    /// on the same number of processes (an MPI reduction guarantees neither). For a few
+    /// values: it moves `size × values.len()` numbers.
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn sum(&self, values: &mut [f64]) -> Result<()> {
+        if self.size == 1 {
+            return Ok(());
+        }
+        let m = values.len();
+        let all = self.all_gather(values, m * self.size)?;
+        values.fill(0.0);
+        for part in all.chunks_exact(m.max(1)) {
+            for (v, p) in values.iter_mut().zip(part) {
+                *v += p;
+            }
+        }
+        Ok(())
+    }
+
     /// `values` ← their element-wise maximum over the processes (collective; the identity
     /// on one process).
     ///
@@ -153,4 +179,61 @@ impl Processes {
 #[cfg(feature = "petsc")]
 fn mpi_error(e: hemicontact_petsc::Error) -> Error {
     Error::Breakdown(format!("MPI: {e}"))
+}
+
+/// What one rank assembles when the run is several processes: the nodes it owns
+/// ([`Processes::node_range`]), whose rows of the Newton matrix and entries of the gradient
+/// it computes exactly, and the cells around them. A cell is *owned* by the rank of its
+/// lowest-numbered node, which alone counts its energy; the other cells with a node in
+/// the range are the rank's *ghost* layer, assembled again so that the rows of its nodes
+/// are complete without sending matrix entries between processes. No rank needs another's
+/// partial sums, so the result does not depend on the order in which messages arrive.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Subdomain {
+    /// The nodes this rank owns.
+    pub nodes: std::ops::Range<usize>,
+    /// The cells this rank assembles: its owned cells, then its ghost cells, each in
+    /// increasing order.
+    pub cells: Vec<u32>,
+    /// How many of [`Subdomain::cells`] are owned (their energy is counted here).
+    pub owned: usize,
+}
+
+impl Subdomain {
+    /// This rank's subdomain of `mesh`; `None` on one process, which assembles every
+    /// cell.
+    pub fn of(mesh: &crate::mesh::Mesh, processes: &Processes) -> Option<Subdomain> {
+        if processes.size() == 1 {
+            return None;
+        }
+        Some(Subdomain::new(mesh, processes.node_range(mesh.n_nodes())))
+    }
+
+    /// The subdomain of the nodes `nodes` of `mesh`: the cells around them, owned first.
+    pub fn new(mesh: &crate::mesh::Mesh, nodes: std::ops::Range<usize>) -> Subdomain {
+        let inside = |v: &u32| nodes.contains(&(*v as usize));
+        let mut owned = Vec::new();
+        let mut ghosts = Vec::new();
+        for c in 0..mesh.n_cells() {
+            let cell = mesh.cell(c);
+            let lowest = cell.iter().min().copied().unwrap_or(0);
+            if inside(&lowest) {
+                owned.push(c as u32);
+            } else if cell.iter().any(inside) {
+                ghosts.push(c as u32);
+            }
+        }
+        let n_owned = owned.len();
+        owned.extend(ghosts);
+        Subdomain {
+            nodes,
+            cells: owned,
+            owned: n_owned,
+        }
+    }
+
+    /// The DOFs of the owned nodes, for `dim` DOFs per node.
+    pub fn dofs(&self, dim: usize) -> std::ops::Range<usize> {
+        dim * self.nodes.start..dim * self.nodes.end
+    }
 }

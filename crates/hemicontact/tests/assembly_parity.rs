@@ -1,10 +1,12 @@
 //! Serial/parallel assembly parity: the chunked parallel assembly (per-chunk buffers summed
 //! in chunk order) equals the serial cell loop up to the order of floating-point additions,
-//! and is bitwise reproducible run to run for a given number of chunks.
+//! and is bitwise reproducible run to run for a given number of chunks; the assembly of a
+//! subdomain (what one of several processes assembles) gives its rows of the whole.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::global::{Want, Workspace};
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
+use hemicontact::parallel::Subdomain;
 use hemicontact::scenario::{builtin, Scenario};
 
 #[test]
@@ -48,5 +50,105 @@ fn parallel_assembly_matches_serial() {
         assert_eq!(e2.to_bits(), e3.to_bits());
         assert_eq!(g2, g3);
         assert_eq!(h2, h3);
+    }
+}
+
+/// Assembly by subdomains, as on several processes: for the nodes of each of 3 contiguous
+/// ranges, the cells around them (owned, then ghost) give that range's gradient entries
+/// and Hessian rows of the whole assembly (to the order of additions), each cell's energy
+/// is counted by exactly one range, and the ranges' energies add up to the whole; with two
+/// chunks per range too. In 2D (the paper's mesh) and in 3D (its cube analogue).
+#[test]
+fn subdomains_give_their_rows_of_the_whole_assembly() {
+    let paper3d = std::fs::read_to_string(format!(
+        "{}/../../scenarios/paper3d.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace("n = [16, 16, 16]", "n = [12, 12, 12]");
+    assert!(paper3d.contains("n = [12, 12, 12]"));
+    for text in [builtin::paper(64, 1.0e4), paper3d] {
+        let problem = Scenario::from_str(&text, "test")
+            .unwrap()
+            .into_problem()
+            .unwrap();
+        let mesh = problem.mesh();
+        let d = mesh.dim();
+        let dofs = problem.dof_map();
+        let pattern = SystemPattern::new(mesh, &dofs).unwrap();
+        let bulk = BulkAssembler::new(mesh, problem.material());
+        let u: Vec<f64> = (0..d * mesh.n_nodes())
+            .map(|k| {
+                let x = mesh.node(k / d);
+                0.03 * x[0] * x[1] - 0.11 * x[k % d] + 0.01 * x[0] * x[0]
+            })
+            .collect();
+        let n = u.len();
+        let (mut g, mut h) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
+        let e = bulk.assemble(&u, &mut g, Want::Hessian, &pattern, Some(&mut h));
+        let gs = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let hs = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        // DOF of every equation, to find the rows of the upper-triangular slots.
+        let mut dof_of = vec![0usize; pattern.n()];
+        for (dof, &eq) in dofs.equations().iter().enumerate() {
+            if eq != u32::MAX {
+                dof_of[eq as usize] = dof;
+            }
+        }
+        let parts = 3;
+        let mut owner = vec![usize::MAX; mesh.n_cells()];
+        let mut energy = 0.0;
+        for part in 0..parts {
+            let nodes = part * mesh.n_nodes() / parts..(part + 1) * mesh.n_nodes() / parts;
+            let sub = Subdomain::new(mesh, nodes.clone());
+            let rows = sub.dofs(d);
+            // The cells are exactly those with a node in the range, the owned ones those
+            // whose lowest node is in it.
+            let around: Vec<usize> = (0..mesh.n_cells())
+                .filter(|&c| mesh.cell(c).iter().any(|&v| nodes.contains(&(v as usize))))
+                .collect();
+            let mut listed: Vec<usize> = sub.cells.iter().map(|&c| c as usize).collect();
+            listed.sort_unstable();
+            assert_eq!(listed, around);
+            for &c in &sub.cells[..sub.owned] {
+                assert_eq!(owner[c as usize], usize::MAX, "cell {c} owned twice");
+                owner[c as usize] = part;
+            }
+            for chunks in [1, 2] {
+                let mut ws = Workspace::new(chunks);
+                ws.subdomain = Some(sub.clone());
+                let (mut gp, mut hp) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
+                let ep = bulk.assemble_parallel(
+                    &u,
+                    &mut gp,
+                    Want::Hessian,
+                    &pattern,
+                    Some(&mut hp),
+                    &mut ws,
+                );
+                if chunks == 1 {
+                    energy += ep;
+                }
+                for k in rows.clone() {
+                    assert!((g[k] - gp[k]).abs() <= 1e-14 * gs, "gradient at DOF {k}");
+                }
+                let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+                let mut checked = 0;
+                for j in 0..pattern.n() {
+                    for s in cp[j]..cp[j + 1] {
+                        if rows.contains(&dof_of[ri[s]]) || rows.contains(&dof_of[j]) {
+                            assert!((h[s] - hp[s]).abs() <= 1e-14 * hs, "Hessian slot {s}");
+                            checked += 1;
+                        }
+                    }
+                }
+                assert!(checked > pattern.nnz() / (2 * parts));
+            }
+        }
+        assert!(owner.iter().all(|&p| p < parts), "a cell owned by no range");
+        assert!(
+            (energy - e).abs() <= 1e-13 * e.abs(),
+            "{energy} against {e}"
+        );
     }
 }

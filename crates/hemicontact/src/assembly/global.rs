@@ -6,6 +6,7 @@ use super::pattern::{SystemPattern, FIXED_SLOT};
 use crate::fem::simplex;
 use crate::material::{AugmentedLocking, LockingSet, StrainEnergy};
 use crate::mesh::Mesh;
+use crate::parallel::Subdomain;
 use crate::tensor::Sym;
 
 /// What one pass of [`BulkAssembler::assemble`] computes.
@@ -17,23 +18,54 @@ pub enum Want {
     Hessian,
 }
 
-/// Buffers for [`BulkAssembler::assemble_parallel`]: one gradient and one Hessian array per
+/// How [`BulkAssembler::assemble_parallel`] splits the cell loop, and its buffers: the
+/// cells of this process (all of them, or its [`Subdomain`] when the run is several
+/// processes), cut into `chunks` parallel tasks, with one gradient and one Hessian array per
 /// chunk beyond the first, kept between calls so that assembly does not allocate.
 #[derive(Clone, Debug, Default)]
 pub struct Workspace {
     /// Number of chunks (parallel tasks); 1 assembles serially.
     pub chunks: usize,
+    /// The cells this process assembles, when it is one of several (`None`: every cell).
+    pub subdomain: Option<Subdomain>,
     grads: Vec<Vec<f64>>,
     hesses: Vec<Vec<f64>>,
 }
 
 impl Workspace {
-    /// A workspace for `chunks` parallel chunks.
+    /// A workspace for `chunks` parallel chunks over every cell.
     pub fn new(chunks: usize) -> Self {
         Workspace {
             chunks: chunks.max(1),
+            subdomain: None,
             grads: Vec::new(),
             hesses: Vec::new(),
+        }
+    }
+}
+
+/// The cells of one pass: positions `0..len` of either every cell (`list` empty) or of
+/// `list`, of which the first `counted` add their energy.
+#[derive(Clone, Copy, Debug)]
+struct Cells<'c> {
+    list: &'c [u32],
+    counted: usize,
+}
+
+impl Cells<'_> {
+    /// Every cell of a mesh.
+    const ALL: Cells<'static> = Cells {
+        list: &[],
+        counted: usize::MAX,
+    };
+
+    /// The cell at position `p`.
+    #[inline]
+    fn at(&self, p: usize) -> usize {
+        if self.list.is_empty() {
+            p
+        } else {
+            self.list[p] as usize
         }
     }
 }
@@ -115,13 +147,17 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
-        self.assemble_range(0..mesh.n_cells(), u, grad, pattern, hess)
+        self.assemble_range(0..mesh.n_cells(), Cells::ALL, u, grad, pattern, hess)
     }
 
     /// As [`BulkAssembler::assemble`], with the cells split into `workspace.chunks`
     /// contiguous ranges assembled in parallel (rayon) into private buffers that are then
     /// summed in range order. The result is deterministic for a given number of chunks and
     /// equal to the serial one up to the order of floating-point additions.
+    ///
+    /// With a [`Workspace::subdomain`], only its cells are assembled: the energy is that of
+    /// its owned cells, and the gradient entries and Hessian rows are exact at the DOFs of
+    /// its nodes only (partial elsewhere).
     ///
     /// # Panics
     /// As [`BulkAssembler::assemble`].
@@ -135,15 +171,28 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         hess: Option<&mut [f64]>,
         workspace: &mut Workspace,
     ) -> f64 {
-        let n_cells = self.mesh.n_cells();
+        let (n_cells, cells) = match &workspace.subdomain {
+            None => (self.mesh.n_cells(), Cells::ALL),
+            Some(sub) => (
+                sub.cells.len(),
+                Cells {
+                    list: &sub.cells,
+                    counted: sub.owned,
+                },
+            ),
+        };
+        assert_eq!(u.len(), self.mesh.dim() * self.mesh.n_nodes());
+        assert_eq!(grad.len(), u.len());
+        if let Some(h) = hess.as_deref() {
+            assert_eq!(h.len(), pattern.nnz());
+        }
+        assert!(want == Want::Gradient || hess.is_some());
+        let hess = if want == Want::Hessian { hess } else { None };
         // Below a few thousand cells per chunk the buffers cost more than they save.
         let k = workspace.chunks.min(n_cells / 4096).max(1);
         if k == 1 {
-            return self.assemble(u, grad, want, pattern, hess);
+            return self.assemble_range(0..n_cells, cells, u, grad, pattern, hess);
         }
-        assert_eq!(grad.len(), u.len());
-        assert!(want == Want::Gradient || hess.is_some());
-        let hess = if want == Want::Hessian { hess } else { None };
         let with_hess = hess.is_some();
         workspace.grads.resize_with(k - 1, Vec::new);
         workspace.hesses.resize_with(k - 1, Vec::new);
@@ -168,7 +217,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         use rayon::prelude::*;
         let energies: Vec<f64> = jobs
             .par_iter_mut()
-            .map(|(r, g, h)| self.assemble_range(r.clone(), u, g, pattern, h.as_deref_mut()))
+            .map(|(r, g, h)| self.assemble_range(r.clone(), cells, u, g, pattern, h.as_deref_mut()))
             .collect();
         let (first, rest) = jobs.split_at_mut(1);
         let (_, grad, hess) = &mut first[0];
@@ -185,19 +234,21 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         energies.iter().sum()
     }
 
-    /// Serial assembly of the cells in `range` into `grad` and `hess` (overwritten).
+    /// Serial assembly of the cells at positions `range` of `cells` into `grad` and `hess`
+    /// (overwritten).
     fn assemble_range(
         &self,
         range: std::ops::Range<usize>,
+        cells: Cells<'_>,
         u: &[f64],
         grad: &mut [f64],
         pattern: &SystemPattern,
         hess: Option<&mut [f64]>,
     ) -> f64 {
         if self.mesh.dim() == 2 {
-            self.assemble_cells::<6>(range, u, grad, pattern, hess)
+            self.assemble_cells::<6>(range, cells, u, grad, pattern, hess)
         } else {
-            self.assemble_cells::<12>(range, u, grad, pattern, hess)
+            self.assemble_cells::<12>(range, cells, u, grad, pattern, hess)
         }
     }
 
@@ -205,6 +256,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
     fn assemble_cells<const LD: usize>(
         &self,
         range: std::ops::Range<usize>,
+        cells: Cells<'_>,
         u: &[f64],
         grad: &mut [f64],
         pattern: &SystemPattern,
@@ -217,15 +269,22 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             h.fill(0.0);
         }
         let mut energy = 0.0;
-        for c in range {
+        for p in range {
+            let c = cells.at(p);
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
             let al = self.ideal.map(|l| l.cell(c));
-            energy += geo.measure * self.material.energy(&eps);
+            // Ghost cells (of another process's subdomain) add no energy.
+            let counted = p < cells.counted;
+            if counted {
+                energy += geo.measure * self.material.energy(&eps);
+            }
             let mut sigma = self.material.stress(&eps);
             if let Some(al) = &al {
-                energy += geo.measure * al.energy(&eps);
+                if counted {
+                    energy += geo.measure * al.energy(&eps);
+                }
                 sigma = sigma.add_scaled(1.0, &al.stress(&eps));
             }
             let ge = element::gradient(&b, &sigma, geo.measure);

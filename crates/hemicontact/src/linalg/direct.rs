@@ -30,6 +30,16 @@ const PCG_ITERATION_COST: f64 = 1.1;
 /// unchanged and its factorization is reused.
 pub const UNCHANGED: f64 = 1e-12;
 
+/// Whether a matrix is unchanged: every pair `(new, kept)` of its values and those of the
+/// matrix a solver was prepared for differs by at most [`UNCHANGED`] times the largest
+/// `|kept|` (walks `pairs` twice).
+pub fn matrix_unchanged<I: Iterator<Item = (f64, f64)> + Clone>(pairs: I) -> bool {
+    let scale = pairs.clone().fold(0.0f64, |m, (_, c)| m.max(c.abs()));
+    pairs
+        .into_iter()
+        .all(|(a, c)| (a - c).abs() <= UNCHANGED * scale)
+}
+
 /// The direct solver; see the module documentation.
 #[derive(Debug)]
 pub struct DirectSolver {

@@ -19,7 +19,7 @@
 //! twice the fresh rate is abandoned for a full set-up and solved again. Counts, not
 //! timers, decide, so the results are deterministic.
 
-use super::direct::UNCHANGED;
+use super::direct::matrix_unchanged;
 use super::solver::{SolveRequest, SolveStats, SpdSolver};
 use super::Multigrid;
 use crate::assembly::SystemPattern;
@@ -97,12 +97,8 @@ impl SpdSolver for MultigridCg {
         request: &SolveRequest,
     ) -> Result<SolveStats> {
         let mut stats = SolveStats::default();
-        let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let unchanged = !self.factored.is_empty()
-            && values
-                .iter()
-                .zip(&self.factored)
-                .all(|(a, c)| (a - c).abs() <= UNCHANGED * scale);
+            && matrix_unchanged(values.iter().copied().zip(self.factored.iter().copied()));
         let eta = request.eta;
         // Decades of residual reduction asked for (at least one).
         let decades = (1.0 / eta).log10().max(1.0);

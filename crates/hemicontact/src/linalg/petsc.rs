@@ -13,9 +13,12 @@
 //! values in place.
 //!
 //! Run as several MPI processes ([`crate::parallel`]), each rank hands PETSc the rows of
-//! its range of nodes ([`Processes::node_range`]) of a distributed matrix (MatMPIAIJ), the
-//! Krylov solve runs on all of them, and the solution is gathered on every rank, which runs
-//! the rest of the Newton step on the whole of it. On one process the same code holds every
+//! its range of nodes ([`Processes::node_range`]) of a distributed matrix (MatMPIAIJ):
+//! complete rows, since it assembled every cell around its nodes
+//! ([`crate::parallel::Subdomain`]); its other rows of `values` are partial and never read.
+//! Whether the matrix changed is decided on each rank's rows and agreed by all, the Krylov
+//! solve runs on all of them, and the solution is gathered on every rank, which runs the
+//! rest of the Newton step on the whole of it. On one process the same code holds every
 //! row.
 //!
 //! A changed matrix does not always get a new preconditioner: a GAMG set-up costs about
@@ -32,7 +35,7 @@
 //! sets up every changed matrix too. An unchanged matrix (within
 //! [`super::direct::UNCHANGED`]) keeps the preconditioner.
 
-use super::direct::UNCHANGED;
+use super::direct::matrix_unchanged;
 use super::solver::{SolveRequest, SolveStats, SpdSolver};
 use super::ITERATIVE_MAX_ITERATIONS;
 use crate::assembly::SystemPattern;
@@ -57,8 +60,11 @@ pub struct PetscSolver {
     source: Vec<u32>,
     /// The CSR values of this rank's rows handed to PETSc.
     csr_values: Vec<f64>,
-    /// Slots of the diagonal of the free equations (for the prescribed rows' scale).
+    /// Slots of the diagonal of the free equations of this rank's rows (for the prescribed
+    /// rows' scale).
     diagonal: Vec<usize>,
+    /// Number of free equations (all processes).
+    n_free: usize,
     /// Equation number of every DOF ([`FIXED`] for prescribed DOFs).
     equations: Vec<u32>,
     /// The DOFs whose rows this rank holds (every DOF on one process).
@@ -71,8 +77,8 @@ pub struct PetscSolver {
     x_all: Vec<f64>,
     /// The processes of the run.
     processes: Processes,
-    /// Matrix values of the current preconditioner (empty: none yet).
-    factored: Vec<f64>,
+    /// Whether PETSc holds matrix values yet.
+    has_matrix: bool,
     /// The options as given, for messages.
     options: String,
     /// Whether the KSP may keep a preconditioner of other values
@@ -186,14 +192,19 @@ impl PetscSolver {
         Ok(PetscSolver {
             source,
             csr_values: vec![0.0; last - first],
-            diagonal: (0..pattern.n()).map(|j| col_ptr[j + 1] - 1).collect(),
+            diagonal: equations[rows.clone()]
+                .iter()
+                .filter(|&&eq| eq != FIXED)
+                .map(|&eq| col_ptr[eq as usize + 1] - 1)
+                .collect(),
+            n_free: pattern.n(),
             equations: equations.to_vec(),
             rows,
             b_local: vec![0.0; local],
             x_local: vec![0.0; local],
             x_all: Vec::new(),
             processes,
-            factored: Vec::new(),
+            has_matrix: false,
             options: options.to_string(),
             can_keep: system.can_keep_preconditioner(),
             system,
@@ -234,19 +245,27 @@ impl SpdSolver for PetscSolver {
         request: &SolveRequest,
     ) -> Result<SolveStats> {
         let mut stats = SolveStats::default();
-        let scale = self.factored.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let unchanged = !self.factored.is_empty()
-            && values
-                .iter()
-                .zip(&self.factored)
-                .all(|(a, c)| (a - c).abs() <= UNCHANGED * scale);
+        // Whether the matrix changed, decided on this process's rows (the only complete
+        // ones here) and agreed by all.
+        let given = self
+            .csr_values
+            .iter()
+            .zip(&self.source)
+            .filter(|(_, &s)| s != PRESCRIBED)
+            .map(|(&c, &s)| (values[s as usize], c));
+        let mut changed = [f64::from(u8::from(
+            !self.has_matrix || !matrix_unchanged(given),
+        ))];
+        self.processes.max(&mut changed)?;
+        let unchanged = changed[0] == 0.0;
         let eta = request.eta;
         // Decades of residual reduction asked for (at least one).
         let decades = (1.0 / eta).log10().max(1.0);
         if !unchanged {
             let t = Instant::now();
-            let mean = self.diagonal.iter().map(|&s| values[s].abs()).sum::<f64>()
-                / self.diagonal.len().max(1) as f64;
+            let mut sum = [self.diagonal.iter().map(|&s| values[s].abs()).sum::<f64>()];
+            self.processes.sum(&mut sum)?;
+            let mean = sum[0] / self.n_free.max(1) as f64;
             let prescribed = if mean > 0.0 { mean } else { 1.0 };
             for (v, &s) in self.csr_values.iter_mut().zip(&self.source) {
                 *v = if s == PRESCRIBED {
@@ -258,8 +277,7 @@ impl SpdSolver for PetscSolver {
             self.system
                 .set_values(&self.csr_values)
                 .map_err(|e| self.breakdown("refused the matrix", &e))?;
-            self.factored.clear();
-            self.factored.extend_from_slice(values);
+            self.has_matrix = true;
             // Copying values is part of the solve; only set-ups count as factorizations.
             stats.solve_time = t.elapsed().as_secs_f64();
         }

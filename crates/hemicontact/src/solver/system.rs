@@ -17,6 +17,7 @@ use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
+use crate::parallel::{Processes, Subdomain};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -58,6 +59,13 @@ pub struct System {
     pub rigid: RigidMotions,
     /// Diagonal slots of the free equations of the bodies with free rigid motions.
     rigid_slots: Vec<usize>,
+    /// Those of [`System::rigid_slots`] in this process's rows (all of them on one
+    /// process), whose values are complete here.
+    rigid_slots_owned: Vec<usize>,
+    /// The processes of the run: with several, each assembles its
+    /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
+    /// [`Processes::sum`] and [`Processes::all_gather`].
+    processes: Processes,
     /// The scales of the dimensionless variables the problem is solved in (set by the
     /// solver, see [`super::scaling`]); `None` for a problem in the user's units. Only
     /// messages and the runaway check read them.
@@ -189,12 +197,35 @@ impl System {
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
         let bodies = Bodies::new(problem, &rigid, &contact);
-        let rigid_slots = rigid
+        // Several processes: each assembles the cells around its own nodes, whose rows
+        // the distributed linear solver takes from it (only that solver can take partial
+        // matrices).
+        let processes = Processes::current();
+        let subdomain = if linear_solver.kind() == super::LinearSolver::Petsc {
+            Subdomain::of(&problem.mesh, &processes)
+        } else {
+            None
+        };
+        let owned_dofs = subdomain
+            .as_ref()
+            .map_or(0..dofs.equations().len(), |s| s.dofs(problem.mesh.dim()));
+        let shifted: Vec<usize> = rigid
             .shifted_dofs()
             .into_iter()
             .filter(|&k| !dofs.is_fixed(k))
-            .map(|k| pattern.diagonal_slot(dofs.equation(k) as usize))
             .collect();
+        let rigid_slot = |&k: &usize| pattern.diagonal_slot(dofs.equation(k) as usize);
+        let rigid_slots = shifted.iter().map(rigid_slot).collect();
+        let rigid_slots_owned = shifted
+            .iter()
+            .filter(|k| owned_dofs.contains(k))
+            .map(rigid_slot)
+            .collect();
+        let mut workspace = Workspace::new(match settings.threads {
+            0 => rayon::current_num_threads(),
+            t => t,
+        });
+        workspace.subdomain = subdomain;
         Ok(System {
             dofs,
             pattern,
@@ -207,12 +238,11 @@ impl System {
             f_ext,
             bodies,
             setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
-            workspace: Workspace::new(match settings.threads {
-                0 => rayon::current_num_threads(),
-                t => t,
-            }),
+            workspace,
             rigid,
             rigid_slots,
+            rigid_slots_owned,
+            processes,
             scales: None,
             placement: None,
         })
@@ -381,7 +411,7 @@ impl System {
         } else {
             None
         };
-        let e_bulk = bulk.assemble_parallel(
+        let mut e_bulk = bulk.assemble_parallel(
             u,
             &mut out.grad_bulk,
             want,
@@ -389,6 +419,22 @@ impl System {
             hess,
             &mut self.workspace,
         );
+        if let Some(sub) = &self.workspace.subdomain {
+            // Each process computed its owned cells' energy and its nodes' gradient.
+            let mut e = [e_bulk];
+            let gathered = self.processes.sum(&mut e).and_then(|()| {
+                let mine = &out.grad_bulk[sub.dofs(problem.mesh.dim())];
+                self.processes.all_gather(mine, u.len())
+            });
+            match gathered {
+                Ok(g) => out.grad_bulk.copy_from_slice(&g),
+                Err(e) => {
+                    out.law_error.get_or_insert(e);
+                    return f64::NAN;
+                }
+            }
+            e_bulk = e[0];
+        }
         let mut work = 0.0;
         for ((g, f), x) in out.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
             *g -= f;
@@ -411,11 +457,15 @@ impl System {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
             if out.rigid_shift == 0.0 {
-                let max = self
-                    .rigid_slots
+                let mut max = [self
+                    .rigid_slots_owned
                     .iter()
-                    .fold(0.0f64, |m, &k| m.max(out.hess[k]));
-                out.rigid_shift = NEWTON_SHIFT * max;
+                    .fold(0.0f64, |m, &k| m.max(out.hess[k]))];
+                if let Err(e) = self.processes.max(&mut max) {
+                    out.law_error.get_or_insert(e);
+                    return f64::NAN;
+                }
+                out.rigid_shift = NEWTON_SHIFT * max[0];
             }
             for &k in &self.rigid_slots {
                 out.hess[k] += out.rigid_shift;
