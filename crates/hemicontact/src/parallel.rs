@@ -94,7 +94,7 @@ impl Processes {
     /// The nodes `first..last` this rank owns of `nodes`: contiguous ranges of (almost)
     /// equal size, in rank order.
     pub fn node_range(&self, nodes: usize) -> std::ops::Range<usize> {
-        self.rank * nodes / self.size..(self.rank + 1) * nodes / self.size
+        share(nodes, self.rank, self.size)
     }
 
     /// `values` ← their element-wise sum over the processes (collective; the identity on
@@ -179,6 +179,12 @@ impl Processes {
 #[cfg(feature = "petsc")]
 fn mpi_error(e: hemicontact_petsc::Error) -> Error {
     Error::Breakdown(format!("MPI: {e}"))
+}
+
+/// Share `rank` of `count` items split into `size` contiguous ranges of (almost) equal
+/// length, in rank order: `rank · count / size .. (rank + 1) · count / size`.
+pub fn share(count: usize, rank: usize, size: usize) -> std::ops::Range<usize> {
+    rank * count / size..(rank + 1) * count / size
 }
 
 /// What one rank assembles when the run is several processes: the nodes it owns
