@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs PETSc (with its MPI, OpenMPI on Debian and Ubuntu) and pkg-config from the
+# Installs PETSc (with its MPI, OpenMPI on Debian and Ubuntu), Scotch and pkg-config from the
 # distribution's packages, unless pkg-config already finds PETSc; then prints the version.
 # The default build of hemicontact never needs this: only the cargo feature `petsc` does
 # (docs/distributed.md).
@@ -12,6 +12,6 @@ if ! pkg-config --exists PETSc 2>/dev/null; then
   if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends \
-    petsc-dev pkg-config >/dev/null
+    petsc-dev libscotch-dev pkg-config >/dev/null
 fi
 echo "PETSc $(pkg-config --modversion PETSc) found by pkg-config"

@@ -31,8 +31,24 @@ fn main() {
             shim.include(path);
         }
     }
+    // Scotch (the sequential library PT-Scotch is built on), if its header is found: the
+    // mesh partitioner.
+    let scotch = petsc
+        .include_paths
+        .iter()
+        .map(|dir| dir.join("scotch"))
+        .chain(petsc.include_paths.iter().cloned())
+        .chain([std::path::PathBuf::from("/usr/include/scotch")])
+        .find(|dir| dir.join("scotch.h").is_file());
+    if let Some(dir) = &scotch {
+        shim.include(dir).define("HC_HAVE_SCOTCH", None);
+    }
     // The shim first (it is static and needs PETSc), then PETSc and MPI.
     shim.compile("hemicontact_petsc_shim");
+    if scotch.is_some() {
+        println!("cargo:rustc-link-lib=scotch");
+        println!("cargo:rustc-link-lib=scotcherr");
+    }
     for lib in std::iter::once(&petsc).chain(mpi.as_ref()) {
         for path in &lib.link_paths {
             println!("cargo:rustc-link-search=native={}", path.display());

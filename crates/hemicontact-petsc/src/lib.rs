@@ -36,6 +36,13 @@ mod ffi {
             n_global: i64,
         ) -> c_int;
         pub fn hc_abort(code: c_int);
+        pub fn hc_partition(
+            n: i64,
+            xadj: *const i64,
+            adjncy: *const i64,
+            nparts: i64,
+            parts: *mut i64,
+        ) -> c_int;
         pub fn hc_system_create(
             n: i64,
             n_global: i64,
@@ -128,6 +135,58 @@ pub fn initialize() -> Result<(), Error> {
     let _guard = lock();
     // SAFETY: called under the lock; the shim initializes at most once.
     check(unsafe { ffi::hc_initialize() })
+}
+
+/// The parts of a graph split into `parts` by Scotch (the sequential library PT-Scotch is
+/// built on, in a deterministic context: the same graph gives the same parts, every call
+/// and every run), on this process alone: balanced parts with few edges between them. The
+/// graph has `xadj.len() − 1` vertices; the neighbours of vertex `v` are
+/// `adjncy[xadj[v]..xadj[v + 1]]` (symmetric, without `v` itself). Returns the part of
+/// every vertex, `0..parts`.
+///
+/// # Errors
+/// Scotch's; a build without Scotch's header; adjacency lists that are not a CSR graph of
+/// their vertices.
+pub fn partition(xadj: &[usize], adjncy: &[usize], parts: usize) -> Result<Vec<usize>, Error> {
+    let invalid = |message: String| Error { code: -1, message };
+    let n = xadj
+        .len()
+        .checked_sub(1)
+        .ok_or_else(|| invalid("no vertex offsets".into()))?;
+    if xadj[0] != 0 || xadj.windows(2).any(|w| w[0] > w[1]) || xadj[n] != adjncy.len() {
+        return Err(invalid(
+            "vertex offsets not increasing from 0 to the adjacency's length".into(),
+        ));
+    }
+    if let Some(v) = (0..n).find(|&v| {
+        adjncy[xadj[v]..xadj[v + 1]]
+            .iter()
+            .any(|&w| w >= n || w == v)
+    }) {
+        return Err(invalid(format!(
+            "vertex {v} has a neighbour out of range or itself"
+        )));
+    }
+    if parts == 0 {
+        return Err(invalid("zero parts".into()));
+    }
+    let xadj: Vec<i64> = xadj.iter().map(|&k| k as i64).collect();
+    let adjncy: Vec<i64> = adjncy.iter().map(|&k| k as i64).collect();
+    let mut out = vec![0i64; n];
+    let _guard = lock();
+    // SAFETY: under the lock; initialized first; the arrays have the lengths the shim reads
+    // (n + 1 offsets, xadj[n] neighbours, n parts).
+    unsafe {
+        check(ffi::hc_initialize())?;
+        check(ffi::hc_partition(
+            n as i64,
+            xadj.as_ptr(),
+            adjncy.as_ptr(),
+            parts as i64,
+            out.as_mut_ptr(),
+        ))?;
+    }
+    Ok(out.into_iter().map(|p| p as usize).collect())
 }
 
 /// The PETSc version linked, as `(major, minor, subminor)`.

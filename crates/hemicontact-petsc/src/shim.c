@@ -333,3 +333,70 @@ int hc_system_describe(hc_system *s, char *buf, size_t size)
            package ? ", " : "", package ? package : "");
   return 0;
 }
+
+#ifdef HC_HAVE_SCOTCH
+#include <scotch.h>
+
+/* Sequential Scotch in a deterministic context (the same graph gives the same parts, whatever
+ * its threads do): returns Scotch's error code, 0 on success. */
+static int scotch_partition(SCOTCH_Num n, const SCOTCH_Num *xadj, const SCOTCH_Num *adjncy,
+                            SCOTCH_Num nparts, SCOTCH_Num *parts)
+{
+  SCOTCH_Context context;
+  SCOTCH_Graph graph, bound;
+  SCOTCH_Strat strategy;
+  int ierr;
+  if ((ierr = SCOTCH_contextInit(&context))) return ierr;
+  SCOTCH_contextRandomSeed(&context, 1);
+  ierr = SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMDETERMINISTIC, 1);
+  if (!ierr) ierr = SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1);
+  if (!ierr) ierr = SCOTCH_graphInit(&graph);
+  if (!ierr) {
+    ierr = SCOTCH_graphBuild(&graph, 0, n, xadj, NULL, NULL, NULL, xadj[n], adjncy, NULL);
+    if (!ierr) ierr = SCOTCH_graphInit(&bound);
+    if (!ierr) {
+      ierr = SCOTCH_contextBindGraph(&context, &graph, &bound);
+      if (!ierr) ierr = SCOTCH_stratInit(&strategy);
+      if (!ierr) {
+        ierr = SCOTCH_stratGraphMapBuild(&strategy, SCOTCH_STRATQUALITY, nparts, 0.03);
+        if (!ierr) ierr = SCOTCH_graphPart(&bound, nparts, &strategy, parts);
+        SCOTCH_stratExit(&strategy);
+      }
+      SCOTCH_graphExit(&bound);
+    }
+    SCOTCH_graphExit(&graph);
+  }
+  SCOTCH_contextExit(&context);
+  return ierr;
+}
+#endif
+
+/* Splits the graph of n vertices with adjacency lists xadj/adjncy (CSR, no self-loops,
+ * symmetric) into nparts parts with Scotch (the sequential library PT-Scotch is built on),
+ * on this process alone: parts[v] is the part of vertex v. */
+int hc_partition(int64_t n, const int64_t *xadj, const int64_t *adjncy, int64_t nparts,
+                 int64_t *parts)
+{
+#ifdef HC_HAVE_SCOTCH
+  SCOTCH_Num *x = malloc(sizeof(SCOTCH_Num) * (size_t)(n + 1));
+  SCOTCH_Num *a = malloc(sizeof(SCOTCH_Num) * (size_t)(xadj[n] > 0 ? xadj[n] : 1));
+  SCOTCH_Num *p = malloc(sizeof(SCOTCH_Num) * (size_t)(n > 0 ? n : 1));
+  int ierr = (!x || !a || !p) ? PETSC_ERR_MEM : 0;
+  if (!ierr && (xadj[n] > (int64_t)INT32_MAX || nparts > (int64_t)INT32_MAX) && sizeof(SCOTCH_Num) == 4) ierr = PETSC_ERR_ARG_OUTOFRANGE;
+  if (!ierr) {
+    for (int64_t k = 0; k <= n; k++) x[k] = (SCOTCH_Num)xadj[k];
+    for (int64_t k = 0; k < xadj[n]; k++) a[k] = (SCOTCH_Num)adjncy[k];
+    ierr = scotch_partition((SCOTCH_Num)n, x, a, (SCOTCH_Num)nparts, p);
+    if (ierr) snprintf(last_error, sizeof last_error, "Scotch could not partition the graph (error %d)", ierr);
+    else for (int64_t k = 0; k < n; k++) parts[k] = (int64_t)p[k];
+  }
+  free(x);
+  free(a);
+  free(p);
+  return ierr;
+#else
+  (void)n; (void)xadj; (void)adjncy; (void)nparts; (void)parts;
+  snprintf(last_error, sizeof last_error, "this build of hemicontact has no Scotch: its header scotch.h was not found when it was built (on Debian: apt-get install libscotch-dev, then rebuild)");
+  return PETSC_ERR_SUP;
+#endif
+}

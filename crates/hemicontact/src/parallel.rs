@@ -5,8 +5,8 @@
 //! the number of processes, and the few collective operations it needs. Its one-process
 //! form is trivial (rank 0 of 1, every reduction the identity), so a run without MPI pays
 //! nothing for it. What is distributed today is the assembly of the Newton matrix and the
-//! linear solve: each rank owns a contiguous range of nodes ([`Processes::node_range`]),
-//! assembles the cells around them (its [`Subdomain`]) and hands PETSc's distributed matrix
+//! linear solve: each rank owns a part of the nodes ([`Partition`]: Scotch's parts of the
+//! node graph), assembles the cells around them (its [`Subdomain`]) and hands PETSc's distributed matrix
 //! their rows; the bulk energy and gradient are completed by two collective operations per
 //! evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank still holds the
 //! whole mesh and runs the whole outer loop on the same (gathered) data, so every rank takes
@@ -89,12 +89,6 @@ impl Processes {
     /// Whether this is rank 0, the one that prints and writes the results.
     pub fn is_root(&self) -> bool {
         self.rank == 0
-    }
-
-    /// The nodes `first..last` this rank owns of `nodes`: contiguous ranges of (almost)
-    /// equal size, in rank order.
-    pub fn node_range(&self, nodes: usize) -> std::ops::Range<usize> {
-        share(nodes, self.rank, self.size)
     }
 
     /// `values` ← their element-wise sum over the processes (collective; the identity on
@@ -187,17 +181,114 @@ pub fn share(count: usize, rank: usize, size: usize) -> std::ops::Range<usize> {
     rank * count / size..(rank + 1) * count / size
 }
 
-/// What one rank assembles when the run is several processes: the nodes it owns
-/// ([`Processes::node_range`]), whose rows of the Newton matrix and entries of the gradient
-/// it computes exactly, and the cells around them. A cell is *owned* by the rank of its
-/// lowest-numbered node, which alone counts its energy; the other cells with a node in
-/// the range are the rank's *ghost* layer, assembled again so that the rows of its nodes
-/// are complete without sending matrix entries between processes. No rank needs another's
-/// partial sums, so the result does not depend on the order in which messages arrive.
+/// How the nodes are split among the processes: each node's rank, and the *distributed
+/// numbering* of the nodes (rank 0's nodes in increasing order, then rank 1's, …), in
+/// which every rank's nodes, and the rows of their DOFs in PETSc's matrix, are contiguous.
+/// On one process, the identity.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Partition {
+    /// The rank of every node.
+    pub rank_of: Vec<u32>,
+    /// The nodes in the distributed numbering.
+    pub order: Vec<u32>,
+    /// The position of every node in [`Partition::order`].
+    pub position: Vec<u32>,
+    /// Rank r's nodes are `order[first[r]..first[r + 1]]`.
+    pub first: Vec<usize>,
+}
+
+impl Partition {
+    /// The partition giving node `v` to `rank_of[v]`, of `size` ranks.
+    ///
+    /// # Panics
+    /// If a rank is `size` or more.
+    pub fn from_ranks(rank_of: Vec<u32>, size: usize) -> Partition {
+        let mut first = vec![0usize; size + 1];
+        for &r in &rank_of {
+            first[r as usize + 1] += 1;
+        }
+        for r in 0..size {
+            first[r + 1] += first[r];
+        }
+        let mut next = first.clone();
+        let mut order = vec![0u32; rank_of.len()];
+        let mut position = vec![0u32; rank_of.len()];
+        for (v, &r) in rank_of.iter().enumerate() {
+            let p = next[r as usize];
+            next[r as usize] += 1;
+            order[p] = v as u32;
+            position[v] = p as u32;
+        }
+        Partition {
+            rank_of,
+            order,
+            position,
+            first,
+        }
+    }
+
+    /// Contiguous ranges of node numbers ([`share`]) for `size` ranks.
+    pub fn ranges(nodes: usize, size: usize) -> Partition {
+        let rank_of = (0..size)
+            .flat_map(|r| share(nodes, r, size).map(move |_| r as u32))
+            .collect();
+        Partition::from_ranks(rank_of, size)
+    }
+
+    /// The partition of `mesh` for the processes of the run: on several processes, the
+    /// parts of its node graph by Scotch (balanced, with few cells on their borders),
+    /// computed on rank 0 and sent to the others; on one process, the identity.
+    ///
+    /// # Errors
+    /// Scotch's and MPI's.
+    pub fn of(mesh: &crate::mesh::Mesh, processes: &Processes) -> Result<Partition> {
+        let size = processes.size();
+        if size == 1 {
+            return Ok(Partition::ranges(mesh.n_nodes(), 1));
+        }
+        #[cfg(feature = "petsc")]
+        {
+            let n = mesh.n_nodes();
+            let mine: Vec<f64> = if processes.is_root() {
+                let (ptr, adj) = mesh.node_adjacency();
+                let adj: Vec<usize> = adj.iter().map(|&w| w as usize).collect();
+                hemicontact_petsc::partition(&ptr, &adj, size)
+                    .map_err(|e| Error::Breakdown(format!("the mesh partition: {e}")))?
+                    .into_iter()
+                    .map(|r| r as f64)
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            let rank_of = processes.all_gather(&mine, n)?;
+            Ok(Partition::from_ranks(
+                rank_of.iter().map(|&r| r as u32).collect(),
+                size,
+            ))
+        }
+        #[cfg(not(feature = "petsc"))]
+        Ok(Partition::ranges(mesh.n_nodes(), size))
+    }
+
+    /// Rank `rank`'s nodes, in increasing order.
+    pub fn nodes(&self, rank: usize) -> &[u32] {
+        &self.order[self.first[rank]..self.first[rank + 1]]
+    }
+}
+
+/// What one rank assembles when the run is several processes: the nodes it owns (its part
+/// of a [`Partition`]), whose rows of the Newton matrix and entries of the gradient it
+/// computes exactly, and the cells around them. A cell is *owned* by the rank of its
+/// lowest-numbered node, which alone counts its energy; the other cells with a node of the
+/// rank are its *ghost* layer, assembled again so that the rows of its nodes are complete
+/// without sending matrix entries between processes. No rank needs another's partial
+/// sums, so the result does not depend on the order in which messages arrive.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Subdomain {
-    /// The nodes this rank owns.
-    pub nodes: std::ops::Range<usize>,
+    /// This rank.
+    pub rank: usize,
+    /// The partition of the nodes among the ranks.
+    pub partition: Partition,
     /// The cells this rank assembles: its owned cells, then its ghost cells, each in
     /// increasing order.
     pub cells: Vec<u32>,
@@ -206,18 +297,10 @@ pub struct Subdomain {
 }
 
 impl Subdomain {
-    /// This rank's subdomain of `mesh`; `None` on one process, which assembles every
-    /// cell.
-    pub fn of(mesh: &crate::mesh::Mesh, processes: &Processes) -> Option<Subdomain> {
-        if processes.size() == 1 {
-            return None;
-        }
-        Some(Subdomain::new(mesh, processes.node_range(mesh.n_nodes())))
-    }
-
-    /// The subdomain of the nodes `nodes` of `mesh`: the cells around them, owned first.
-    pub fn new(mesh: &crate::mesh::Mesh, nodes: std::ops::Range<usize>) -> Subdomain {
-        let inside = |v: &u32| nodes.contains(&(*v as usize));
+    /// Rank `rank`'s subdomain of `mesh` in `partition`: the cells around its nodes,
+    /// owned first.
+    pub fn new(mesh: &crate::mesh::Mesh, partition: Partition, rank: usize) -> Subdomain {
+        let inside = |v: &u32| partition.rank_of[*v as usize] as usize == rank;
         let mut owned = Vec::new();
         let mut ghosts = Vec::new();
         for c in 0..mesh.n_cells() {
@@ -232,14 +315,42 @@ impl Subdomain {
         let n_owned = owned.len();
         owned.extend(ghosts);
         Subdomain {
-            nodes,
+            rank,
+            partition,
             cells: owned,
             owned: n_owned,
         }
     }
 
-    /// The DOFs of the owned nodes, for `dim` DOFs per node.
-    pub fn dofs(&self, dim: usize) -> std::ops::Range<usize> {
-        dim * self.nodes.start..dim * self.nodes.end
+    /// The nodes this rank owns, in increasing order.
+    pub fn nodes(&self) -> &[u32] {
+        self.partition.nodes(self.rank)
+    }
+
+    /// Whether DOF `dof` (of `dim` per node) is one of this rank's.
+    pub fn owns_dof(&self, dof: usize, dim: usize) -> bool {
+        self.partition.rank_of[dof / dim] as usize == self.rank
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The distributed numbering lists every rank's nodes in increasing order, rank after
+    /// rank, and `position` inverts it; contiguous ranges are the identity.
+    #[test]
+    fn a_partition_numbers_the_nodes_rank_by_rank() {
+        let p = Partition::from_ranks(vec![1, 0, 2, 1, 0, 2, 2], 3);
+        assert_eq!(p.order, [1, 4, 0, 3, 2, 5, 6]);
+        assert_eq!(p.first, [0, 2, 4, 7]);
+        assert_eq!(p.nodes(1), [0, 3]);
+        for (k, &v) in p.order.iter().enumerate() {
+            assert_eq!(p.position[v as usize] as usize, k);
+        }
+        let r = Partition::ranges(10, 3);
+        assert_eq!(r.order, (0..10).collect::<Vec<u32>>());
+        assert_eq!(r.first, [0, 3, 6, 10]);
+        assert_eq!(r.rank_of, [0, 0, 0, 1, 1, 1, 2, 2, 2, 2]);
     }
 }

@@ -6,7 +6,7 @@
 
 use hemicontact::assembly::global::{Want, Workspace};
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
-use hemicontact::parallel::Subdomain;
+use hemicontact::parallel::{Partition, Subdomain};
 use hemicontact::scenario::{builtin, Scenario};
 
 #[test]
@@ -96,12 +96,13 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
             }
         }
         let parts = 3;
+        let partition = Partition::ranges(mesh.n_nodes(), parts);
         let mut owner = vec![usize::MAX; mesh.n_cells()];
         let mut energy = 0.0;
         for part in 0..parts {
             let nodes = part * mesh.n_nodes() / parts..(part + 1) * mesh.n_nodes() / parts;
-            let sub = Subdomain::new(mesh, nodes.clone());
-            let rows = sub.dofs(d);
+            let sub = Subdomain::new(mesh, partition.clone(), part);
+            let rows = d * nodes.start..d * nodes.end;
             // The cells are exactly those with a node in the range, the owned ones those
             // whose lowest node is in it.
             let around: Vec<usize> = (0..mesh.n_cells())

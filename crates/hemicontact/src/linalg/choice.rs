@@ -87,6 +87,8 @@ pub struct PrepareOptions<'a> {
     pub par: faer::Par,
     /// PETSc options of the PETSc solver ([`PetscSettings::options`]).
     pub petsc_options: &'a str,
+    /// How the nodes are split among the processes (PETSc's rows follow it).
+    pub partition: &'a crate::parallel::Partition,
 }
 
 impl LinearSolver {
@@ -185,6 +187,7 @@ impl LinearSolver {
                 equations,
                 pattern,
                 options.petsc_options,
+                options.partition,
             )?),
             #[cfg(not(feature = "petsc"))]
             LinearSolver::Petsc => return Err(Self::no_petsc()),

@@ -13,7 +13,8 @@
 //! values in place.
 //!
 //! Run as several MPI processes ([`crate::parallel`]), each rank hands PETSc the rows of
-//! its range of nodes ([`Processes::node_range`]) of a distributed matrix (MatMPIAIJ):
+//! its part of the nodes ([`Partition`]) of a distributed matrix (MatMPIAIJ), numbered in
+//! the partition's distributed numbering (each rank's rows contiguous):
 //! complete rows, since it assembled every cell around its nodes
 //! ([`crate::parallel::Subdomain`]); its other rows of `values` are partial and never read.
 //! Whether the matrix changed is decided on each rank's rows and agreed by all, the Krylov
@@ -42,7 +43,7 @@ use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::fem::dofs::FIXED;
 use crate::mesh::Mesh;
-use crate::parallel::Processes;
+use crate::parallel::{Partition, Processes};
 use hemicontact_petsc::KspSystem;
 use std::time::Instant;
 
@@ -67,8 +68,10 @@ pub struct PetscSolver {
     n_free: usize,
     /// Equation number of every DOF ([`FIXED`] for prescribed DOFs).
     equations: Vec<u32>,
-    /// The DOFs whose rows this rank holds (every DOF on one process).
-    rows: std::ops::Range<usize>,
+    /// The DOFs whose rows this rank holds (every DOF on one process), in PETSc's order.
+    row_dofs: Vec<u32>,
+    /// The nodes in the distributed numbering ([`Partition::order`]), PETSc's order.
+    order: Vec<u32>,
     /// Right-hand side of this rank's rows.
     b_local: Vec<f64>,
     /// Solution of this rank's rows.
@@ -110,8 +113,12 @@ impl PetscSolver {
         equations: &[u32],
         pattern: &SystemPattern,
         options: &str,
+        partition: &Partition,
     ) -> Result<Self> {
         let n = equations.len();
+        let d = mesh.dim();
+        // PETSc's number of every DOF: its node's place in the distributed numbering.
+        let global = |dof: usize| (d * partition.position[dof / d] as usize + dof % d) as u32;
         let mut dof_of = vec![0u32; pattern.n()];
         for (dof, &eq) in equations.iter().enumerate() {
             if eq != FIXED {
@@ -142,7 +149,7 @@ impl PetscSolver {
         let mut entries = vec![(0u32, 0u32); nnz];
         let mut next = row_ptr.clone();
         let mut push = |row: usize, col: u32, src: u32| {
-            entries[next[row]] = (col, src);
+            entries[next[row]] = (global(col as usize), src);
             next[row] += 1;
         };
         for (dof, &eq) in equations.iter().enumerate() {
@@ -162,44 +169,56 @@ impl PetscSolver {
         for r in 0..n {
             entries[row_ptr[r]..row_ptr[r + 1]].sort_unstable();
         }
-        // This rank's rows: the DOFs of its nodes (all of them on one process).
+        // This rank's rows: the DOFs of its nodes (all of them on one process), in PETSc's
+        // order.
         let processes = Processes::current();
-        let d = mesh.dim();
-        let nodes = processes.node_range(mesh.n_nodes());
-        let rows = d * nodes.start..d * nodes.end;
-        let (first, last) = (row_ptr[rows.start], row_ptr[rows.end]);
-        let local_ptr: Vec<usize> = row_ptr[rows.start..=rows.end]
+        let rank = processes.rank();
+        let row_dofs: Vec<u32> = partition
+            .nodes(rank)
             .iter()
-            .map(|&p| p - first)
+            .flat_map(|&v| (0..d).map(move |k| (d * v as usize + k) as u32))
             .collect();
-        let cols: Vec<usize> = entries[first..last]
+        let mut local_ptr = Vec::with_capacity(row_dofs.len() + 1);
+        local_ptr.push(0);
+        let mut cols = Vec::new();
+        let mut source = Vec::new();
+        for &dof in &row_dofs {
+            for &(c, s) in &entries[row_ptr[dof as usize]..row_ptr[dof as usize + 1]] {
+                cols.push(c as usize);
+                source.push(s);
+            }
+            local_ptr.push(cols.len());
+        }
+        drop(entries);
+        let coordinates: Vec<f64> = row_dofs
             .iter()
-            .map(|&(c, _)| c as usize)
+            .map(|&dof| mesh.coords()[dof as usize])
             .collect();
-        let source = entries[first..last].iter().map(|&(_, s)| s).collect();
-        let coordinates = &mesh.coords()[rows.clone()];
+        let first_row = d * partition.first[rank];
         let created = if processes.size() > 1 {
-            KspSystem::new_distributed(n, rows.start, &local_ptr, &cols, coordinates, d, options)
+            KspSystem::new_distributed(n, first_row, &local_ptr, &cols, &coordinates, d, options)
         } else {
-            KspSystem::new(&local_ptr, &cols, coordinates, d, options)
+            KspSystem::new(&local_ptr, &cols, &coordinates, d, options)
         };
         let system = created.map_err(|e| Error::Invalid {
             field: "petsc.options".into(),
             value: format!("{options:?}"),
             allowed: format!("options PETSc accepts: {e}"),
         })?;
-        let local = rows.len();
+        let local = row_dofs.len();
         Ok(PetscSolver {
+            csr_values: vec![0.0; source.len()],
             source,
-            csr_values: vec![0.0; last - first],
-            diagonal: equations[rows.clone()]
+            diagonal: row_dofs
                 .iter()
-                .filter(|&&eq| eq != FIXED)
-                .map(|&eq| col_ptr[eq as usize + 1] - 1)
+                .map(|&dof| equations[dof as usize])
+                .filter(|&eq| eq != FIXED)
+                .map(|eq| col_ptr[eq as usize + 1] - 1)
                 .collect(),
             n_free: pattern.n(),
             equations: equations.to_vec(),
-            rows,
+            row_dofs,
+            order: partition.order.clone(),
             b_local: vec![0.0; local],
             x_local: vec![0.0; local],
             x_all: Vec::new(),
@@ -281,11 +300,8 @@ impl SpdSolver for PetscSolver {
             // Copying values is part of the solve; only set-ups count as factorizations.
             stats.solve_time = t.elapsed().as_secs_f64();
         }
-        for (bl, &eq) in self
-            .b_local
-            .iter_mut()
-            .zip(&self.equations[self.rows.clone()])
-        {
+        for (bl, &dof) in self.b_local.iter_mut().zip(&self.row_dofs) {
+            let eq = self.equations[dof as usize];
             *bl = if eq == FIXED { 0.0 } else { b[eq as usize] };
         }
         let keep = !unchanged
@@ -351,7 +367,8 @@ impl SpdSolver for PetscSolver {
                 self.fresh_rate = outcome.iterations.max(1) as f64 / decades;
             }
         }
-        let x_dofs = if self.processes.size() > 1 {
+        // PETSc's order: node order[p]'s DOFs at d·p…
+        let x_petsc = if self.processes.size() > 1 {
             self.x_all = self
                 .processes
                 .all_gather(&self.x_local, self.equations.len())?;
@@ -359,9 +376,13 @@ impl SpdSolver for PetscSolver {
         } else {
             &self.x_local
         };
-        for (dof, &eq) in self.equations.iter().enumerate() {
-            if eq != FIXED {
-                x[eq as usize] = x_dofs[dof];
+        let d = self.equations.len() / self.order.len().max(1);
+        for (p, &v) in self.order.iter().enumerate() {
+            for k in 0..d {
+                let eq = self.equations[d * v as usize + k];
+                if eq != FIXED {
+                    x[eq as usize] = x_petsc[d * p + k];
+                }
             }
         }
         Ok(stats)

@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
-use crate::parallel::{Processes, Subdomain};
+use crate::parallel::{Partition, Processes, Subdomain};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -187,10 +187,15 @@ impl System {
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
         let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
+        // Several processes: the nodes split among them (PETSc's rows and the cells each
+        // assembles follow the split).
+        let processes = Processes::current();
+        let partition = Partition::of(&problem.mesh, &processes)?;
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
             petsc_options: &settings.petsc.options,
+            partition: &partition,
         };
         let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();
@@ -200,15 +205,11 @@ impl System {
         // Several processes: each assembles the cells around its own nodes, whose rows
         // the distributed linear solver takes from it (only that solver can take partial
         // matrices).
-        let processes = Processes::current();
-        let subdomain = if linear_solver.kind() == super::LinearSolver::Petsc {
-            Subdomain::of(&problem.mesh, &processes)
-        } else {
-            None
-        };
-        let owned_dofs = subdomain
-            .as_ref()
-            .map_or(0..dofs.equations().len(), |s| s.dofs(problem.mesh.dim()));
+        let distributed =
+            processes.size() > 1 && linear_solver.kind() == super::LinearSolver::Petsc;
+        let subdomain =
+            distributed.then(|| Subdomain::new(&problem.mesh, partition, processes.rank()));
+        let d = problem.mesh.dim();
         let shifted: Vec<usize> = rigid
             .shifted_dofs()
             .into_iter()
@@ -218,7 +219,7 @@ impl System {
         let rigid_slots = shifted.iter().map(rigid_slot).collect();
         let rigid_slots_owned = shifted
             .iter()
-            .filter(|k| owned_dofs.contains(k))
+            .filter(|&&k| subdomain.as_ref().is_none_or(|s| s.owns_dof(k, d)))
             .map(rigid_slot)
             .collect();
         let mut workspace = Workspace::new(match settings.threads {
@@ -422,12 +423,24 @@ impl System {
         if let Some(sub) = &self.workspace.subdomain {
             // Each process computed its owned cells' energy and its nodes' gradient.
             let mut e = [e_bulk];
+            let d = problem.mesh.dim();
             let gathered = self.processes.sum(&mut e).and_then(|()| {
-                let mine = &out.grad_bulk[sub.dofs(problem.mesh.dim())];
-                self.processes.all_gather(mine, u.len())
+                let mine: Vec<f64> = sub
+                    .nodes()
+                    .iter()
+                    .flat_map(|&v| out.grad_bulk[d * v as usize..d * (v as usize + 1)].iter())
+                    .copied()
+                    .collect();
+                self.processes.all_gather(&mine, u.len())
             });
             match gathered {
-                Ok(g) => out.grad_bulk.copy_from_slice(&g),
+                // In the distributed numbering: node `order[p]`'s entries at position p.
+                Ok(g) => {
+                    for (p, &v) in sub.partition.order.iter().enumerate() {
+                        let v = v as usize;
+                        out.grad_bulk[d * v..d * v + d].copy_from_slice(&g[d * p..d * p + d]);
+                    }
+                }
                 Err(e) => {
                     out.law_error.get_or_insert(e);
                     return f64::NAN;
