@@ -72,6 +72,8 @@ pub struct PetscSolver {
     row_dofs: Vec<u32>,
     /// The nodes in the distributed numbering ([`Partition::order`]), PETSc's order.
     order: Vec<u32>,
+    /// Displacement components per node (2 or 3).
+    dim: usize,
     /// Right-hand side of this rank's rows.
     b_local: Vec<f64>,
     /// Solution of this rank's rows.
@@ -126,51 +128,8 @@ impl PetscSolver {
             }
         }
         let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-        // Entries per DOF row: both triangles of the free block, one diagonal entry for
-        // each prescribed DOF.
-        let mut row_ptr = vec![0usize; n + 1];
-        for (dof, &eq) in equations.iter().enumerate() {
-            if eq == FIXED {
-                row_ptr[dof + 1] += 1;
-            }
-        }
-        for j in 0..pattern.n() {
-            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
-                row_ptr[dof_of[j] as usize + 1] += 1;
-                if i != j {
-                    row_ptr[dof_of[i] as usize + 1] += 1;
-                }
-            }
-        }
-        for r in 0..n {
-            row_ptr[r + 1] += row_ptr[r];
-        }
-        let nnz = row_ptr[n];
-        let mut entries = vec![(0u32, 0u32); nnz];
-        let mut next = row_ptr.clone();
-        let mut push = |row: usize, col: u32, src: u32| {
-            entries[next[row]] = (global(col as usize), src);
-            next[row] += 1;
-        };
-        for (dof, &eq) in equations.iter().enumerate() {
-            if eq == FIXED {
-                push(dof, dof as u32, PRESCRIBED);
-            }
-        }
-        for j in 0..pattern.n() {
-            for (k, &i) in row_idx[col_ptr[j]..col_ptr[j + 1]].iter().enumerate() {
-                let slot = (col_ptr[j] + k) as u32;
-                push(dof_of[j] as usize, dof_of[i], slot);
-                if i != j {
-                    push(dof_of[i] as usize, dof_of[j], slot);
-                }
-            }
-        }
-        for r in 0..n {
-            entries[row_ptr[r]..row_ptr[r + 1]].sort_unstable();
-        }
         // This rank's rows: the DOFs of its nodes (all of them on one process), in PETSc's
-        // order.
+        // order; `local_row` numbers them (NOT_MINE: another rank's).
         let processes = Processes::current();
         let rank = processes.rank();
         let row_dofs: Vec<u32> = partition
@@ -178,18 +137,66 @@ impl PetscSolver {
             .iter()
             .flat_map(|&v| (0..d).map(move |k| (d * v as usize + k) as u32))
             .collect();
-        let mut local_ptr = Vec::with_capacity(row_dofs.len() + 1);
-        local_ptr.push(0);
-        let mut cols = Vec::new();
-        let mut source = Vec::new();
-        for &dof in &row_dofs {
-            for &(c, s) in &entries[row_ptr[dof as usize]..row_ptr[dof as usize + 1]] {
-                cols.push(c as usize);
-                source.push(s);
-            }
-            local_ptr.push(cols.len());
+        const NOT_MINE: u32 = u32::MAX;
+        let mut local_row = vec![NOT_MINE; n];
+        for (r, &dof) in row_dofs.iter().enumerate() {
+            local_row[dof as usize] = r as u32;
         }
-        drop(entries);
+        // Entries per row of this rank: both triangles of the free block, one diagonal
+        // entry for each prescribed DOF.
+        let mut local_ptr = vec![0usize; row_dofs.len() + 1];
+        let mut count = |dof: u32| {
+            let r = local_row[dof as usize];
+            if r != NOT_MINE {
+                local_ptr[r as usize + 1] += 1;
+            }
+        };
+        for (dof, &eq) in equations.iter().enumerate() {
+            if eq == FIXED {
+                count(dof as u32);
+            }
+        }
+        for j in 0..pattern.n() {
+            for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+                count(dof_of[j]);
+                if i != j {
+                    count(dof_of[i]);
+                }
+            }
+        }
+        for r in 0..row_dofs.len() {
+            local_ptr[r + 1] += local_ptr[r];
+        }
+        // (PETSc's column, source slot) of every entry, sorted by column within each row.
+        let mut entries = vec![(0u32, 0u32); local_ptr[row_dofs.len()]];
+        let mut next = local_ptr.clone();
+        let mut push = |row: u32, col: u32, src: u32| {
+            let r = local_row[row as usize];
+            if r != NOT_MINE {
+                entries[next[r as usize]] = (global(col as usize), src);
+                next[r as usize] += 1;
+            }
+        };
+        for (dof, &eq) in equations.iter().enumerate() {
+            if eq == FIXED {
+                push(dof as u32, dof as u32, PRESCRIBED);
+            }
+        }
+        for j in 0..pattern.n() {
+            for (k, &i) in row_idx[col_ptr[j]..col_ptr[j + 1]].iter().enumerate() {
+                let slot = (col_ptr[j] + k) as u32;
+                push(dof_of[j], dof_of[i], slot);
+                if i != j {
+                    push(dof_of[i], dof_of[j], slot);
+                }
+            }
+        }
+        drop(local_row);
+        for r in 0..row_dofs.len() {
+            entries[local_ptr[r]..local_ptr[r + 1]].sort_unstable();
+        }
+        let (cols, source): (Vec<usize>, Vec<u32>) =
+            entries.into_iter().map(|(c, s)| (c as usize, s)).unzip();
         let coordinates: Vec<f64> = row_dofs
             .iter()
             .map(|&dof| mesh.coords()[dof as usize])
@@ -219,6 +226,7 @@ impl PetscSolver {
             equations: equations.to_vec(),
             row_dofs,
             order: partition.order.clone(),
+            dim: d,
             b_local: vec![0.0; local],
             x_local: vec![0.0; local],
             x_all: Vec::new(),
@@ -376,7 +384,7 @@ impl SpdSolver for PetscSolver {
         } else {
             &self.x_local
         };
-        let d = self.equations.len() / self.order.len().max(1);
+        let d = self.dim;
         for (p, &v) in self.order.iter().enumerate() {
             for k in 0..d {
                 let eq = self.equations[d * v as usize + k];

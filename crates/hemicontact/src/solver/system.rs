@@ -187,10 +187,17 @@ impl System {
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
         let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
-        // Several processes: the nodes split among them (PETSc's rows and the cells each
-        // assembles follow the split).
+        // Several processes with the distributed solver: the nodes split among them
+        // (PETSc's rows and the cells each assembles follow the split). Otherwise every
+        // process holds the whole system and the split is the trivial one.
         let processes = Processes::current();
-        let partition = Partition::of(&problem.mesh, &processes)?;
+        let distributed = processes.size() > 1
+            && kind.resolve(problem.mesh.dim(), pattern.n()) == super::LinearSolver::Petsc;
+        let partition = if distributed {
+            Partition::of(&problem.mesh, &processes)?
+        } else {
+            Partition::ranges(problem.mesh.n_nodes(), 1)
+        };
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
@@ -205,8 +212,6 @@ impl System {
         // Several processes: each assembles the cells around its own nodes, whose rows
         // the distributed linear solver takes from it (only that solver can take partial
         // matrices).
-        let distributed =
-            processes.size() > 1 && linear_solver.kind() == super::LinearSolver::Petsc;
         let subdomain =
             distributed.then(|| Subdomain::new(&problem.mesh, partition, processes.rank()));
         let d = problem.mesh.dim();
