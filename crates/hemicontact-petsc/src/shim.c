@@ -142,8 +142,9 @@ static PetscErrorCode system_create(int64_t n, int64_t n_global, int64_t first, 
   MatNullSpace near_null;
   PC pc;
   KSPType ksp_type;
-  PetscBool has_norm, is_cg;
+  PetscBool has_norm, is_cg, has_ptap;
   PetscScalar *array;
+  PetscMPIInt size;
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&s));
@@ -184,6 +185,14 @@ static PetscErrorCode system_create(int64_t n, int64_t n_global, int64_t first, 
    * builds a new interpolation at every set-up: reusing it (-pc_gamg_reuse_interpolation,
    * on by default in PETSc 3.18) was measured to make the V-cycle indefinite on the
    * contact problems of hemicontact, whose matrix changes between Newton steps. */
+  /* On three processes or more, PETSc's default triple product P^T A P (GAMG's coarse
+   * matrices) adds the contributions other processes send in the order they arrive, so the
+   * last bits of the answer would change from run to run. The all-at-once product adds
+   * them in a fixed order (measured: identical bits in every run, set-ups slower). It is a
+   * global option of the process, kept when PETSC_OPTIONS names another. */
+  PetscCall(MPI_Comm_size(comm, &size));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &has_ptap));
+  if (size >= 3 && !has_ptap) PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
   PetscCall(KSPCreate(comm, &s->ksp));
   PetscCall(KSPSetOptionsPrefix(s->ksp, prefix));
   PetscCall(KSPSetOperators(s->ksp, s->A, s->A));
