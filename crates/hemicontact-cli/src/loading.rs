@@ -10,7 +10,7 @@ use anyhow::{Context, Result};
 use hemicontact::display::significant;
 use hemicontact::io::results::{solution_figures, write_results};
 use hemicontact::io::summary::Summary;
-use hemicontact::io::vtu::solution_vtu;
+use hemicontact::io::vtu::solution_files;
 use hemicontact::loading::{for_each_step, path_csv, LoadStep, PathRow};
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
@@ -96,17 +96,23 @@ pub fn solve_path(
             }
             summary.prepend_notes(notes.clone());
             let step_title = format!("{title}, load factor {}", significant(s.factor));
-            let mut extra = Vec::new();
+            let mut files: Vec<(String, Vec<u8>)> = Vec::new();
             if output.vtu && ctx.output.writes() {
-                extra.push((
-                    "solution.vtu",
-                    solution_vtu(&s.problem, &s.solution, &step_title, s.factor)?.to_bytes(),
-                ));
-                datasets.push((s.factor, format!("{folder}/solution.vtu")));
+                // solution.vtu, or solution.pvtu (last) and its pieces.
+                files = solution_files(&s.problem, &s.solution, &step_title, s.factor)?;
+                if let Some((index, _)) = files.last() {
+                    datasets.push((s.factor, format!("{folder}/{index}")));
+                }
             }
             if (s.step == n || !r.converged) && ctx.output.writes() {
-                extra.extend(solution_figures(&s.problem, &s.solution, &step_title)?);
+                files.extend(
+                    solution_figures(&s.problem, &s.solution, &step_title)?
+                        .into_iter()
+                        .map(|(name, bytes)| (name.to_string(), bytes)),
+                );
             }
+            let (names, bytes): (Vec<String>, Vec<Vec<u8>>) = files.into_iter().unzip();
+            let extra: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(bytes).collect();
             let written = ctx.output.with(|set| {
                 Ok(Some(write_results(
                     set,

@@ -48,11 +48,47 @@ fn variant(dir: &Path, name: &str, copy: &str, lines: &str) -> PathBuf {
     file
 }
 
+/// The displacement (3 components per node) of the result folder `dir`: from
+/// `solution.vtu`, or from the pieces that `solution.pvtu` names, put together by their
+/// `node_id`. A node in several pieces must have the same bits in each, every node must be
+/// in one, and a folder holds one of the two formats, not both.
 fn displacement(dir: &Path) -> Vec<f64> {
-    vtu::f64s(
-        &std::fs::read(dir.join("solution.vtu")).unwrap(),
-        "displacement",
-    )
+    let serial = dir.join("solution.vtu");
+    let index = dir.join("solution.pvtu");
+    assert!(
+        serial.exists() != index.exists(),
+        "{dir:?}: one of solution.vtu and solution.pvtu"
+    );
+    if serial.exists() {
+        return vtu::f64s(&std::fs::read(serial).unwrap(), "displacement");
+    }
+    let text = std::fs::read_to_string(index).unwrap();
+    let mut u: Vec<Option<[u64; 3]>> = Vec::new();
+    for source in text
+        .lines()
+        .filter_map(|l| l.strip_prefix("<Piece Source=\""))
+        .map(|l| l.trim_end_matches("\"/>"))
+    {
+        let piece = std::fs::read(dir.join(source)).unwrap();
+        let values = vtu::f64s(&piece, "displacement");
+        for (j, &node) in vtu::i64s(&piece, "node_id").iter().enumerate() {
+            let node = node as usize;
+            if u.len() <= node {
+                u.resize(node + 1, None);
+            }
+            let bits = [0, 1, 2].map(|k| values[3 * j + k].to_bits());
+            assert!(
+                u[node].is_none_or(|b| b == bits),
+                "{dir:?}: node {node} differs between pieces"
+            );
+            u[node] = Some(bits);
+        }
+    }
+    u.iter()
+        .enumerate()
+        .flat_map(|(v, b)| b.unwrap_or_else(|| panic!("{dir:?}: node {v} in no piece")))
+        .map(f64::from_bits)
+        .collect()
 }
 
 fn summary(dir: &Path) -> serde_json::Value {
@@ -106,6 +142,26 @@ fn agrees_across_processes(name: &str) {
         let s = summary(&folder);
         assert_eq!(s["report"]["processes"], np, "{name}, {np} processes");
         assert_eq!(s["report"]["converged"], true, "{name}, {np} processes");
+        // ParaView's parallel format, one piece per process, listed in the summary.
+        let files: Vec<&str> = s["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f.as_str().unwrap())
+            .collect();
+        let pieces: Vec<String> = (0..np).map(|r| format!("solution_{r}.vtu")).collect();
+        if np > 1 {
+            assert!(files.contains(&"solution.pvtu"), "{name}, {np}: {files:?}");
+            assert!(
+                pieces.iter().all(|p| files.contains(&p.as_str())),
+                "{files:?}"
+            );
+        } else {
+            assert!(
+                files.contains(&"solution.vtu"),
+                "{name}, 1 process: {files:?}"
+            );
+        }
         let u = displacement(&folder);
         let diff = u
             .iter()

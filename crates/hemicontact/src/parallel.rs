@@ -274,6 +274,28 @@ impl Partition {
     pub fn nodes(&self, rank: usize) -> &[u32] {
         &self.order[self.first[rank]..self.first[rank + 1]]
     }
+
+    /// The number of ranks.
+    pub fn size(&self) -> usize {
+        self.first.len() - 1
+    }
+
+    /// The rank that owns cell `cell` of `mesh`: the rank of its lowest-numbered node
+    /// (see [`Subdomain`]).
+    pub fn owner(&self, mesh: &crate::mesh::Mesh, cell: usize) -> usize {
+        let lowest = mesh.cell(cell).iter().min().copied().unwrap_or(0);
+        self.rank_of[lowest as usize] as usize
+    }
+
+    /// The cells every rank owns ([`Partition::owner`]), each list in increasing order:
+    /// every cell in exactly one.
+    pub fn owned_cells(&self, mesh: &crate::mesh::Mesh) -> Vec<Vec<u32>> {
+        let mut cells = vec![Vec::new(); self.size()];
+        for c in 0..mesh.n_cells() {
+            cells[self.owner(mesh, c)].push(c as u32);
+        }
+        cells
+    }
 }
 
 /// What one rank assembles when the run is several processes: the nodes it owns (its part
@@ -304,11 +326,9 @@ impl Subdomain {
         let mut owned = Vec::new();
         let mut ghosts = Vec::new();
         for c in 0..mesh.n_cells() {
-            let cell = mesh.cell(c);
-            let lowest = cell.iter().min().copied().unwrap_or(0);
-            if inside(&lowest) {
+            if partition.owner(mesh, c) == rank {
                 owned.push(c as u32);
-            } else if cell.iter().any(inside) {
+            } else if mesh.cell(c).iter().any(inside) {
                 ghosts.push(c as u32);
             }
         }

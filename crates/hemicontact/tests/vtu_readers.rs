@@ -281,11 +281,20 @@ fn python() -> String {
 /// Runs `tests/python/check_readers.py` on `files`: panics if a check fails; announces the
 /// skip (or fails under `CI=true`) if the interpreter cannot import meshio and vtk.
 fn readers_agree(files: &[PathBuf]) {
+    python_check("check_readers.py", files);
+}
+
+/// Runs the script `tests/python/<script>` on `args`: panics if a check fails; announces
+/// the skip (or fails under `CI=true`) if the interpreter cannot import meshio and vtk
+/// (exit code 77).
+fn python_check(script: &str, args: &[PathBuf]) {
     use std::io::Write as _;
-    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/python/check_readers.py");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/python")
+        .join(script);
     let out = Command::new(python())
-        .arg(&script)
-        .args(files)
+        .arg(&path)
+        .args(args)
         .output()
         .expect("the Python interpreter runs");
     let stderr = String::from_utf8_lossy(&out.stderr);
@@ -298,9 +307,9 @@ fn readers_agree(files: &[PathBuf]) {
         );
         let _ = writeln!(
             std::io::stderr().lock(),
-            "\n*** SKIPPED check_readers.py: `{}` cannot import meshio, vtk and numpy. This \
-             run is NO evidence that meshio and VTK read the files the same. Install the \
-             readers with `bash scripts/install-test-deps.sh target/test-venv` and set \
+            "\n*** SKIPPED {script}: `{}` cannot import meshio, vtk and numpy. This run is \
+             NO evidence that the readers read the files as written. Install the readers \
+             with `bash scripts/install-test-deps.sh target/test-venv` and set \
              HEMICONTACT_PYTHON=$PWD/target/test-venv/bin/python (an absolute path). ***\n",
             python()
         );
@@ -308,7 +317,7 @@ fn readers_agree(files: &[PathBuf]) {
     }
     assert!(
         out.status.success(),
-        "check_readers.py failed (exit {:?}):\n{}{stderr}",
+        "{script} failed (exit {:?}):\n{}{stderr}",
         out.status.code(),
         String::from_utf8_lossy(&out.stdout)
     );
@@ -335,5 +344,142 @@ fn many_short_arrays_are_read_the_same_by_meshio_and_vtk() {
     let dir = common::fresh_dir("vtu-readers-short");
     let files = write_many_short_arrays(&dir, 16);
     check_files(&files);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The parallel format: the solution of every kind of mesh (2D generated, 3D generated,
+/// Gmsh), split into 3 pieces by contiguous ranges of nodes and by a scattered split (node
+/// v to rank 7v mod 3, the most borders), written as `hemicontact solve` writes it under
+/// `mpirun -np 3`:
+/// - the files are `solution_0.vtu` … `solution_2.vtu` and the index `solution.pvtu` last,
+///   which names them and declares every piece array with its type and components;
+/// - every cell of the mesh is in exactly one piece (`cell_id`);
+/// - every value of every point and cell array, every point's coordinates and every cell's
+///   nodes are the serial `solution.vtu`'s at that node (`node_id`) or cell, bit for bit;
+/// - each piece passes the single-file checks (own blocks, meshio and VTK agree), and VTK's
+///   parallel reader reads the index as the serial file (`tests/python/check_pvtu.py`).
+#[test]
+fn parallel_pieces_hold_every_cell_once_with_the_serial_values() {
+    use common::vtu::{arrays, f64s, i32s, i64s};
+    use hemicontact::io::vtu::solution_files;
+    use hemicontact::parallel::Partition;
+    let dir = common::fresh_dir("vtu-readers-pieces");
+    let mut to_check = Vec::new();
+    let mut pairs = Vec::new();
+    for name in ["paper.toml", "paper3d.toml", "half-disc.toml"] {
+        let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenarios")
+            .join(name);
+        let scenario = small(&Scenario::from_file(&file).unwrap());
+        let problem = scenario.into_problem().unwrap();
+        let settings = scenario.settings().unwrap();
+        let mut solution = hemicontact::solver::solve(&problem, &settings).unwrap();
+        let mesh = problem.mesh();
+        let n = mesh.n_nodes();
+        let serial = solution_files(&problem, &solution, "t", 1.0).unwrap();
+        assert_eq!(serial.len(), 1);
+        assert_eq!(serial[0].0, "solution.vtu");
+        let whole = &serial[0].1;
+        let scattered = Partition::from_ranks((0..n).map(|v| (7 * v % 3) as u32).collect(), 3);
+        for (split, partition) in [
+            ("ranges", Partition::ranges(n, 3)),
+            ("scattered", scattered),
+        ] {
+            solution.partition = Some(partition);
+            let files = solution_files(&problem, &solution, "t", 1.0).unwrap();
+            let names: Vec<&str> = files.iter().map(|(f, _)| f.as_str()).collect();
+            assert_eq!(
+                names,
+                [
+                    "solution_0.vtu",
+                    "solution_1.vtu",
+                    "solution_2.vtu",
+                    "solution.pvtu"
+                ]
+            );
+            let index = String::from_utf8(files[3].1.clone()).unwrap();
+            let sources: Vec<&str> = index
+                .lines()
+                .filter_map(|l| l.strip_prefix("<Piece Source=\""))
+                .map(|l| l.trim_end_matches("\"/>"))
+                .collect();
+            assert_eq!(sources, names[..3]);
+            let mut seen = vec![0u32; mesh.n_cells()];
+            for (_, piece) in &files[..3] {
+                for (section, ids, id) in [
+                    ("PointData", "node", "node_id"),
+                    ("CellData", "cell", "cell_id"),
+                ] {
+                    let declared = arrays(index.as_bytes(), &format!("P{section}"));
+                    assert_eq!(declared, arrays(piece, section), "{name} {split} {section}");
+                    let at: Vec<usize> = i64s(piece, id).iter().map(|&i| i as usize).collect();
+                    if ids == "cell" {
+                        for &c in &at {
+                            seen[c] += 1;
+                        }
+                    }
+                    for (array, ty, k) in arrays(whole, section) {
+                        let same = match ty.as_str() {
+                            "Float64" => {
+                                let (all, part) = (f64s(whole, &array), f64s(piece, &array));
+                                at.iter().enumerate().all(|(j, &i)| {
+                                    (0..k).all(|c| {
+                                        all[k * i + c].to_bits() == part[k * j + c].to_bits()
+                                    })
+                                })
+                            }
+                            "Int32" => {
+                                let (all, part) = (i32s(whole, &array), i32s(piece, &array));
+                                at.iter().enumerate().all(|(j, &i)| {
+                                    (0..k).all(|c| all[k * i + c] == part[k * j + c])
+                                })
+                            }
+                            other => panic!("{array}: type {other}"),
+                        };
+                        assert!(
+                            same,
+                            "{name} {split}: {section} {array} differs from the serial file"
+                        );
+                    }
+                    if ids == "cell" {
+                        // Each cell's nodes, through node_id, are the serial cell's.
+                        let (all, part) =
+                            (i64s(whole, "connectivity"), i64s(piece, "connectivity"));
+                        let node_id = i64s(piece, "node_id");
+                        let nv = all.len() / mesh.n_cells();
+                        assert!(at.iter().enumerate().all(|(j, &c)| (0..nv)
+                            .all(|k| node_id[part[nv * j + k] as usize] == all[nv * c + k])));
+                    }
+                    if ids == "node" {
+                        let (all, part) = (f64s(whole, "Points"), f64s(piece, "Points"));
+                        assert!(at
+                            .iter()
+                            .enumerate()
+                            .all(|(j, &i)| all[3 * i..3 * i + 3] == part[3 * j..3 * j + 3]));
+                    }
+                }
+            }
+            assert!(
+                seen.iter().all(|&s| s == 1),
+                "{name} {split}: a cell not in exactly one piece"
+            );
+            let folder = dir.join(format!("{}-{split}", name.trim_end_matches(".toml")));
+            std::fs::create_dir_all(&folder).unwrap();
+            for (f, bytes) in files.iter().chain(&serial) {
+                std::fs::write(folder.join(f), bytes).unwrap();
+            }
+            // A piece may hold no cell (the last range of a tiny mesh owns none); the
+            // readers' comparison needs points.
+            to_check.extend(
+                files[..3]
+                    .iter()
+                    .filter(|(_, piece)| !i64s(piece, "cell_id").is_empty())
+                    .map(|(f, _)| folder.join(f)),
+            );
+            pairs.push(folder);
+        }
+    }
+    check_files(&to_check);
+    python_check("check_pvtu.py", &pairs);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -5,15 +5,16 @@
 use super::csv::contact_csv;
 use super::result_set::ResultSet;
 use super::summary::{Summary, SUMMARY_FILE};
-use super::vtu::solution_vtu;
+use super::vtu::solution_files;
 use crate::error::Result;
 use crate::problem::Problem;
 use crate::solver::Solution;
 use std::path::PathBuf;
 
 /// Writes the result files of a solution titled `title` into the sub-folder `folder` of the
-/// result set `set` (`""`: its root): `solution.vtu` (if `vtu`; the title and the load
-/// factor 1 in its `FieldData`), `contact.csv` (if the problem has
+/// result set `set` (`""`: its root): `solution.vtu`, or `solution.pvtu` and its pieces for
+/// a solution of several processes (if `vtu`; [`super::vtu::solution_files`], the title and
+/// the load factor 1 in its `FieldData`), `contact.csv` (if the problem has
 /// contact), the `extra` files (name within the folder, content), and last, if `summary` is
 /// given, `summary.json`, whose `files` lists every file of the folder, itself included.
 /// Returns the final paths written.
@@ -41,13 +42,13 @@ pub fn write_results(
     // The two encodings are independent: made in parallel, written in order.
     let (vtu_bytes, csv) = rayon::join(
         || {
-            vtu.then(|| solution_vtu(problem, solution, title, 1.0).map(|v| v.to_bytes()))
+            vtu.then(|| solution_files(problem, solution, title, 1.0))
                 .transpose()
         },
         || (!problem.contact.is_empty()).then(|| contact_csv(problem, solution)),
     );
-    if let Some(bytes) = vtu_bytes? {
-        written.push(set.write(&name("solution.vtu"), &bytes)?);
+    for (file, bytes) in vtu_bytes?.unwrap_or_default() {
+        written.push(set.write(&name(&file), &bytes)?);
     }
     if let Some(csv) = csv {
         written.push(set.write(&name("contact.csv"), csv.as_bytes())?);

@@ -25,6 +25,7 @@ use std::path::Path;
 enum Data {
     F64(Vec<f64>),
     I32(Vec<i32>),
+    I64(Vec<i64>),
     U8(Vec<u8>),
 }
 
@@ -34,7 +35,34 @@ impl Data {
         match self {
             Data::F64(v) => ("Float64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
             Data::I32(v) => ("Int32", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
+            Data::I64(v) => ("Int64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
             Data::U8(v) => ("UInt8", v.clone()),
+        }
+    }
+
+    /// The VTK type name.
+    fn type_name(&self) -> &'static str {
+        match self {
+            Data::F64(_) => "Float64",
+            Data::I32(_) => "Int32",
+            Data::I64(_) => "Int64",
+            Data::U8(_) => "UInt8",
+        }
+    }
+
+    /// The tuples `ids` of `components` values each, in that order.
+    fn select(&self, components: usize, ids: &[u32]) -> Data {
+        fn pick<T: Copy>(v: &[T], c: usize, ids: &[u32]) -> Vec<T> {
+            ids.iter()
+                .flat_map(|&i| &v[c * i as usize..c * (i as usize + 1)])
+                .copied()
+                .collect()
+        }
+        match self {
+            Data::F64(v) => Data::F64(pick(v, components, ids)),
+            Data::I32(v) => Data::I32(pick(v, components, ids)),
+            Data::I64(v) => Data::I64(pick(v, components, ids)),
+            Data::U8(v) => Data::U8(pick(v, components, ids)),
         }
     }
 
@@ -42,6 +70,7 @@ impl Data {
         match self {
             Data::F64(v) => v.len(),
             Data::I32(v) => v.len(),
+            Data::I64(v) => v.len(),
             Data::U8(v) => v.len(),
         }
     }
@@ -170,6 +199,64 @@ impl<'a> VtuWriter<'a> {
     /// arrays. In reverse order every element already renumbered comes after the one whose
     /// offset is looked up, so the lookup always finds the right one.
     pub fn to_bytes(&self) -> Vec<u8> {
+        self.encode(None)
+    }
+
+    /// The files of the same data split into pieces, as ParaView's parallel format: piece
+    /// `r` (`{stem}_{r}.vtu`) holds the cells `pieces[r]` and the nodes they use (in
+    /// increasing order), every array restricted to them, plus the point array `node_id`
+    /// and the cell array `cell_id` (their numbers in the whole mesh, from 0); last the
+    /// index `{stem}.pvtu` naming the pieces. Every piece repeats the `FieldData`. A node on
+    /// the border of two pieces is in both, with the same values.
+    ///
+    /// # Panics
+    /// If a cell number is out of range.
+    pub fn parallel_files(&self, pieces: &[Vec<u32>], stem: &str) -> Vec<(String, Vec<u8>)> {
+        let mut files: Vec<(String, Vec<u8>)> = pieces
+            .iter()
+            .enumerate()
+            .map(|(r, cells)| (format!("{stem}_{r}.vtu"), self.encode(Some(cells))))
+            .collect();
+        let mut xml = String::from(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" \
+             byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+             <PUnstructuredGrid GhostLevel=\"0\">\n",
+        );
+        let ids = |section: &str, arrays: &[Array], id: &str| {
+            let mut x = format!("<P{section}>\n");
+            for a in arrays {
+                let _ = writeln!(
+                    x,
+                    "<PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>",
+                    a.data.type_name(),
+                    a.name,
+                    a.components
+                );
+            }
+            let _ = writeln!(
+                x,
+                "<PDataArray type=\"Int64\" Name=\"{id}\" NumberOfComponents=\"1\"/>"
+            );
+            let _ = writeln!(x, "</P{section}>");
+            x
+        };
+        xml.push_str(&ids("PointData", &self.point, "node_id"));
+        xml.push_str(&ids("CellData", &self.cell, "cell_id"));
+        xml.push_str(
+            "<PPoints>\n<PDataArray type=\"Float64\" Name=\"Points\" \
+             NumberOfComponents=\"3\"/>\n</PPoints>\n",
+        );
+        for (name, _) in &files {
+            let _ = writeln!(xml, "<Piece Source=\"{name}\"/>");
+        }
+        xml.push_str("</PUnstructuredGrid>\n</VTKFile>\n");
+        files.push((format!("{stem}.pvtu"), xml.into_bytes()));
+        files
+    }
+
+    /// The file of the whole mesh (`piece` = `None`), or of the cells `piece` and the nodes
+    /// they use, with their `node_id` and `cell_id` ([`VtuWriter::parallel_files`]).
+    fn encode(&self, piece: Option<&[u32]>) -> Vec<u8> {
         /// A piece of the file in document order: XML text, or an appended array (its
         /// `<DataArray` tag up to its offset, and its encoded block).
         enum Part {
@@ -182,6 +269,34 @@ impl<'a> VtuWriter<'a> {
         };
         let mesh = self.mesh;
         let d = mesh.dim();
+        let nv = d + 1;
+        // The piece's cells and nodes (increasing), and each node's number in the piece.
+        let all_cells: Vec<u32>;
+        let cells: &[u32] = match piece {
+            Some(c) => c,
+            None => {
+                all_cells = (0..mesh.n_cells() as u32).collect();
+                &all_cells
+            }
+        };
+        let mut local = vec![u32::MAX; mesh.n_nodes()];
+        let nodes: Vec<u32> = match piece {
+            Some(c) => {
+                let mut used = vec![false; mesh.n_nodes()];
+                for &cell in c {
+                    for &v in mesh.cell(cell as usize) {
+                        used[v as usize] = true;
+                    }
+                }
+                (0..mesh.n_nodes() as u32)
+                    .filter(|&v| used[v as usize])
+                    .collect()
+            }
+            None => (0..mesh.n_nodes() as u32).collect(),
+        };
+        for (k, &v) in nodes.iter().enumerate() {
+            local[v as usize] = k as u32;
+        }
         let mut parts = vec![Part::Xml(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
              byte_order=\"LittleEndian\" header_type=\"UInt64\" \
@@ -204,12 +319,35 @@ impl<'a> VtuWriter<'a> {
         }
         parts.push(Part::Xml(format!(
             "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-            mesh.n_nodes(),
-            mesh.n_cells()
+            nodes.len(),
+            cells.len()
         )));
-        for (section, arrays) in [("PointData", &self.point), ("CellData", &self.cell)] {
+        for (section, arrays, ids, id) in [
+            ("PointData", &self.point, nodes.as_slice(), "node_id"),
+            ("CellData", &self.cell, cells, "cell_id"),
+        ] {
             parts.push(Part::Xml(format!("<{section}>\n")));
-            for a in arrays.iter() {
+            let restricted: Vec<Array> = match piece {
+                Some(_) => arrays
+                    .iter()
+                    .map(|a| Array {
+                        name: a.name.clone(),
+                        components: a.components,
+                        data: a.data.select(a.components, ids),
+                    })
+                    .chain(std::iter::once(Array {
+                        name: id.into(),
+                        components: 1,
+                        data: Data::I64(ids.iter().map(|&x| i64::from(x)).collect()),
+                    }))
+                    .collect(),
+                None => Vec::new(),
+            };
+            let arrays: Vec<&Array> = match piece {
+                Some(_) => restricted.iter().collect(),
+                None => arrays.iter().collect(),
+            };
+            for a in arrays {
                 let (ty, bytes) = a.data.encode();
                 let tag = format!(
                     "<DataArray type=\"{ty}\" Name=\"{}\" NumberOfComponents=\"{}\" \
@@ -220,9 +358,9 @@ impl<'a> VtuWriter<'a> {
             }
             parts.push(Part::Xml(format!("</{section}>\n")));
         }
-        let mut pts = Vec::with_capacity(24 * mesh.n_nodes());
-        for n in 0..mesh.n_nodes() {
-            let x = mesh.node(n);
+        let mut pts = Vec::with_capacity(24 * nodes.len());
+        for &n in &nodes {
+            let x = mesh.node(n as usize);
             for i in 0..3 {
                 pts.extend_from_slice(&(if i < d { x[i] } else { 0.0 }).to_le_bytes());
             }
@@ -235,17 +373,16 @@ impl<'a> VtuWriter<'a> {
             &pts,
         ));
         parts.push(Part::Xml("</Points>\n<Cells>\n".into()));
-        let conn: Vec<u8> = mesh
-            .cells()
+        let conn: Vec<u8> = cells
             .iter()
-            .flat_map(|&v| (v as i64).to_le_bytes())
+            .flat_map(|&c| mesh.cell(c as usize))
+            .flat_map(|&v| i64::from(local[v as usize]).to_le_bytes())
             .collect();
-        let nv = d + 1;
-        let offs: Vec<u8> = (1..=mesh.n_cells())
+        let offs: Vec<u8> = (1..=cells.len())
             .flat_map(|c| ((c * nv) as i64).to_le_bytes())
             .collect();
         let vtk_type: u8 = if d == 2 { 5 } else { 10 };
-        let types = vec![vtk_type; mesh.n_cells()];
+        let types = vec![vtk_type; cells.len()];
         for (ty, name, bytes) in [
             ("Int64", "connectivity", &conn),
             ("Int64", "offsets", &offs),
@@ -506,4 +643,25 @@ pub fn solution_vtu<'a>(
         .cell_f64("locking_q", 1, cells.locking_q)
         .cell_f64("locking_multiplier", 1, cells.locking_multiplier);
     Ok(w)
+}
+
+/// The files of a solution's fields ([`solution_vtu`]): `solution.vtu`, or, for a solution
+/// of several MPI processes ([`Solution::partition`]), ParaView's parallel format with one
+/// piece per process, `solution_<rank>.vtu` holding the cells that rank owns
+/// ([`crate::parallel::Partition::owned_cells`]), and the index `solution.pvtu` last
+/// ([`VtuWriter::parallel_files`]). Names are relative to the result folder.
+///
+/// # Errors
+/// As [`solution_vtu`].
+pub fn solution_files(
+    problem: &Problem,
+    solution: &Solution,
+    title: &str,
+    load_factor: f64,
+) -> Result<Vec<(String, Vec<u8>)>> {
+    let w = solution_vtu(problem, solution, title, load_factor)?;
+    Ok(match &solution.partition {
+        Some(p) if p.size() > 1 => w.parallel_files(&p.owned_cells(&problem.mesh), "solution"),
+        _ => vec![("solution.vtu".to_string(), w.to_bytes())],
+    })
 }

@@ -158,6 +158,10 @@ pub struct Solution {
     pub frozen: Frozen,
     /// What the solver did; `report.converged` says whether `u` is a solution.
     pub report: SolveReport,
+    /// How the nodes were split among the processes that solved it: `Some` when several
+    /// MPI processes solved it with the distributed solver (its `solution.pvtu` then has
+    /// one piece per process), `None` on one process.
+    pub partition: Option<crate::parallel::Partition>,
 }
 
 /// Solves the problem with the given settings, from the prescribed displacement (zero
@@ -368,6 +372,7 @@ fn solve_dimensionless(
         locking_multiplier: updated.locking,
         frozen,
         report,
+        partition: system.partition().cloned(),
     })
 }
 

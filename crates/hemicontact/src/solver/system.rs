@@ -254,6 +254,12 @@ impl System {
         })
     }
 
+    /// How the nodes are split among the processes when this system is distributed (see
+    /// [`crate::parallel::Subdomain`]); `None` on one process.
+    pub fn partition(&self) -> Option<&crate::parallel::Partition> {
+        self.workspace.subdomain.as_ref().map(|s| &s.partition)
+    }
+
     /// The unit of the coordinates in units of the displacements: 1 for a problem in the
     /// user's units, `L/U` in the dimensionless variables of [`super::scaling`].
     pub fn length_unit(&self) -> f64 {

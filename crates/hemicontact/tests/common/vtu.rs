@@ -62,3 +62,34 @@ pub fn text(bytes: &[u8], name: &str) -> String {
     assert_eq!(data.pop(), Some(0), "{name} ends in NUL");
     String::from_utf8(data).unwrap()
 }
+
+/// The values of the `Int64` array `name`.
+pub fn i64s(bytes: &[u8], name: &str) -> Vec<i64> {
+    let (ty, data) = raw(bytes, name);
+    assert_eq!(ty, "Int64", "{name}");
+    data.chunks(8)
+        .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+/// (name, type, components) of every array of the section `section` (`PointData`,
+/// `CellData`, `PPointData`, …) of a file's XML, in document order.
+pub fn arrays(bytes: &[u8], section: &str) -> Vec<(String, String, usize)> {
+    let text = String::from_utf8_lossy(bytes);
+    let open = format!("<{section}>");
+    let Some(start) = text.find(&open) else {
+        return Vec::new();
+    };
+    let end = start + text[start..].find(&format!("</{section}>")).unwrap();
+    text[start + open.len()..end]
+        .lines()
+        .filter(|l| l.contains("DataArray"))
+        .map(|l| {
+            (
+                attr(l, "Name").to_string(),
+                attr(l, "type").to_string(),
+                attr(l, "NumberOfComponents").parse().unwrap(),
+            )
+        })
+        .collect()
+}
