@@ -95,6 +95,19 @@ fn summary(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
 
+/// Runs `hemicontact solve -q FILE --out FOLDER` on `np` processes; it must succeed.
+#[track_caller]
+fn solve_on(np: usize, file: &Path, folder: &Path) {
+    let out = mpirun(np)
+        .args(["solve", "-q"])
+        .arg(file)
+        .arg("--out")
+        .arg(folder)
+        .output()
+        .unwrap();
+    assert_exit(&out, 0);
+}
+
 #[track_caller]
 fn assert_exit(out: &Output, code: i32) {
     assert_eq!(
@@ -131,14 +144,7 @@ fn agrees_across_processes(name: &str) {
     let file = variant(dir.path(), name, "auto.toml", "");
     for np in [1, 2, 3] {
         let folder = dir.path().join(format!("np{np}"));
-        let out = mpirun(np)
-            .args(["solve", "-q"])
-            .arg(&file)
-            .arg("--out")
-            .arg(&folder)
-            .output()
-            .unwrap();
-        assert_exit(&out, 0);
+        solve_on(np, &file, &folder);
         let s = summary(&folder);
         assert_eq!(s["report"]["processes"], np, "{name}, {np} processes");
         assert_eq!(s["report"]["converged"], true, "{name}, {np} processes");
@@ -224,14 +230,7 @@ fn a_number_of_processes_is_bitwise_reproducible() {
         let mut fields = Vec::new();
         for run in ["a", "b"] {
             let folder = dir.path().join(run);
-            let out = mpirun(np)
-                .args(["solve", "-q"])
-                .arg(&file)
-                .arg("--out")
-                .arg(&folder)
-                .output()
-                .unwrap();
-            assert_exit(&out, 0);
+            solve_on(np, &file, &folder);
             fields.push(displacement(&folder));
         }
         assert!(
