@@ -62,8 +62,18 @@ fn memory_estimate_and_prepared_solver_agree_near_the_threshold() {
         err.contains("mesh.n") && err.contains("--ignore-memory-limit"),
         "{err}"
     );
-    // A limit that holds the direct solver's estimate accepts it.
-    assert!(scenario(Some(direct)).into_problem().is_ok());
+    // A limit that holds the direct solver's estimate and the parallel assembly's buffers
+    // (one Hessian per task after the first, 24 entries per DOF) accepts it; one byte less
+    // refuses it.
+    let dofs = 3 * nodes;
+    let buffers = hemicontact::assembly::global::Workspace::buffer_bytes(
+        rayon::current_num_threads(),
+        problem.mesh().n_cells(),
+        dofs,
+        24 * dofs,
+    );
+    assert!(scenario(Some(direct + buffers)).into_problem().is_ok());
+    assert!(scenario(Some(direct + buffers - 1)).into_problem().is_err());
 }
 
 /// The setting's rule, with the number of free equations: `auto` is iterative exactly from
