@@ -32,12 +32,13 @@ enum Data {
 impl Data {
     /// The VTK type name and the little-endian bytes.
     fn encode(&self) -> (&'static str, Vec<u8>) {
-        match self {
-            Data::F64(v) => ("Float64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
-            Data::I32(v) => ("Int32", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
-            Data::I64(v) => ("Int64", v.iter().flat_map(|x| x.to_le_bytes()).collect()),
-            Data::U8(v) => ("UInt8", v.clone()),
-        }
+        let bytes = match self {
+            Data::F64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Data::I32(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Data::I64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Data::U8(v) => v.clone(),
+        };
+        (self.type_name(), bytes)
     }
 
     /// The VTK type name.
@@ -222,7 +223,8 @@ impl<'a> VtuWriter<'a> {
              byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
              <PUnstructuredGrid GhostLevel=\"0\">\n",
         );
-        let ids = |section: &str, arrays: &[Array], id: &str| {
+        // A section's declarations: the arrays of every piece, then the piece's own ids.
+        let declare = |section: &str, arrays: &[Array], id: &str| {
             let mut x = format!("<P{section}>\n");
             for a in arrays {
                 let _ = writeln!(
@@ -240,8 +242,8 @@ impl<'a> VtuWriter<'a> {
             let _ = writeln!(x, "</P{section}>");
             x
         };
-        xml.push_str(&ids("PointData", &self.point, "node_id"));
-        xml.push_str(&ids("CellData", &self.cell, "cell_id"));
+        xml.push_str(&declare("PointData", &self.point, "node_id"));
+        xml.push_str(&declare("CellData", &self.cell, "cell_id"));
         xml.push_str(
             "<PPoints>\n<PDataArray type=\"Float64\" Name=\"Points\" \
              NumberOfComponents=\"3\"/>\n</PPoints>\n",
