@@ -148,6 +148,14 @@ fn agrees_across_processes(name: &str) {
         let s = summary(&folder);
         assert_eq!(s["report"]["processes"], np, "{name}, {np} processes");
         assert_eq!(s["report"]["converged"], true, "{name}, {np} processes");
+        // The size of the whole system, though each process holds its part of the matrix.
+        let whole = summary(&serial);
+        for size in ["n_equations", "nnz_matrix"] {
+            assert_eq!(
+                s["report"][size], whole["report"][size],
+                "{name}, {np}: {size}"
+            );
+        }
         // ParaView's parallel format, one piece per process, listed in the summary.
         let files: Vec<&str> = s["files"]
             .as_array()

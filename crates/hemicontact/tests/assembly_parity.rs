@@ -54,8 +54,10 @@ fn parallel_assembly_matches_serial() {
 }
 
 /// Assembly by subdomains, as on several processes: for the nodes of each of 3 contiguous
-/// ranges, the cells around them (owned, then ghost) give that range's gradient entries
-/// and Hessian rows of the whole assembly (to the order of additions), each cell's energy
+/// ranges, the cells around them (owned, then ghost), assembled on a pattern of those cells
+/// alone (whose columns of the range's equations are the whole pattern's), give that
+/// range's gradient entries and Hessian rows of the whole assembly (to the order of
+/// additions), each cell's energy
 /// is counted by exactly one range, and the ranges' energies add up to the whole; with two
 /// chunks per range too. In 2D (the paper's mesh) and in 3D (its cube analogue).
 #[test]
@@ -115,15 +117,28 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                 assert_eq!(owner[c as usize], usize::MAX, "cell {c} owned twice");
                 owner[c as usize] = part;
             }
+            // The pattern of the subdomain's cells alone: the columns of its equations are
+            // those of the whole pattern, and it is smaller.
+            let local = SystemPattern::on_cells(mesh, &dofs, Some(&sub.cells)).unwrap();
+            assert_eq!(local.n(), pattern.n());
+            assert!(local.nnz() < pattern.nnz());
+            let column = |p: &SystemPattern, j: usize| {
+                p.row_idx()[p.col_ptr()[j]..p.col_ptr()[j + 1]].to_vec()
+            };
+            for j in 0..pattern.n() {
+                if rows.contains(&dof_of[j]) {
+                    assert_eq!(column(&local, j), column(&pattern, j), "column {j}");
+                }
+            }
             for chunks in [1, 2] {
                 let mut ws = Workspace::new(chunks);
                 ws.subdomain = Some(sub.clone());
-                let (mut gp, mut hp) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
+                let (mut gp, mut hp) = (vec![0.0; n], vec![0.0; local.nnz()]);
                 let ep = bulk.assemble_parallel(
                     &u,
                     &mut gp,
                     Want::Hessian,
-                    &pattern,
+                    &local,
                     Some(&mut hp),
                     &mut ws,
                 );
@@ -133,12 +148,16 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                 for k in rows.clone() {
                     assert!((g[k] - gp[k]).abs() <= 1e-14 * gs, "gradient at DOF {k}");
                 }
-                let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+                // Every entry of a row of the subdomain, found by its (row, column) in the
+                // whole pattern.
+                let (cp, ri) = (local.col_ptr(), local.row_idx());
                 let mut checked = 0;
-                for j in 0..pattern.n() {
+                for j in 0..local.n() {
                     for s in cp[j]..cp[j + 1] {
                         if rows.contains(&dof_of[ri[s]]) || rows.contains(&dof_of[j]) {
-                            assert!((h[s] - hp[s]).abs() <= 1e-14 * hs, "Hessian slot {s}");
+                            let whole = pattern.find(ri[s], j).unwrap();
+                            let diff = (h[whole] - hp[s]).abs();
+                            assert!(diff <= 1e-14 * hs, "Hessian entry ({}, {j})", ri[s]);
                             checked += 1;
                         }
                     }

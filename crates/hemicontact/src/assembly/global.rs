@@ -162,6 +162,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         assert_eq!(grad.len(), u.len());
         if let Some(h) = hess.as_deref() {
             assert_eq!(h.len(), pattern.nnz());
+            assert_eq!(pattern.n_cells(), mesh.n_cells(), "a pattern of every cell");
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
@@ -173,9 +174,10 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
     /// summed in range order. The result is deterministic for a given number of chunks and
     /// equal to the serial one up to the order of floating-point additions.
     ///
-    /// With a [`Workspace::subdomain`], only its cells are assembled: the energy is that of
-    /// its owned cells, and the gradient entries and Hessian rows are exact at the DOFs of
-    /// its nodes only (partial elsewhere).
+    /// With a [`Workspace::subdomain`], only its cells are assembled, on a `pattern` built on
+    /// them ([`SystemPattern::on_cells`]): the energy is that of its owned cells, and the
+    /// gradient entries and Hessian rows are exact at the DOFs of its nodes only (partial
+    /// elsewhere).
     ///
     /// # Panics
     /// As [`BulkAssembler::assemble`].
@@ -203,6 +205,11 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         assert_eq!(grad.len(), u.len());
         if let Some(h) = hess.as_deref() {
             assert_eq!(h.len(), pattern.nnz());
+            assert_eq!(
+                pattern.n_cells(),
+                n_cells,
+                "a pattern of the assembled cells"
+            );
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
@@ -322,7 +329,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
                     }
                 }
                 let ke = element::hessian(&b, &tangent, geo.measure);
-                let slots = pattern.cell_slots(c);
+                let slots = pattern.cell_slots(p);
                 let mut k = 0;
                 for p in 0..LD {
                     for q in p..LD {

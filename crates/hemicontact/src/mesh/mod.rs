@@ -605,13 +605,23 @@ impl Mesh {
     /// Node-to-node adjacency (nodes sharing a cell, excluding the node itself) in CSR form:
     /// the neighbours of node `n` are `adj[ptr[n]..ptr[n+1]]`, sorted.
     pub fn node_adjacency(&self) -> (Vec<usize>, Vec<u32>) {
+        self.node_adjacency_of(0..self.n_cells())
+    }
+
+    /// As [`Mesh::node_adjacency`], counting only the cells `cells` (each at most once): two
+    /// nodes are neighbours when one of these cells holds both, and a node of none of them
+    /// has no neighbours.
+    pub fn node_adjacency_of<I>(&self, cells: I) -> (Vec<usize>, Vec<u32>)
+    where
+        I: Iterator<Item = usize> + Clone,
+    {
         let n = self.n_nodes();
         let nv = self.dim + 1;
         // Bucket the other vertices of every cell by node (counting sort), then sort and
         // deduplicate each node's short list: linear in the cells, where one sort of all
         // vertex pairs was not.
         let mut start = vec![0usize; n + 1];
-        for c in 0..self.n_cells() {
+        for c in cells.clone() {
             for &a in self.cell(c) {
                 start[a as usize + 1] += nv - 1;
             }
@@ -621,7 +631,7 @@ impl Mesh {
         }
         let mut fill = start.clone();
         let mut bucket = vec![0u32; start[n]];
-        for c in 0..self.n_cells() {
+        for c in cells {
             let cell = self.cell(c);
             for &a in cell {
                 for &b in cell {

@@ -147,7 +147,7 @@ impl SolveReport {
             stop: super::StopReason::IterationCap,
             n_dofs: system.dofs.n_dofs(),
             n_equations: system.dofs.n_free(),
-            nnz_matrix: system.pattern.nnz(),
+            nnz_matrix: system.nnz,
             linear_solver: system.linear_solver.describe(),
             processes: crate::parallel::Processes::current().size(),
             nnz_factor: system.linear_solver.nnz_factor(),

@@ -26,8 +26,13 @@ use std::time::Instant;
 pub struct System {
     /// DOF map (Dirichlet DOFs eliminated).
     pub dofs: DofMap,
-    /// Upper-triangular pattern of the reduced system.
+    /// Upper-triangular pattern of the reduced system; in a distributed run, of the cells
+    /// this process assembles ([`SystemPattern::on_cells`]), complete in the columns of its
+    /// own nodes' equations only.
     pub pattern: SystemPattern,
+    /// Stored entries of the upper triangle of the whole reduced system (over all
+    /// processes; [`SystemPattern::nnz`] on one).
+    pub nnz: usize,
     /// The linear solver of the Newton systems, prepared on `pattern` (direct: symbolic
     /// analysis done; iterative: multigrid grids built).
     pub linear_solver: Box<dyn SpdSolver>,
@@ -180,40 +185,45 @@ impl System {
     ) -> Result<Self> {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
-        let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
+        // Several processes with the distributed solver: the nodes split among them
+        // (PETSc's rows and the cells each assembles follow the split), each assembling the
+        // cells around its own nodes (only that solver can take partial matrices) on a
+        // pattern of those cells alone. Otherwise every process holds the whole system and
+        // the split is the trivial one.
+        let processes = Processes::current();
+        let distributed = processes.size() > 1
+            && kind.resolve(problem.mesh.dim(), dofs.n_free()) == super::LinearSolver::Petsc;
+        let subdomain = if distributed {
+            let partition = Partition::of(&problem.mesh, &processes)?;
+            Some(Subdomain::new(&problem.mesh, partition, processes.rank()))
+        } else {
+            None
+        };
+        let cells = subdomain.as_ref().map(|s| s.cells.as_slice());
+        let pattern = SystemPattern::on_cells(&problem.mesh, &dofs, cells)?;
+        let nnz = match &subdomain {
+            None => pattern.nnz(),
+            Some(sub) => whole_nnz(&pattern, &dofs, sub, &processes)?,
+        };
         let contact = problem.contact_nodes()?;
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
         let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
         let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
-        // Several processes with the distributed solver: the nodes split among them
-        // (PETSc's rows and the cells each assembles follow the split). Otherwise every
-        // process holds the whole system and the split is the trivial one.
-        let processes = Processes::current();
-        let distributed = processes.size() > 1
-            && kind.resolve(problem.mesh.dim(), pattern.n()) == super::LinearSolver::Petsc;
-        let partition = if distributed {
-            Partition::of(&problem.mesh, &processes)?
-        } else {
-            Partition::ranges(problem.mesh.n_nodes(), 1)
-        };
+        let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
             petsc_options: &settings.petsc.options,
-            partition: &partition,
+            partition: subdomain.as_ref().map_or(&whole, |s| &s.partition),
         };
         let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
+        drop(whole);
         let t2 = Instant::now();
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
         let bodies = Bodies::new(problem, &rigid, &contact);
-        // Several processes: each assembles the cells around its own nodes, whose rows
-        // the distributed linear solver takes from it (only that solver can take partial
-        // matrices).
-        let subdomain =
-            distributed.then(|| Subdomain::new(&problem.mesh, partition, processes.rank()));
         let d = problem.mesh.dim();
         let shifted: Vec<usize> = rigid
             .shifted_dofs()
@@ -221,12 +231,16 @@ impl System {
             .filter(|&k| !dofs.is_fixed(k))
             .collect();
         let rigid_slot = |&k: &usize| pattern.diagonal_slot(dofs.equation(k) as usize);
-        let rigid_slots = shifted.iter().map(rigid_slot).collect();
-        let rigid_slots_owned = shifted
+        let rigid_slots_owned: Vec<usize> = shifted
             .iter()
             .filter(|&&k| subdomain.as_ref().is_none_or(|s| s.owns_dof(k, d)))
             .map(rigid_slot)
             .collect();
+        // Distributed, only this process's rows are handed on: the shift goes there alone.
+        let rigid_slots = match &subdomain {
+            None => shifted.iter().map(rigid_slot).collect(),
+            Some(_) => rigid_slots_owned.clone(),
+        };
         let mut workspace = Workspace::new(match settings.threads {
             0 => rayon::current_num_threads(),
             t => t,
@@ -235,6 +249,7 @@ impl System {
         Ok(System {
             dofs,
             pattern,
+            nnz,
             linear_solver,
             contact,
             contact_slots,
@@ -548,6 +563,31 @@ impl System {
             .map(|k| if self.dofs.is_fixed(k) { grad[k] } else { 0.0 })
             .collect()
     }
+}
+
+/// The entries of the upper triangle of the whole reduced system when each process holds
+/// the pattern `pattern` of its subdomain `sub`: the entries of the columns of its own
+/// nodes' equations (complete there), summed over the processes.
+fn whole_nnz(
+    pattern: &SystemPattern,
+    dofs: &DofMap,
+    sub: &Subdomain,
+    processes: &Processes,
+) -> Result<usize> {
+    let col_ptr = pattern.col_ptr();
+    let d = dofs.dim();
+    let mine = sub
+        .nodes()
+        .iter()
+        .flat_map(|&v| (0..d).map(move |k| d * v as usize + k))
+        .map(|dof| dofs.equation(dof))
+        .filter(|&eq| eq != FIXED)
+        .map(|eq| col_ptr[eq as usize + 1] - col_ptr[eq as usize])
+        .sum::<usize>();
+    // Counts below 2^53 add exactly in floating point.
+    let mut total = [mine as f64];
+    processes.sum(&mut total)?;
+    Ok(total[0] as usize)
 }
 
 /// The cells around each of the nodes `nodes`, in compressed rows (see
