@@ -298,6 +298,41 @@ impl Partition {
     }
 }
 
+/// Items (contact points, say) grouped by the rank that owns them, each group in increasing
+/// order: compressed rows, those of rank `r` being `items[first[r]..first[r + 1]]`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ByRank {
+    /// Where each rank's items start in [`ByRank::items`] (length: ranks + 1).
+    pub first: Vec<usize>,
+    /// The items' indices, rank after rank.
+    pub items: Vec<u32>,
+}
+
+impl ByRank {
+    /// Items `0, 1, …` owned by the ranks `rank_of` yields (each below `size`), grouped.
+    pub fn group(rank_of: impl Iterator<Item = usize> + Clone, size: usize) -> ByRank {
+        let mut first = vec![0usize; size + 1];
+        for r in rank_of.clone() {
+            first[r + 1] += 1;
+        }
+        for r in 0..size {
+            first[r + 1] += first[r];
+        }
+        let mut next = first.clone();
+        let mut items = vec![0u32; first[size]];
+        for (i, r) in rank_of.enumerate() {
+            items[next[r]] = i as u32;
+            next[r] += 1;
+        }
+        ByRank { first, items }
+    }
+
+    /// The items of rank `rank`, in increasing order.
+    pub fn of(&self, rank: usize) -> &[u32] {
+        &self.items[self.first[rank]..self.first[rank + 1]]
+    }
+}
+
 /// What one rank assembles when the run is several processes: the nodes it owns (its part
 /// of a [`Partition`]), whose rows of the Newton matrix and entries of the gradient it
 /// computes exactly, and the cells around them. A cell is *owned* by the rank of its
@@ -368,6 +403,10 @@ mod tests {
         for (k, &v) in p.order.iter().enumerate() {
             assert_eq!(p.position[v as usize] as usize, k);
         }
+        let by = ByRank::group([2usize, 0, 2, 1, 0].into_iter(), 3);
+        assert_eq!(by.of(0), [1, 4]);
+        assert_eq!(by.of(1), [3]);
+        assert_eq!(by.of(2), [0, 2]);
         let r = Partition::ranges(10, 3);
         assert_eq!(r.order, (0..10).collect::<Vec<u32>>());
         assert_eq!(r.first, [0, 3, 6, 10]);

@@ -287,19 +287,24 @@ impl<'a> ContactAssembler<'a> {
                 grad[d * v + k] += term.gradient[k];
             }
             if let Some((h, slots)) = hess.as_mut() {
-                let s = &slots[i * 6..i * 6 + 6];
-                let mut idx = 0;
-                for k in 0..d {
-                    for l in k..d {
-                        if s[idx] != FIXED_SLOT {
-                            h[s[idx] as usize] += term.hessian[k][l];
-                        }
-                        idx += 1;
-                    }
-                }
+                Self::add_block(d, &term, &slots[i * 6..i * 6 + 6], h);
             }
         }
         energy
+    }
+
+    /// Adds the Hessian node block of `term` (dimension `d`) to the upper-triangular values
+    /// `hess` at its point's slots `slots` (6 of them, see [`contact_slots`]).
+    pub fn add_block(d: usize, term: &PointTerm, slots: &[u32], hess: &mut [f64]) {
+        let mut idx = 0;
+        for k in 0..d {
+            for l in k..d {
+                if slots[idx] != FIXED_SLOT {
+                    hess[slots[idx] as usize] += term.hessian[k][l];
+                }
+                idx += 1;
+            }
+        }
     }
 
     /// The contact term of point `i` at `u`: its energy, its gradient with respect to the

@@ -17,7 +17,7 @@ use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
-use crate::parallel::{Partition, Processes, Subdomain};
+use crate::parallel::{ByRank, Partition, Processes, Subdomain};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -67,6 +67,12 @@ pub struct System {
     /// Those of [`System::rigid_slots`] in this process's rows (all of them on one
     /// process), whose values are complete here.
     rigid_slots_owned: Vec<usize>,
+    /// In a distributed run, the contact points of each process: those on its nodes, whose
+    /// terms it alone evaluates; `None` on one process.
+    points_by_rank: Option<ByRank>,
+    /// Work array of [`System::evaluate`] in a distributed run: the gathered contact
+    /// gradient of every point (N), `d` entries per point.
+    point_gradients: Vec<f64>,
     /// The processes of the run: with several, each assembles its
     /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
     /// [`Processes::sum`] and [`Processes::all_gather`].
@@ -241,6 +247,13 @@ impl System {
             None => shifted.iter().map(rigid_slot).collect(),
             Some(_) => rigid_slots_owned.clone(),
         };
+        let points_by_rank = subdomain.as_ref().map(|s| {
+            let rank_of = &s.partition.rank_of;
+            ByRank::group(
+                contact.node.iter().map(|&v| rank_of[v as usize] as usize),
+                s.partition.size(),
+            )
+        });
         let mut workspace = Workspace::new(match settings.threads {
             0 => rayon::current_num_threads(),
             t => t,
@@ -263,6 +276,8 @@ impl System {
             rigid,
             rigid_slots,
             rigid_slots_owned,
+            points_by_rank,
+            point_gradients: Vec::new(),
             processes,
             scales: None,
             placement: None,
@@ -438,7 +453,7 @@ impl System {
         } else {
             None
         };
-        let mut e_bulk = bulk.assemble_parallel(
+        let e_bulk = bulk.assemble_parallel(
             u,
             &mut out.grad_bulk,
             want,
@@ -446,43 +461,11 @@ impl System {
             hess,
             &mut self.workspace,
         );
-        if let Some(sub) = &self.workspace.subdomain {
-            // Each process computed its owned cells' energy and its nodes' gradient.
-            let mut e = [e_bulk];
-            let d = problem.mesh.dim();
-            let gathered = self.processes.sum(&mut e).and_then(|()| {
-                let mine: Vec<f64> = sub
-                    .nodes()
-                    .iter()
-                    .flat_map(|&v| out.grad_bulk[d * v as usize..d * (v as usize + 1)].iter())
-                    .copied()
-                    .collect();
-                self.processes.all_gather(&mine, u.len())
-            });
-            match gathered {
-                // In the distributed numbering: node `order[p]`'s entries at position p.
-                Ok(g) => {
-                    for (p, &v) in sub.partition.order.iter().enumerate() {
-                        let v = v as usize;
-                        out.grad_bulk[d * v..d * v + d].copy_from_slice(&g[d * p..d * p + d]);
-                    }
-                }
-                Err(e) => {
-                    out.law_error.get_or_insert(e);
-                    return f64::NAN;
-                }
-            }
-            e_bulk = e[0];
-        }
-        let mut work = 0.0;
-        for ((g, f), x) in out.grad_bulk.iter_mut().zip(&self.f_ext).zip(u) {
-            *g -= f;
-            work += f * x;
-        }
-        out.grad.copy_from_slice(&out.grad_bulk);
+        let mut contact_grad = std::mem::take(&mut self.point_gradients);
         let mut contact = self.contact_assembler(problem);
         if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
             out.law_error.get_or_insert(e);
+            self.point_gradients = contact_grad;
             return f64::NAN;
         }
         contact.responses = &out.normal;
@@ -491,7 +474,79 @@ impl System {
         } else {
             None
         };
-        let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
+        let (e_bulk, e_contact, work) = match (&self.workspace.subdomain, &self.points_by_rank) {
+            (Some(sub), Some(points)) => {
+                let d = problem.mesh.dim();
+                let frozen = frozen.contact();
+                // This process's contact points: their terms, and their node blocks of the
+                // Hessian (the rows of its nodes).
+                let own = points.of(sub.rank);
+                let mut e_contact = 0.0;
+                let mut mine = Vec::with_capacity(d * (sub.nodes().len() + own.len()));
+                for &v in sub.nodes() {
+                    mine.extend_from_slice(&out.grad_bulk[d * v as usize..d * (v as usize + 1)]);
+                }
+                let mut hc = hc;
+                for &i in own {
+                    let term = contact.point(u, &frozen, i as usize);
+                    e_contact += term.energy;
+                    mine.extend_from_slice(&term.gradient[..d]);
+                    if let Some((h, slots)) = hc.as_mut() {
+                        let i = i as usize;
+                        ContactAssembler::add_block(d, &term, &slots[6 * i..6 * i + 6], h);
+                    }
+                }
+                // Completed on every process: the energies summed, the bulk gradient at
+                // every node and the contact gradient of every point gathered.
+                let mut e = [e_bulk, e_contact];
+                let total = d * (problem.mesh.n_nodes() + self.contact.len());
+                let gathered = self
+                    .processes
+                    .sum(&mut e)
+                    .and_then(|()| self.processes.all_gather(&mine, total));
+                let g = match gathered {
+                    Ok(g) => g,
+                    Err(e) => {
+                        out.law_error.get_or_insert(e);
+                        self.point_gradients = contact_grad;
+                        return f64::NAN;
+                    }
+                };
+                // Rank after rank: its nodes' bulk gradient, then its points' contact
+                // gradient.
+                contact_grad.resize(d * self.contact.len(), 0.0);
+                let mut at = 0;
+                for r in 0..sub.partition.size() {
+                    for &v in sub.partition.nodes(r) {
+                        let v = v as usize;
+                        out.grad_bulk[d * v..d * v + d].copy_from_slice(&g[at..at + d]);
+                        at += d;
+                    }
+                    for &i in points.of(r) {
+                        let i = i as usize;
+                        contact_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
+                        at += d;
+                    }
+                }
+                let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
+                out.grad.copy_from_slice(&out.grad_bulk);
+                // Added point by point in their order, as on one process.
+                for (i, &v) in self.contact.node.iter().enumerate() {
+                    let v = v as usize;
+                    for k in 0..d {
+                        out.grad[d * v + k] += contact_grad[d * i + k];
+                    }
+                }
+                (e[0], e[1], work)
+            }
+            _ => {
+                let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
+                out.grad.copy_from_slice(&out.grad_bulk);
+                let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
+                (e_bulk, e_contact, work)
+            }
+        };
+        self.point_gradients = contact_grad;
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
@@ -563,6 +618,17 @@ impl System {
             .map(|k| if self.dofs.is_fixed(k) { grad[k] } else { 0.0 })
             .collect()
     }
+}
+
+/// `grad ← grad − f_ext`; returns the work of the external forces `f_ext · u` (J, J/m in
+/// 2D).
+fn subtract_external(grad: &mut [f64], f_ext: &[f64], u: &[f64]) -> f64 {
+    let mut work = 0.0;
+    for ((g, f), x) in grad.iter_mut().zip(f_ext).zip(u) {
+        *g -= f;
+        work += f * x;
+    }
+    work
 }
 
 /// The entries of the upper triangle of the whole reduced system when each process holds
