@@ -270,6 +270,15 @@ impl World {
     /// MPI's; a `total` other than the sum of the local lengths.
     pub fn all_gather(&self, local: &[f64], total: usize) -> Result<Vec<f64>, Error> {
         let mut global = vec![0.0; total];
+        self.all_gather_into(local, &mut global)?;
+        Ok(global)
+    }
+
+    /// As [`World::all_gather`], into `global` (its length: the sum of the local lengths).
+    ///
+    /// # Errors
+    /// As [`World::all_gather`].
+    pub fn all_gather_into(&self, local: &[f64], global: &mut [f64]) -> Result<(), Error> {
         let _guard = lock();
         // SAFETY: `local` and `global` with their lengths; the shim checks the total.
         check(unsafe {
@@ -277,10 +286,9 @@ impl World {
                 local.as_ptr(),
                 local.len() as i64,
                 global.as_mut_ptr(),
-                total as i64,
+                global.len() as i64,
             )
-        })?;
-        Ok(global)
+        })
     }
 
     /// Ends every process of the world with exit code `code` (`MPI_Abort`): the way out of

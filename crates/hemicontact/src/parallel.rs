@@ -141,18 +141,37 @@ impl Processes {
     /// # Errors
     /// MPI's.
     pub fn all_gather(&self, local: &[f64], total: usize) -> Result<Vec<f64>> {
+        let mut global = vec![0.0; total];
+        self.all_gather_into(local, &mut global)?;
+        Ok(global)
+    }
+
+    /// As [`Processes::all_gather`], into `global`, whose length is the sum of the local
+    /// lengths (no allocation: for the gathers of every evaluation).
+    ///
+    /// # Errors
+    /// MPI's; a `global` of another length.
+    pub fn all_gather_into(&self, local: &[f64], global: &mut [f64]) -> Result<()> {
         if self.size == 1 {
-            return Ok(local.to_vec());
+            if global.len() != local.len() {
+                return Err(crate::Error::Breakdown(format!(
+                    "gather of {} values into {}",
+                    local.len(),
+                    global.len()
+                )));
+            }
+            global.copy_from_slice(local);
+            return Ok(());
         }
         #[cfg(feature = "petsc")]
         {
             let world = hemicontact_petsc::World::get().map_err(mpi_error)?;
-            world.all_gather(local, total).map_err(mpi_error)
+            world.all_gather_into(local, global).map_err(mpi_error)
         }
         #[cfg(not(feature = "petsc"))]
         {
-            let _ = total;
-            Ok(local.to_vec())
+            global.copy_from_slice(local);
+            Ok(())
         }
     }
 

@@ -377,9 +377,9 @@ impl SpdSolver for PetscSolver {
         }
         // PETSc's order: node order[p]'s DOFs at d·p…
         let x_petsc = if self.processes.size() > 1 {
-            self.x_all = self
-                .processes
-                .all_gather(&self.x_local, self.equations.len())?;
+            self.x_all.resize(self.equations.len(), 0.0);
+            self.processes
+                .all_gather_into(&self.x_local, &mut self.x_all)?;
             &self.x_all
         } else {
             &self.x_local

@@ -70,9 +70,8 @@ pub struct System {
     /// In a distributed run, the contact points of each process: those on its nodes, whose
     /// terms it alone evaluates; `None` on one process.
     points_by_rank: Option<ByRank>,
-    /// Work array of [`System::evaluate`] in a distributed run: the gathered contact
-    /// gradient of every point (N), `d` entries per point.
-    point_gradients: Vec<f64>,
+    /// Work arrays of [`System::evaluate`] in a distributed run, kept between evaluations.
+    gather: GatherBuffers,
     /// The processes of the run: with several, each assembles its
     /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
     /// [`Processes::sum`] and [`Processes::all_gather`].
@@ -277,7 +276,7 @@ impl System {
             rigid_slots,
             rigid_slots_owned,
             points_by_rank,
-            point_gradients: Vec::new(),
+            gather: GatherBuffers::default(),
             processes,
             scales: None,
             placement: None,
@@ -461,11 +460,11 @@ impl System {
             hess,
             &mut self.workspace,
         );
-        let mut contact_grad = std::mem::take(&mut self.point_gradients);
+        let mut buffers = std::mem::take(&mut self.gather);
         let mut contact = self.contact_assembler(problem);
         if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
             out.law_error.get_or_insert(e);
-            self.point_gradients = contact_grad;
+            self.gather = buffers;
             return f64::NAN;
         }
         contact.responses = &out.normal;
@@ -482,7 +481,12 @@ impl System {
                 // Hessian (the rows of its nodes).
                 let own = points.of(sub.rank);
                 let mut e_contact = 0.0;
-                let mut mine = Vec::with_capacity(d * (sub.nodes().len() + own.len()));
+                let GatherBuffers {
+                    mine,
+                    all,
+                    points: contact_grad,
+                } = &mut buffers;
+                mine.clear();
                 for &v in sub.nodes() {
                     mine.extend_from_slice(&out.grad_bulk[d * v as usize..d * (v as usize + 1)]);
                 }
@@ -499,19 +503,17 @@ impl System {
                 // Completed on every process: the energies summed, the bulk gradient at
                 // every node and the contact gradient of every point gathered.
                 let mut e = [e_bulk, e_contact];
-                let total = d * (problem.mesh.n_nodes() + self.contact.len());
+                all.resize(d * (problem.mesh.n_nodes() + self.contact.len()), 0.0);
                 let gathered = self
                     .processes
                     .sum(&mut e)
-                    .and_then(|()| self.processes.all_gather(&mine, total));
-                let g = match gathered {
-                    Ok(g) => g,
-                    Err(e) => {
-                        out.law_error.get_or_insert(e);
-                        self.point_gradients = contact_grad;
-                        return f64::NAN;
-                    }
-                };
+                    .and_then(|()| self.processes.all_gather_into(mine, all));
+                if let Err(e) = gathered {
+                    out.law_error.get_or_insert(e);
+                    self.gather = buffers;
+                    return f64::NAN;
+                }
+                let g = &all[..];
                 // Rank after rank: its nodes' bulk gradient, then its points' contact
                 // gradient.
                 contact_grad.resize(d * self.contact.len(), 0.0);
@@ -546,7 +548,7 @@ impl System {
                 (e_bulk, e_contact, work)
             }
         };
-        self.point_gradients = contact_grad;
+        self.gather = buffers;
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
@@ -618,6 +620,18 @@ impl System {
             .map(|k| if self.dofs.is_fixed(k) { grad[k] } else { 0.0 })
             .collect()
     }
+}
+
+/// The work arrays of the completion of an evaluation on several processes
+/// ([`System::evaluate`]): allocated at the first evaluation, reused after.
+#[derive(Debug, Default)]
+struct GatherBuffers {
+    /// This process's part: its nodes' bulk gradient, then its points' contact gradient.
+    mine: Vec<f64>,
+    /// Every process's part, rank after rank.
+    all: Vec<f64>,
+    /// The contact gradient of every point (N), `d` entries per point.
+    points: Vec<f64>,
 }
 
 /// `grad ← grad − f_ext`; returns the work of the external forces `f_ext · u` (J, J/m in
