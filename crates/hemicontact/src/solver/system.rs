@@ -224,7 +224,6 @@ impl System {
             partition: subdomain.as_ref().map_or(&whole, |s| &s.partition),
         };
         let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
-        drop(whole);
         let t2 = Instant::now();
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
