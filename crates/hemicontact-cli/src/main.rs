@@ -204,9 +204,10 @@ fn main() -> ExitCode {
         }
     };
     if processes.size() > 1 {
-        // The same number of threads on every rank: the assembly's sums are reproducible
-        // for a given number of parallel chunks, and every rank must compute the same
-        // numbers to take the same decisions.
+        // The same number of threads on every rank, so that the ranks run at even speeds
+        // (the results do not depend on it: the assembly gives the same bits on any number
+        // of threads, and every rank must compute the same numbers to take the same
+        // decisions).
         let own = std::env::var("RAYON_NUM_THREADS")
             .ok()
             .and_then(|v| v.trim().parse::<usize>().ok())

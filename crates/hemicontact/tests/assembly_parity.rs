@@ -1,56 +1,106 @@
-//! Serial/parallel assembly parity: the chunked parallel assembly (per-chunk buffers summed
-//! in chunk order) equals the serial cell loop up to the order of floating-point additions,
-//! and is bitwise reproducible run to run for a given number of chunks; the assembly of a
-//! subdomain (what one of several processes assembles) gives its rows of the whole.
+//! Serial/parallel assembly parity: the parallel assembly (tasks that each own a range of
+//! nodes, with their gradient entries and Hessian columns) gives bitwise the serial cell
+//! loop's energy, gradient and Hessian for any number of tasks, on meshes numbered well
+//! and badly, with ideal locking active; the assembly of a subdomain (what one of several
+//! processes assembles) gives its rows of the whole.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::assembly::global::{Want, Workspace};
+use hemicontact::assembly::global::{IdealLocking, Want, Workspace};
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
+use hemicontact::fem::dofs::DofMap;
+use hemicontact::material::LockingSet;
+use hemicontact::mesh::Mesh;
 use hemicontact::parallel::{Partition, Subdomain};
 use hemicontact::scenario::{builtin, Scenario};
 
+/// A displacement of `mesh` that strains its cells unevenly (and, in the paper's square,
+/// locks part of the body).
+fn displacement(mesh: &Mesh) -> Vec<f64> {
+    let d = mesh.dim();
+    (0..d * mesh.n_nodes())
+        .map(|k| {
+            let x = mesh.node(k / d);
+            0.05 * x[0] * x[1] - 0.12 * x[k % d] + 0.01 * x[0] * x[0]
+        })
+        .collect()
+}
+
+/// Serial and parallel passes of `bulk` on `pattern`, bitwise equal for 2 to 13 tasks and
+/// for a task count above the mesh's nodes' worth of work (tasks with empty node ranges).
+fn assert_bitwise_parity<M>(bulk: &BulkAssembler<'_, M>, pattern: &SystemPattern, u: &[f64])
+where
+    M: hemicontact::material::StrainEnergy + Sync,
+{
+    let n = u.len();
+    let (mut g1, mut h1) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
+    let e1 = bulk.assemble(u, &mut g1, Want::Hessian, pattern, Some(&mut h1));
+    assert!(e1 > 0.0 && g1.iter().any(|&g| g != 0.0));
+    for tasks in [2, 3, 5, 8, 13, 1000] {
+        let mut ws = Workspace::new(tasks);
+        ws.cells_per_chunk = 1;
+        for want in [Want::Hessian, Want::Gradient, Want::Hessian] {
+            // Filled with garbage: every entry must be overwritten.
+            let (mut g2, mut h2) = (vec![f64::NAN; n], vec![f64::NAN; pattern.nnz()]);
+            let e2 = bulk.assemble_parallel(u, &mut g2, want, pattern, Some(&mut h2), &mut ws);
+            assert_eq!(e1.to_bits(), e2.to_bits(), "energy, {tasks} tasks");
+            let same =
+                |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+            assert!(same(&g1, &g2), "gradient, {tasks} tasks");
+            if want == Want::Hessian {
+                assert!(same(&h1, &h2), "Hessian, {tasks} tasks");
+            }
+        }
+    }
+}
+
 #[test]
-fn parallel_assembly_matches_serial() {
-    // n = 64: 8192 cells, enough for two chunks of at least 4096 cells.
-    let problem = Scenario::from_str(&builtin::paper(64, 1.0e4), "test")
+fn parallel_assembly_is_bitwise_the_serial_one() {
+    let problem = Scenario::from_str(&builtin::paper(32, 1.0e4), "test")
         .unwrap()
         .into_problem()
         .unwrap();
+    let mesh = problem.mesh();
     let dofs = problem.dof_map();
-    let pattern = SystemPattern::new(problem.mesh(), &dofs).unwrap();
-    let bulk = BulkAssembler::new(problem.mesh(), problem.material());
-    // A displacement that activates the locking penalty in part of the body.
-    let u: Vec<f64> = (0..2 * problem.mesh().n_nodes())
-        .map(|k| {
-            let x = problem.mesh().node(k / 2);
-            if k % 2 == 0 {
-                0.05 * x[0] * x[1]
-            } else {
-                -0.12 * x[1] + 0.01 * x[0] * x[0]
-            }
-        })
-        .collect();
-    let n = u.len();
-    let (mut g1, mut h1) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
-    let e1 = bulk.assemble(&u, &mut g1, Want::Hessian, &pattern, Some(&mut h1));
-    for chunks in [2, 3] {
-        let mut ws = Workspace::new(chunks);
-        let (mut g2, mut h2) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
-        let e2 =
-            bulk.assemble_parallel(&u, &mut g2, Want::Hessian, &pattern, Some(&mut h2), &mut ws);
-        let gs = g1.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let hs = h1.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        assert!((e1 - e2).abs() <= 1e-13 * e1.abs());
-        assert!(g1.iter().zip(&g2).all(|(a, b)| (a - b).abs() <= 1e-14 * gs));
-        assert!(h1.iter().zip(&h2).all(|(a, b)| (a - b).abs() <= 1e-14 * hs));
-        // Bitwise reproducible for the same number of chunks.
-        let (mut g3, mut h3) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
-        let e3 =
-            bulk.assemble_parallel(&u, &mut g3, Want::Hessian, &pattern, Some(&mut h3), &mut ws);
-        assert_eq!(e2.to_bits(), e3.to_bits());
-        assert_eq!(g2, g3);
-        assert_eq!(h2, h3);
+    let pattern = SystemPattern::new(mesh, &dofs).unwrap();
+    let u = displacement(mesh);
+    let bulk = BulkAssembler::new(mesh, problem.material());
+    assert_bitwise_parity(&bulk, &pattern, &u);
+    // Ideal locking: two energy terms per cell, the multiplier of every other cell active.
+    let multipliers: Vec<f64> = (0..mesh.n_cells()).map(|c| (c % 2) as f64 * 0.3).collect();
+    let ideal = BulkAssembler {
+        ideal: Some(IdealLocking {
+            set: LockingSet::LimitedCompressibility { theta: 0.01 },
+            r: 50.0,
+            multipliers: &multipliers,
+        }),
+        ..bulk
+    };
+    assert_bitwise_parity(&ideal, &pattern, &u);
+
+    // The same mesh with its nodes numbered at random: most cells then span several
+    // tasks' node ranges, and some DOFs are prescribed.
+    let nn = mesh.n_nodes();
+    let mut perm: Vec<u32> = (0..nn as u32).collect();
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    for i in (1..nn).rev() {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        perm.swap(i, (state % (i as u64 + 1)) as usize);
     }
+    let mut coords = vec![0.0; 2 * nn];
+    for v in 0..nn {
+        let w = perm[v] as usize;
+        coords[2 * w..2 * w + 2].copy_from_slice(&mesh.node(v)[..2]);
+    }
+    let cells: Vec<u32> = mesh.cells().iter().map(|&v| perm[v as usize]).collect();
+    let scrambled = Mesh::from_parts(2, coords, cells, &[]).unwrap();
+    let fixed: Vec<bool> = (0..2 * nn).map(|k| k % 7 == 0).collect();
+    let dofs = DofMap::new(2, nn, &fixed);
+    let pattern = SystemPattern::new(&scrambled, &dofs).unwrap();
+    let u = displacement(&scrambled);
+    let bulk = BulkAssembler::new(&scrambled, problem.material());
+    assert_bitwise_parity(&bulk, &pattern, &u);
 }
 
 /// Assembly by subdomains, as on several processes: for the nodes of each of 3 contiguous
@@ -58,8 +108,8 @@ fn parallel_assembly_matches_serial() {
 /// alone (whose columns of the range's equations are the whole pattern's), give that
 /// range's gradient entries and Hessian rows of the whole assembly (to the order of
 /// additions), each cell's energy
-/// is counted by exactly one range, and the ranges' energies add up to the whole; with two
-/// chunks per range too. In 2D (the paper's mesh) and in 3D (its cube analogue).
+/// is counted by exactly one range, and the ranges' energies add up to the whole; with 2
+/// and 5 parallel tasks per range, bitwise the one-task pass. In 2D (the paper's mesh) and in 3D (its cube analogue).
 #[test]
 fn subdomains_give_their_rows_of_the_whole_assembly() {
     let paper3d = std::fs::read_to_string(format!(
@@ -130,8 +180,10 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                     assert_eq!(column(&local, j), column(&pattern, j), "column {j}");
                 }
             }
-            for chunks in [1, 2] {
+            let mut first: Option<(f64, Vec<f64>, Vec<f64>)> = None;
+            for chunks in [1, 2, 5] {
                 let mut ws = Workspace::new(chunks);
+                ws.cells_per_chunk = 1;
                 ws.subdomain = Some(sub.clone());
                 let (mut gp, mut hp) = (vec![0.0; n], vec![0.0; local.nnz()]);
                 let ep = bulk.assemble_parallel(
@@ -142,8 +194,17 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                     Some(&mut hp),
                     &mut ws,
                 );
-                if chunks == 1 {
-                    energy += ep;
+                // Any number of tasks gives the one-task pass bitwise.
+                match &first {
+                    None => {
+                        energy += ep;
+                        first = Some((ep, gp.clone(), hp.clone()));
+                    }
+                    Some((e1, g1, h1)) => {
+                        assert_eq!(e1.to_bits(), ep.to_bits());
+                        assert_eq!(g1, &gp);
+                        assert_eq!(h1, &hp);
+                    }
                 }
                 for k in rows.clone() {
                     assert!((g[k] - gp[k]).abs() <= 1e-14 * gs, "gradient at DOF {k}");

@@ -62,15 +62,11 @@ fn memory_estimate_and_prepared_solver_agree_near_the_threshold() {
         err.contains("mesh.n") && err.contains("--ignore-memory-limit"),
         "{err}"
     );
-    // A limit that holds the direct solver's estimate and the parallel assembly's buffers
-    // (one Hessian per task after the first, 24 entries per DOF) accepts it; one byte less
-    // refuses it.
-    let dofs = 3 * nodes;
+    // A limit that holds the direct solver's estimate and the parallel assembly's work
+    // arrays accepts it; one byte less refuses it.
     let buffers = hemicontact::assembly::global::Workspace::buffer_bytes(
         rayon::current_num_threads(),
         problem.mesh().n_cells(),
-        dofs,
-        24 * dofs,
     );
     assert!(scenario(Some(direct + buffers)).into_problem().is_ok());
     assert!(scenario(Some(direct + buffers - 1)).into_problem().is_err());

@@ -2,7 +2,7 @@
 //! Hessian (tangent stiffness) on the fixed pattern.
 
 use super::element;
-use super::pattern::{SystemPattern, FIXED_SLOT};
+use super::pattern::SystemPattern;
 use crate::fem::simplex;
 use crate::material::{AugmentedLocking, LockingSet, StrainEnergy};
 use crate::mesh::Mesh;
@@ -18,37 +18,72 @@ pub enum Want {
     Hessian,
 }
 
-/// How [`BulkAssembler::assemble_parallel`] splits the cell loop, and its buffers: the
+/// How [`BulkAssembler::assemble_parallel`] splits the cell loop, and its work arrays: the
 /// cells of this process (all of them, or its [`Subdomain`] when the run is several
-/// processes), cut into `chunks` parallel tasks, with one gradient and one Hessian array per
-/// chunk beyond the first, kept between calls so that assembly does not allocate.
+/// processes), cut into `chunks` parallel tasks by node ranges ([`TaskPlan`]), kept between
+/// calls so that assembly does not allocate. A workspace serves one mesh, cell list and
+/// pattern (its plan is rebuilt when their sizes change).
 #[derive(Clone, Debug, Default)]
 pub struct Workspace {
     /// Number of chunks (parallel tasks); 1 assembles serially.
     pub chunks: usize,
     /// The cells this process assembles, when it is one of several (`None`: every cell).
     pub subdomain: Option<Subdomain>,
-    grads: Vec<Vec<f64>>,
-    hesses: Vec<Vec<f64>>,
+    /// Fewest cells per task: a smaller loop runs on fewer tasks (default
+    /// [`Workspace::CELLS_PER_CHUNK`]; below a few thousand cells a task costs more than it
+    /// saves).
+    pub cells_per_chunk: usize,
+    plan: Option<TaskPlan>,
+}
+
+/// The split of one cell loop among parallel tasks. Task `t` owns the nodes
+/// `bounds[t]..bounds[t + 1]`: their gradient entries and their columns of the Hessian,
+/// which are contiguous stretches of both arrays, so every task writes its own slices and
+/// no entry is written by two tasks. It assembles every cell with a node in its range, in
+/// increasing position, so each entry receives its cells' terms in the order of the serial
+/// loop: gradient and Hessian are bitwise the serial ones for any number of tasks. A cell
+/// on a border between ranges is computed by each task it touches (the price of writing
+/// no private copies); its energy is counted by the task of its lowest node, stored per
+/// cell and added up in cell order afterwards, so the energy too is the serial one.
+#[derive(Clone, Debug, Default)]
+struct TaskPlan {
+    /// What the plan was built for: cells assembled, nodes, pattern entries, tasks.
+    key: [usize; 4],
+    /// Task `t` owns the nodes `bounds[t]..bounds[t + 1]`.
+    bounds: Vec<usize>,
+    /// The positions (in the pass's cell list) of the cells each task assembles.
+    positions: Vec<Vec<u32>>,
+    /// The task that counts the energy of the cell at each counted position.
+    owner: Vec<u16>,
+    /// Per task, the energy terms of the cells it counts, in position order (written by
+    /// every pass).
+    energies: Vec<Vec<f64>>,
 }
 
 impl Workspace {
-    /// Cells per chunk below which a parallel assembly does not pay for its buffers.
-    const CELLS_PER_CHUNK: usize = 4096;
+    /// Cells per chunk below which a parallel assembly does not pay for its tasks.
+    pub const CELLS_PER_CHUNK: usize = 4096;
 
     /// The number of chunks an assembly of `n_cells` cells splits into with `chunks`
-    /// parallel tasks asked for (at least one).
-    fn chunk_count(chunks: usize, n_cells: usize) -> usize {
-        chunks.min(n_cells / Self::CELLS_PER_CHUNK).max(1)
+    /// parallel tasks asked for and at least `per_chunk` cells each (at least one, at most
+    /// 65 535).
+    fn chunk_count(chunks: usize, n_cells: usize, per_chunk: usize) -> usize {
+        chunks
+            .min(n_cells / per_chunk.max(1))
+            .clamp(1, u16::MAX as usize)
     }
 
-    /// Bytes of the buffers a parallel assembly of `n_cells` cells with `chunks` tasks
-    /// keeps beside the system: each chunk after the first assembles into a gradient of
-    /// `dofs` values and a Hessian of `nnz` values (8 bytes each) of its own, which are then
-    /// added up. At 5 055 477 DOFs (113.8 million Hessian entries) that is 0.9 GB per task.
-    pub fn buffer_bytes(chunks: usize, n_cells: usize, dofs: usize, nnz: usize) -> u64 {
-        let copies = Self::chunk_count(chunks, n_cells) as u64 - 1;
-        copies * 8 * (dofs as u64 + nnz as u64)
+    /// Bytes of the work arrays a parallel assembly of `n_cells` cells with `chunks` tasks
+    /// keeps beside the system: per cell, the task that counts its energy (2 bytes), its
+    /// energy terms (16 bytes with the two terms of ideal locking) and its position in the
+    /// list of every task it touches (4 bytes each; counted as 2 tasks per cell, above the
+    /// 1.03 to 1.55 measured on `hertz3d.toml` for 2 to 16 node ranges). Nothing on one
+    /// task.
+    pub fn buffer_bytes(chunks: usize, n_cells: usize) -> u64 {
+        if Self::chunk_count(chunks, n_cells, Self::CELLS_PER_CHUNK) == 1 {
+            return 0;
+        }
+        (2 + 16 + 2 * 4) * n_cells as u64
     }
 
     /// A workspace for `chunks` parallel chunks over every cell.
@@ -56,8 +91,66 @@ impl Workspace {
         Workspace {
             chunks: chunks.max(1),
             subdomain: None,
-            grads: Vec::new(),
-            hesses: Vec::new(),
+            cells_per_chunk: Self::CELLS_PER_CHUNK,
+            plan: None,
+        }
+    }
+}
+
+impl TaskPlan {
+    /// The plan of `k` tasks for the cells `cells` (positions `0..n_cells`) of `mesh`: node
+    /// ranges of about equal numbers of cell–node incidences.
+    fn new(mesh: &Mesh, cells: Cells<'_>, n_cells: usize, nnz: usize, k: usize) -> TaskPlan {
+        let n_nodes = mesh.n_nodes();
+        let mut weight = vec![0usize; n_nodes + 1];
+        for p in 0..n_cells {
+            for &v in mesh.cell(cells.at(p)) {
+                weight[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n_nodes {
+            weight[v + 1] += weight[v];
+        }
+        let total = weight[n_nodes];
+        let mut bounds: Vec<usize> = (0..=k)
+            .map(|t| weight.partition_point(|&w| w < t * total / k))
+            .collect();
+        bounds[0] = 0;
+        bounds[k] = n_nodes;
+        for t in 1..=k {
+            bounds[t] = bounds[t].max(bounds[t - 1]);
+        }
+        let task_of = |v: u32| bounds.partition_point(|&b| b <= v as usize) - 1;
+        let mut positions = vec![Vec::new(); k];
+        let counted = cells.counted.min(n_cells);
+        let mut owner = Vec::with_capacity(counted);
+        let mut touched = [usize::MAX; 4];
+        for p in 0..n_cells {
+            let cell = mesh.cell(cells.at(p));
+            for (slot, &v) in touched.iter_mut().zip(cell) {
+                *slot = task_of(v);
+            }
+            let tasks = &mut touched[..cell.len()];
+            tasks.sort_unstable();
+            for (i, &t) in tasks.iter().enumerate() {
+                if i == 0 || tasks[i - 1] != t {
+                    positions[t].push(p as u32);
+                }
+            }
+            if p < counted {
+                let lowest = cell.iter().min().copied().unwrap_or(0);
+                owner.push(task_of(lowest) as u16);
+            }
+        }
+        let energies = (0..k)
+            .map(|t| Vec::with_capacity(2 * owner.iter().filter(|&&o| o as usize == t).count()))
+            .collect();
+        TaskPlan {
+            key: [n_cells, n_nodes, nnz, k],
+            bounds,
+            positions,
+            owner,
+            energies,
         }
     }
 }
@@ -88,8 +181,18 @@ impl Cells<'_> {
     }
 }
 
-/// One parallel assembly task: a cell range and its output buffers.
-type Job<'b> = (std::ops::Range<usize>, &'b mut [f64], Option<&'b mut [f64]>);
+/// Where one pass of the cell loop writes: the gradient entries from `grad_start` on and
+/// the Hessian values from `hess_start` on, as far as its slices reach (the whole arrays
+/// for the serial loop, a task's own stretches in parallel), and where the energy goes.
+struct Window<'w> {
+    grad: &'w mut [f64],
+    grad_start: usize,
+    hess: Option<&'w mut [f64]>,
+    hess_start: usize,
+    /// In parallel: the task's number, the counting task of every counted position and
+    /// the task's energy terms; `None`: the pass adds its energy up itself.
+    energy: Option<(u16, &'w [u16], &'w mut Vec<f64>)>,
+}
 
 /// Ideal locking in the cell loop: the augmented Lagrangian term [`AugmentedLocking`] of
 /// every cell, with its frozen multiplier.
@@ -166,13 +269,21 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
-        self.assemble_range(0..mesh.n_cells(), Cells::ALL, u, grad, pattern, hess)
+        let window = Window {
+            grad,
+            grad_start: 0,
+            hess,
+            hess_start: 0,
+            energy: None,
+        };
+        self.assemble_range(0..mesh.n_cells(), Cells::ALL, u, pattern, window)
     }
 
-    /// As [`BulkAssembler::assemble`], with the cells split into `workspace.chunks`
-    /// contiguous ranges assembled in parallel (rayon) into private buffers that are then
-    /// summed in range order. The result is deterministic for a given number of chunks and
-    /// equal to the serial one up to the order of floating-point additions.
+    /// As [`BulkAssembler::assemble`], with the cells split among `workspace.chunks`
+    /// parallel tasks (rayon) by node ranges ([`Workspace`]): each task writes the gradient
+    /// entries and Hessian columns of its own nodes, with no private copies to add up. The
+    /// energy, gradient and Hessian are bitwise those of the serial loop over the same cells,
+    /// whatever the number of tasks.
     ///
     /// With a [`Workspace::subdomain`], only its cells are assembled, on a `pattern` built on
     /// them ([`SystemPattern::on_cells`]): the energy is that of its owned cells, and the
@@ -213,109 +324,156 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
-        // Below a few thousand cells per chunk the buffers cost more than they save.
-        let k = Workspace::chunk_count(workspace.chunks, n_cells);
+        let k = Workspace::chunk_count(workspace.chunks, n_cells, workspace.cells_per_chunk);
         if k == 1 {
-            return self.assemble_range(0..n_cells, cells, u, grad, pattern, hess);
-        }
-        let with_hess = hess.is_some();
-        workspace.grads.resize_with(k - 1, Vec::new);
-        workspace.hesses.resize_with(k - 1, Vec::new);
-        let mut jobs: Vec<Job<'_>> = Vec::with_capacity(k);
-        let bounds: Vec<usize> = (0..=k).map(|i| i * n_cells / k).collect();
-        jobs.push((bounds[0]..bounds[1], grad, hess));
-        for (i, (g, h)) in workspace
-            .grads
-            .iter_mut()
-            .zip(workspace.hesses.iter_mut())
-            .enumerate()
-        {
-            g.resize(u.len(), 0.0);
-            let h = if with_hess {
-                h.resize(pattern.nnz(), 0.0);
-                Some(h.as_mut_slice())
-            } else {
-                None
+            let window = Window {
+                grad,
+                grad_start: 0,
+                hess,
+                hess_start: 0,
+                energy: None,
             };
-            jobs.push((bounds[i + 1]..bounds[i + 2], g.as_mut_slice(), h));
+            return self.assemble_range(0..n_cells, cells, u, pattern, window);
+        }
+        let key = [n_cells, self.mesh.n_nodes(), pattern.nnz(), k];
+        if workspace.plan.as_ref().is_none_or(|p| p.key != key) {
+            workspace.plan = Some(TaskPlan::new(self.mesh, cells, n_cells, pattern.nnz(), k));
+        }
+        let Some(plan) = workspace.plan.as_mut() else {
+            unreachable!("the plan was just built")
+        };
+        // Every task's own stretches of the gradient and the Hessian.
+        let d = self.mesh.dim();
+        let col_ptr = pattern.col_ptr();
+        let mut windows = Vec::with_capacity(k);
+        let (mut grad_rest, mut hess_rest) = (grad, hess);
+        let owner = plan.owner.as_slice();
+        for (t, energies) in plan.energies.iter_mut().enumerate() {
+            let nodes = plan.bounds[t]..plan.bounds[t + 1];
+            let (g, rest) = std::mem::take(&mut grad_rest).split_at_mut(d * nodes.len());
+            grad_rest = rest;
+            let cols = pattern.node_columns(nodes.clone());
+            let h = match hess_rest.take() {
+                Some(h) => {
+                    let (mine, rest) = h.split_at_mut(col_ptr[cols.end] - col_ptr[cols.start]);
+                    hess_rest = Some(rest);
+                    Some(mine)
+                }
+                None => None,
+            };
+            energies.clear();
+            windows.push(Window {
+                grad: g,
+                grad_start: d * nodes.start,
+                hess: h,
+                hess_start: col_ptr[cols.start],
+                energy: Some((t as u16, owner, energies)),
+            });
         }
         use rayon::prelude::*;
-        let energies: Vec<f64> = jobs
-            .par_iter_mut()
-            .map(|(r, g, h)| self.assemble_range(r.clone(), cells, u, g, pattern, h.as_deref_mut()))
-            .collect();
-        let (first, rest) = jobs.split_at_mut(1);
-        let (_, grad, hess) = &mut first[0];
-        for (_, g, h) in rest.iter() {
-            for (a, b) in grad.iter_mut().zip(g.iter()) {
-                *a += b;
+        let positions = &plan.positions;
+        windows
+            .into_par_iter()
+            .zip(positions.par_iter())
+            .for_each(|(window, list)| {
+                self.assemble_range(list.iter().map(|&p| p as usize), cells, u, pattern, window);
+            });
+        // The energy in cell order, as the serial loop adds it.
+        let terms = if self.ideal.is_some() { 2 } else { 1 };
+        let mut next = [0usize; 64];
+        let mut next_many = Vec::new();
+        let next: &mut [usize] = if k <= next.len() {
+            &mut next[..k]
+        } else {
+            next_many.resize(k, 0);
+            &mut next_many
+        };
+        let mut energy = 0.0;
+        for &t in &plan.owner {
+            let (t, e) = (t as usize, &plan.energies[t as usize]);
+            for term in &e[next[t]..next[t] + terms] {
+                energy += term;
             }
-            if let (Some(dst), Some(src)) = (hess.as_deref_mut(), h.as_deref()) {
-                for (a, b) in dst.iter_mut().zip(src.iter()) {
-                    *a += b;
-                }
-            }
+            next[t] += terms;
         }
-        energies.iter().sum()
+        energy
     }
 
-    /// Serial assembly of the cells at positions `range` of `cells` into `grad` and `hess`
+    /// Serial assembly of the cells at the positions `positions` of `cells` into `window`
     /// (overwritten).
     fn assemble_range(
         &self,
-        range: std::ops::Range<usize>,
+        positions: impl Iterator<Item = usize>,
         cells: Cells<'_>,
         u: &[f64],
-        grad: &mut [f64],
         pattern: &SystemPattern,
-        hess: Option<&mut [f64]>,
+        window: Window<'_>,
     ) -> f64 {
         if self.mesh.dim() == 2 {
-            self.assemble_cells::<6>(range, cells, u, grad, pattern, hess)
+            self.assemble_cells::<6>(positions, cells, u, pattern, window)
         } else {
-            self.assemble_cells::<12>(range, cells, u, grad, pattern, hess)
+            self.assemble_cells::<12>(positions, cells, u, pattern, window)
         }
     }
 
     /// [`BulkAssembler::assemble_range`] for cells with `LD` local DOFs.
     fn assemble_cells<const LD: usize>(
         &self,
-        range: std::ops::Range<usize>,
+        positions: impl Iterator<Item = usize>,
         cells: Cells<'_>,
         u: &[f64],
-        grad: &mut [f64],
         pattern: &SystemPattern,
-        mut hess: Option<&mut [f64]>,
+        window: Window<'_>,
     ) -> f64 {
         let mesh = self.mesh;
         let d = element::dim_of(LD);
+        let Window {
+            grad,
+            grad_start,
+            mut hess,
+            hess_start,
+            energy: mut sink,
+        } = window;
         grad.fill(0.0);
         if let Some(h) = hess.as_deref_mut() {
             h.fill(0.0);
         }
         let mut energy = 0.0;
-        for p in range {
+        for p in positions {
             let c = cells.at(p);
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
             let al = self.ideal.map(|l| l.cell(c));
-            // Ghost cells (of another process's subdomain) add no energy.
+            // Ghost cells (of another process's subdomain) add no energy, nor in parallel
+            // the cells of another task's lowest node.
             let counted = p < cells.counted;
-            if counted {
-                energy += geo.measure * self.material.energy(&eps);
-            }
             let mut sigma = self.material.stress(&eps);
-            if let Some(al) = &al {
-                if counted {
-                    energy += geo.measure * al.energy(&eps);
+            match &mut sink {
+                None if counted => {
+                    energy += geo.measure * self.material.energy(&eps);
+                    if let Some(al) = &al {
+                        energy += geo.measure * al.energy(&eps);
+                    }
                 }
+                Some((task, owner, terms)) if counted && owner[p] == *task => {
+                    terms.push(geo.measure * self.material.energy(&eps));
+                    if let Some(al) = &al {
+                        terms.push(geo.measure * al.energy(&eps));
+                    }
+                }
+                _ => {}
+            }
+            if let Some(al) = &al {
                 sigma = sigma.add_scaled(1.0, &al.stress(&eps));
             }
             let ge = element::gradient(&b, &sigma, geo.measure);
             for (a, &v) in mesh.cell(c).iter().enumerate() {
                 for i in 0..d {
-                    grad[d * v as usize + i] += ge[d * a + i];
+                    let j = (d * v as usize + i).wrapping_sub(grad_start);
+                    if j < grad.len() {
+                        grad[j] += ge[d * a + i];
+                    }
                 }
             }
             if let Some(h) = hess.as_deref_mut() {
@@ -333,10 +491,12 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
                 let mut k = 0;
                 for p in 0..LD {
                     for q in p..LD {
-                        let s = slots[k];
+                        // A prescribed pair (FIXED_SLOT, above every value's index) and
+                        // another task's column fall outside the window.
+                        let j = (slots[k] as usize).wrapping_sub(hess_start);
                         k += 1;
-                        if s != FIXED_SLOT {
-                            h[s as usize] += ke[p][q];
+                        if j < h.len() {
+                            h[j] += ke[p][q];
                         }
                     }
                 }

@@ -25,6 +25,7 @@ pub struct SystemPattern {
     row_idx: Vec<usize>,
     local_dofs: usize,
     cell_slots: Vec<u32>,
+    node_cols: Vec<u32>,
 }
 
 impl SystemPattern {
@@ -60,7 +61,9 @@ impl SystemPattern {
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0usize);
         let mut row_idx = Vec::with_capacity((adj.len() + mesh.n_nodes()) * d * d / 2 + n);
+        let mut node_cols = Vec::with_capacity(mesh.n_nodes() + 1);
         for node in 0..mesh.n_nodes() {
+            node_cols.push((col_ptr.len() - 1) as u32);
             for i in 0..d {
                 let col = dofs.equation(d * node + i);
                 if col == FIXED {
@@ -85,6 +88,7 @@ impl SystemPattern {
                 col_ptr.push(row_idx.len());
             }
         }
+        node_cols.push(n as u32);
         debug_assert_eq!(col_ptr.len(), n + 1);
         if row_idx.len() >= FIXED_SLOT as usize {
             return Err(Error::OutOfMemory(format!(
@@ -123,6 +127,7 @@ impl SystemPattern {
             row_idx,
             local_dofs: ld,
             cell_slots,
+            node_cols,
         })
     }
 
@@ -169,6 +174,14 @@ impl SystemPattern {
     pub fn cell_slots(&self, c: usize) -> &[u32] {
         let np = self.local_dofs * (self.local_dofs + 1) / 2;
         &self.cell_slots[c * np..(c + 1) * np]
+    }
+
+    /// The columns (equations) of the nodes `nodes`: equations are numbered node by node,
+    /// so those of a range of nodes are a range too, and their stored entries are the
+    /// contiguous values `col_ptr()[start]..col_ptr()[end]`.
+    #[inline]
+    pub fn node_columns(&self, nodes: std::ops::Range<usize>) -> std::ops::Range<usize> {
+        self.node_cols[nodes.start] as usize..self.node_cols[nodes.end] as usize
     }
 
     /// Slot of the diagonal entry of equation `j`.

@@ -373,11 +373,7 @@ impl Scenario {
         let mesh = &problem.mesh;
         let kind =
             crate::solver::system::resolved_linear_solver(problem, self.file.solver.linear_solver);
-        // Plus the buffers of the parallel assembly, one Hessian per task after the first
-        // (upper-triangle entries per DOF, measured: 6.9 to 7.4 on triangles, 19.7 to 22.5
-        // on tetrahedra; a node of 8 neighbours in 2D gives 9.5).
-        let dofs = mesh.dim() * mesh.n_nodes();
-        let per_dof = if mesh.dim() == 2 { 10 } else { 24 };
+        // Plus the work arrays of the parallel assembly (per cell, a few bytes).
         let need = kind.memory_estimate(
             mesh.dim(),
             problem.dof_map().n_free(),
@@ -386,8 +382,6 @@ impl Scenario {
         ) + crate::assembly::global::Workspace::buffer_bytes(
             rayon::current_num_threads(),
             mesh.n_cells(),
-            dofs,
-            per_dof * dofs,
         );
         if need <= limit {
             return Ok(());

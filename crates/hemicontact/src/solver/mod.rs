@@ -50,9 +50,10 @@ pub struct SolverSettings {
     /// dissection, which gives the smallest factor on the meshes measured by
     /// `hemicontact bench`.
     pub ordering: Ordering,
-    /// Parallel tasks for the assembly (0: one per core). Default 0: on the 2-core target,
-    /// two chunks assemble 1.6× faster than one (`examples`-free measurement in
-    /// `hemicontact bench`).
+    /// Parallel tasks for the assembly (0: one per core; each task a range of nodes, the
+    /// result the same to the last bit for any number). Default 0: on the 2-core target,
+    /// two tasks assemble 1.2 to 1.9 times faster than one, the machine's noise included
+    /// (`cargo run --release -p hemicontact --example assembly_threads`).
     pub threads: usize,
     /// Threads inside the dense blocks of the sparse Cholesky factorization and solves (0:
     /// all cores). Default 1: faer's parallel supernodal factorization was measured *slower*
