@@ -28,6 +28,7 @@ mod ffi {
         pub fn hc_version() -> c_int;
         pub fn hc_int_size() -> c_int;
         pub fn hc_world(rank: *mut c_int, size: *mut c_int) -> c_int;
+        pub fn hc_ranks_on_node(count: *mut c_int) -> c_int;
         pub fn hc_allreduce(values: *mut f64, n: i64, op: c_int) -> c_int;
         pub fn hc_allgatherv(
             local: *const f64,
@@ -239,6 +240,19 @@ impl World {
     /// Number of processes.
     pub fn size(&self) -> usize {
         self.size
+    }
+
+    /// The number of processes of the world on this process's machine (those that share
+    /// its memory, `MPI_COMM_TYPE_SHARED`), this one included. Collective.
+    ///
+    /// # Errors
+    /// MPI's.
+    pub fn ranks_on_node(&self) -> Result<usize, Error> {
+        let _guard = lock();
+        let mut count = 0 as c_int;
+        // SAFETY: a valid out-pointer.
+        check(unsafe { ffi::hc_ranks_on_node(&mut count) })?;
+        Ok(count.max(1) as usize)
     }
 
     fn allreduce(&self, values: &mut [f64], op: c_int) -> Result<(), Error> {

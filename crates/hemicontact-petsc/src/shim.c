@@ -70,6 +70,18 @@ int hc_world(int *rank, int *size)
   return (int)ierr;
 }
 
+/* The number of processes of PETSC_COMM_WORLD that share this process's machine (its
+   shared-memory node, MPI_COMM_TYPE_SHARED). Collective. */
+int hc_ranks_on_node(int *count)
+{
+  MPI_Comm node;
+  int      ierr = MPI_Comm_split_type(PETSC_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
+  if (ierr) return ierr;
+  ierr = MPI_Comm_size(node, count);
+  MPI_Comm_free(&node);
+  return ierr;
+}
+
 /* values <- the sum (op 0), maximum (1) or minimum (2) over the processes, element-wise. */
 int hc_allreduce(double *values, int64_t n, int op)
 {

@@ -15,15 +15,16 @@
 use crate::error::{Error, Result};
 use std::sync::OnceLock;
 
-/// The rank and size of this process's MPI world, once it was started by
-/// [`Processes::launch`].
-static WORLD: OnceLock<(usize, usize)> = OnceLock::new();
+/// The rank and size of this process's MPI world and the number of its processes on this
+/// machine, once it was started by [`Processes::launch`].
+static WORLD: OnceLock<(usize, usize, usize)> = OnceLock::new();
 
 /// The processes of this run; see the module documentation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Processes {
     rank: usize,
     size: usize,
+    on_machine: usize,
 }
 
 /// The rank and size of an MPI launch with more than one process, from the variables that
@@ -57,7 +58,8 @@ impl Processes {
             let world = hemicontact_petsc::World::get().map_err(|e| {
                 Error::Breakdown(format!("MPI could not be initialized through PETSc: {e}"))
             })?;
-            let _ = WORLD.set((world.rank(), world.size()));
+            let on_machine = world.ranks_on_node().map_err(mpi_error)?;
+            let _ = WORLD.set((world.rank(), world.size(), on_machine));
             let _ = size;
             Ok(Self::current())
         }
@@ -72,8 +74,12 @@ impl Processes {
 
     /// The processes as launched (rank 0 of 1 before or without [`Processes::launch`]).
     pub fn current() -> Processes {
-        let (rank, size) = WORLD.get().copied().unwrap_or((0, 1));
-        Processes { rank, size }
+        let (rank, size, on_machine) = WORLD.get().copied().unwrap_or((0, 1, 1));
+        Processes {
+            rank,
+            size,
+            on_machine,
+        }
     }
 
     /// This process's rank, 0 to `size − 1`.
@@ -84,6 +90,12 @@ impl Processes {
     /// Number of processes.
     pub fn size(&self) -> usize {
         self.size
+    }
+
+    /// The number of processes on this process's machine, this one included (those that
+    /// share its memory; 1 on one process).
+    pub fn on_this_machine(&self) -> usize {
+        self.on_machine
     }
 
     /// Whether this is rank 0, the one that prints and writes the results.

@@ -151,6 +151,52 @@ pub fn estimate_mesh(dim: usize, nodes: u64, cells: u64) -> u64 {
     }
 }
 
+/// Resident memory (bytes) of one process of an MPI launch before its share of the problem:
+/// the program, PETSc and MPI. The processes of `scenarios/paper3d.toml` (14 739 DOFs)
+/// peaked at 64.1 to 78.0 MiB on 4 processes, 58.1 to 70.5 MiB on 16.
+pub const PROCESS_BASE: u64 = 64 << 20;
+
+/// Estimated peak memory (bytes) that the `on_machine` processes of an MPI launch of
+/// `processes` processes need on one machine, for a solve whose one-process estimate is
+/// `whole` on a mesh of dimension `dim` with `nodes` nodes and `cells` cells. Each process
+/// holds [`PROCESS_BASE`], its share `whole / processes` of the Newton matrix and the linear
+/// solver, and the replicated mesh and vectors, `1.5 V` (`V`: the DOF-vector term of the
+/// one-process models, with their 20 % margin); rank 0 holds `4 V` more (the partition of
+/// the whole node graph and the writing of every piece of the result), counted on every
+/// machine:
+///
+/// `on_machine · (PROCESS_BASE + whole / processes + 1.5 V) + 4 V`.
+///
+/// Measured on `scenarios/hertz3d.toml` with PETSc (107 811 DOFs; one process: 0.50 GB,
+/// the model 0.55 GB), all processes together: 0.74, 0.78, 1.13 and 1.95 GB on 2, 4, 8 and
+/// 16 processes, the model 0.87, 1.08, 1.51 and 2.36 GB.
+pub fn estimate_machine(
+    whole: u64,
+    dim: usize,
+    nodes: u64,
+    cells: u64,
+    processes: usize,
+    on_machine: usize,
+) -> u64 {
+    let v = replicated(dim, nodes as f64, cells as f64) as u64;
+    let per_process = PROCESS_BASE + whole / processes.max(1) as u64 + 3 * v / 2;
+    (on_machine as u64)
+        .saturating_mul(per_process)
+        .saturating_add(4 * v)
+}
+
+/// The DOF-vector term of the one-process models with their 20 % margin (bytes): what every
+/// process of an MPI launch holds whole.
+fn replicated(dim: usize, nodes: f64, cells: f64) -> f64 {
+    let n = dim as f64 * nodes;
+    let vectors = if dim == 2 {
+        10.0 * 8.0 * n + 28.0 * nodes + 12.0 * cells
+    } else {
+        20.0 * 8.0 * n + 40.0 * nodes + 16.0 * cells
+    };
+    1.2 * vectors
+}
+
 /// Estimated peak memory (bytes) of reading a mesh file of `file_bytes` bytes: the file's
 /// content, plus the node, cell and facet arrays and the facet-matching work space. The
 /// densest case is an ASCII tetrahedral mesh written with one-digit node tags (about 10
@@ -184,6 +230,58 @@ mod tests {
         assert_eq!(Workspace::buffer_bytes(1, cells), 0);
         assert_eq!(Workspace::buffer_bytes(16, 4095), 0);
         assert_eq!(Workspace::buffer_bytes(16, 2 * 4096), 26 * 2 * 4096);
+    }
+
+    /// The model of the processes of an MPI launch on one machine bounds the measured peaks
+    /// of `scenarios/hertz3d.toml` with `linear_solver = "petsc"` (35 937 nodes, 196 608
+    /// tetrahedra), one thread per process, `mpirun -np N /usr/bin/time -f %M hemicontact
+    /// solve`, 1 to 16 processes on the 2-core machine: the sum over the processes and the
+    /// largest (rank 0), within 1.5 times; and the sum for `scenarios/paper3d.toml` on 4
+    /// and 16 processes, where [`super::PROCESS_BASE`] is most of it.
+    #[test]
+    fn the_model_of_several_processes_bounds_measured_runs() {
+        use super::{estimate_machine, estimate_tetrahedra_iterative};
+        let (nodes, cells) = (35_937u64, 196_608u64);
+        let whole = estimate_tetrahedra_iterative(nodes as f64, cells as f64);
+        let kib = |k: &[u64]| k.iter().sum::<u64>() * 1024;
+        // Peak KiB of each process, rank 0 first.
+        let np1 = [483_532u64];
+        let np2 = [409_564u64, 317_320];
+        let np4 = [250_256u64, 172_320, 170_396, 170_292];
+        let np8 = [
+            210_964u64, 122_584, 123_824, 125_948, 126_072, 130_676, 131_008, 133_008,
+        ];
+        let np16 = [
+            187_548u64, 108_556, 110_000, 111_316, 111_384, 111_940, 112_212, 113_096, 113_188,
+            113_596, 114_832, 116_248, 117_104, 117_420, 119_440, 122_784,
+        ];
+        assert!(whole >= kib(&np1) && (whole as f64) < 1.5 * kib(&np1) as f64);
+        for runs in [&np2[..], &np4[..], &np8[..], &np16[..]] {
+            let p = runs.len();
+            let all = estimate_machine(whole, 3, nodes, cells, p, p);
+            assert!(all >= kib(runs), "{p} processes: {all} {}", kib(runs));
+            assert!((all as f64) < 1.5 * kib(runs) as f64, "{p}: {all}");
+            // Rank 0 alone (one process on its machine).
+            let root = estimate_machine(whole, 3, nodes, cells, p, 1);
+            assert!(root >= kib(&runs[..1]), "{p}: rank 0 {root}");
+        }
+        // A small mesh, where the processes' own memory dominates: paper3d.toml (4913
+        // nodes, 24 576 tetrahedra) on 4 and 16 processes.
+        let (nodes, cells) = (4913u64, 24_576u64);
+        let whole = estimate_tetrahedra_iterative(nodes as f64, cells as f64);
+        let small4 = [79_888u64, 66_152, 65_624, 65_664];
+        let small16 = [
+            72_196u64, 59_544, 59_632, 60_268, 60_364, 60_372, 60_424, 60_572, 60_892, 61_064,
+            61_168, 61_584, 61_628, 61_908, 62_440, 62_684,
+        ];
+        for runs in [&small4[..], &small16[..]] {
+            let p = runs.len();
+            let all = estimate_machine(whole, 3, nodes, cells, p, p);
+            assert!(all >= kib(runs), "{p} processes: {all} {}", kib(runs));
+            assert!((all as f64) < 1.5 * kib(runs) as f64, "{p}: {all}");
+        }
+        // More processes on a machine need more of it than one process does.
+        assert!(estimate_machine(whole, 3, nodes, cells, 16, 16) > 2 * whole);
     }
 
     /// The cgroup limit files: v2 `max` and v1's "unlimited" mean no limit; otherwise the

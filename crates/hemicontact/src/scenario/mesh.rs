@@ -383,9 +383,28 @@ impl Scenario {
             rayon::current_num_threads(),
             mesh.n_cells(),
         );
+        // An MPI launch: what all its processes on this machine need together.
+        let processes = crate::parallel::Processes::current();
+        let need = if processes.size() > 1 {
+            crate::resources::estimate_machine(
+                need,
+                mesh.dim(),
+                mesh.n_nodes() as u64,
+                mesh.n_cells() as u64,
+                processes.size(),
+                processes.on_this_machine(),
+            )
+        } else {
+            need
+        };
         if need <= limit {
             return Ok(());
         }
+        let processes_here = match processes.on_this_machine() {
+            _ if processes.size() == 1 => String::new(),
+            1 => " for the one process of this launch on this machine".to_string(),
+            n => format!(" for the {n} processes of this launch on this machine"),
+        };
         let (field, value) = match &self.file.mesh {
             Some(m) if m.kind != MeshKind::Gmsh && m.n.is_some() => (
                 "mesh.n",
@@ -404,9 +423,9 @@ impl Scenario {
             field,
             value,
             &format!(
-                "a mesh whose solve fits in memory: this one needs about {} (estimate) with \
-                 linear_solver = \"{}\", {} are available; use --ignore-memory-limit to try \
-                 anyway",
+                "a mesh whose solve fits in memory: this one needs about {}{processes_here} \
+                 (estimate) with linear_solver = \"{}\", {} are available; use \
+                 --ignore-memory-limit to try anyway",
                 crate::resources::gib(need),
                 format!("{kind:?}").to_lowercase(),
                 crate::resources::gib(limit)
