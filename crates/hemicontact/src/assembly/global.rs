@@ -58,6 +58,8 @@ struct TaskPlan {
     /// Per task, the energy terms of the cells it counts, in position order (written by
     /// every pass).
     energies: Vec<Vec<f64>>,
+    /// Per task, how many of its energy terms the sum in cell order has taken.
+    taken: Vec<usize>,
 }
 
 impl Workspace {
@@ -142,15 +144,18 @@ impl TaskPlan {
                 owner.push(task_of(lowest) as u16);
             }
         }
-        let energies = (0..k)
-            .map(|t| Vec::with_capacity(2 * owner.iter().filter(|&&o| o as usize == t).count()))
-            .collect();
+        let mut counts = vec![0usize; k];
+        for &t in &owner {
+            counts[t as usize] += 1;
+        }
+        let energies = counts.iter().map(|&c| Vec::with_capacity(2 * c)).collect();
         TaskPlan {
             key: [n_cells, n_nodes, nnz, k],
             bounds,
             positions,
             owner,
             energies,
+            taken: vec![0; k],
         }
     }
 }
@@ -192,6 +197,19 @@ struct Window<'w> {
     /// In parallel: the task's number, the counting task of every counted position and
     /// the task's energy terms; `None`: the pass adds its energy up itself.
     energy: Option<(u16, &'w [u16], &'w mut Vec<f64>)>,
+}
+
+impl<'w> Window<'w> {
+    /// The whole arrays, for a serial pass that adds its energy up itself.
+    fn whole(grad: &'w mut [f64], hess: Option<&'w mut [f64]>) -> Self {
+        Window {
+            grad,
+            grad_start: 0,
+            hess,
+            hess_start: 0,
+            energy: None,
+        }
+    }
 }
 
 /// Ideal locking in the cell loop: the augmented Lagrangian term [`AugmentedLocking`] of
@@ -269,14 +287,13 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         }
         assert!(want == Want::Gradient || hess.is_some());
         let hess = if want == Want::Hessian { hess } else { None };
-        let window = Window {
-            grad,
-            grad_start: 0,
-            hess,
-            hess_start: 0,
-            energy: None,
-        };
-        self.assemble_range(0..mesh.n_cells(), Cells::ALL, u, pattern, window)
+        self.assemble_range(
+            0..mesh.n_cells(),
+            Cells::ALL,
+            u,
+            pattern,
+            Window::whole(grad, hess),
+        )
     }
 
     /// As [`BulkAssembler::assemble`], with the cells split among `workspace.chunks`
@@ -326,14 +343,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         let hess = if want == Want::Hessian { hess } else { None };
         let k = Workspace::chunk_count(workspace.chunks, n_cells, workspace.cells_per_chunk);
         if k == 1 {
-            let window = Window {
-                grad,
-                grad_start: 0,
-                hess,
-                hess_start: 0,
-                energy: None,
-            };
-            return self.assemble_range(0..n_cells, cells, u, pattern, window);
+            return self.assemble_range(0..n_cells, cells, u, pattern, Window::whole(grad, hess));
         }
         let key = [n_cells, self.mesh.n_nodes(), pattern.nnz(), k];
         if workspace.plan.as_ref().is_none_or(|p| p.key != key) {
@@ -380,21 +390,15 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             });
         // The energy in cell order, as the serial loop adds it.
         let terms = if self.ideal.is_some() { 2 } else { 1 };
-        let mut next = [0usize; 64];
-        let mut next_many = Vec::new();
-        let next: &mut [usize] = if k <= next.len() {
-            &mut next[..k]
-        } else {
-            next_many.resize(k, 0);
-            &mut next_many
-        };
+        plan.taken.fill(0);
         let mut energy = 0.0;
         for &t in &plan.owner {
-            let (t, e) = (t as usize, &plan.energies[t as usize]);
-            for term in &e[next[t]..next[t] + terms] {
+            let t = t as usize;
+            let first = plan.taken[t];
+            for term in &plan.energies[t][first..first + terms] {
                 energy += term;
             }
-            next[t] += terms;
+            plan.taken[t] = first + terms;
         }
         energy
     }
