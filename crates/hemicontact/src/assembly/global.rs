@@ -20,9 +20,10 @@ pub enum Want {
 
 /// How [`BulkAssembler::assemble_parallel`] splits the cell loop, and its work arrays: the
 /// cells of this process (all of them, or its [`Subdomain`] when the run is several
-/// processes), cut into `chunks` parallel tasks by node ranges ([`TaskPlan`]), kept between
-/// calls so that assembly does not allocate. A workspace serves one mesh, cell list and
-/// pattern (its plan is rebuilt when their sizes change).
+/// processes), cut into `chunks` parallel tasks, each owning a range of nodes whose
+/// gradient entries and Hessian columns it alone writes; the split is kept between calls so
+/// that assembly does not allocate. A workspace serves one mesh, cell list and pattern (the
+/// split is made again when their sizes change).
 #[derive(Clone, Debug, Default)]
 pub struct Workspace {
     /// Number of chunks (parallel tasks); 1 assembles serially.
