@@ -6,11 +6,13 @@
 //! form is trivial (rank 0 of 1, every reduction the identity), so a run without MPI pays
 //! nothing for it. What is distributed today is the assembly of the Newton matrix and the
 //! linear solve: each rank owns a part of the nodes ([`Partition`]: Scotch's parts of the
-//! node graph), assembles the cells around them (its [`Subdomain`]) and hands PETSc's distributed matrix
-//! their rows; the bulk energy and gradient are completed by two collective operations per
-//! evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank still holds the
-//! whole mesh and runs the whole outer loop on the same (gathered) data, so every rank takes
-//! the same decisions without further communication.
+//! node graph), assembles the cells around them (its [`Subdomain`]) as a mesh of its own
+//! ([`Subdomain::local_mesh`]: its own nodes first, then the ghost nodes of those cells) on a
+//! pattern of that part alone, and hands PETSc's distributed matrix the rows of its own
+//! nodes ([`Placement`]); the bulk energy and gradient are completed by two collective
+//! operations per evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank
+//! still holds the whole mesh besides its part and runs the whole outer loop on the same
+//! (gathered) data, so every rank takes the same decisions without further communication.
 
 use crate::error::{Error, Result};
 use std::sync::OnceLock;
@@ -329,6 +331,22 @@ impl Partition {
     }
 }
 
+/// Where the nodes of the mesh a process holds sit in the whole: what the distributed
+/// linear solver needs to number its rows. On one process the mesh is the whole mesh; on
+/// several it is the process's part ([`Subdomain::local_mesh`]), its own nodes first, in
+/// increasing order, so that its first `d ·` (own nodes) DOFs are its rows.
+#[derive(Clone, Copy, Debug)]
+pub struct Placement<'a> {
+    /// How the whole mesh's nodes are split among the processes.
+    pub partition: &'a Partition,
+    /// The whole mesh's number of every node of the part (`None`: the part is the whole
+    /// mesh).
+    pub nodes: Option<&'a [u32]>,
+    /// The equation number of every DOF of the whole mesh
+    /// ([`crate::fem::dofs::FIXED`] for a prescribed one).
+    pub equations: &'a [u32],
+}
+
 /// Items (contact points, say) grouped by the rank that owns them, each group in increasing
 /// order: compressed rows, those of rank `r` being `items[first[r]..first[r + 1]]`.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -411,6 +429,40 @@ impl Subdomain {
     /// The nodes this rank owns, in increasing order.
     pub fn nodes(&self) -> &[u32] {
         self.partition.nodes(self.rank)
+    }
+
+    /// The nodes this rank holds: its own ([`Subdomain::nodes`]), then the other nodes of
+    /// its cells (its *ghost* nodes), each in increasing order. In that order they number
+    /// the nodes of its part of the mesh ([`Subdomain::local_mesh`]).
+    pub fn local_nodes(&self, mesh: &crate::mesh::Mesh) -> Vec<u32> {
+        let mut nodes = self.nodes().to_vec();
+        let mut seen = vec![false; mesh.n_nodes()];
+        for &v in &nodes {
+            seen[v as usize] = true;
+        }
+        let mut ghosts = Vec::new();
+        for &c in &self.cells {
+            for &v in mesh.cell(c as usize) {
+                if !seen[v as usize] {
+                    seen[v as usize] = true;
+                    ghosts.push(v);
+                }
+            }
+        }
+        ghosts.sort_unstable();
+        nodes.extend(ghosts);
+        nodes
+    }
+
+    /// This rank's part of `mesh`: its cells ([`Subdomain::cells`], owned first) over its
+    /// nodes ([`Subdomain::local_nodes`], own first), renumbered, with the boundary facets
+    /// of those cells; and the local nodes' numbers in `mesh`.
+    ///
+    /// # Errors
+    /// As [`crate::mesh::Mesh`]'s restriction (a subdomain of another mesh).
+    pub fn local_mesh(&self, mesh: &crate::mesh::Mesh) -> Result<(crate::mesh::Mesh, Vec<u32>)> {
+        let nodes = self.local_nodes(mesh);
+        Ok((mesh.restricted(&self.cells, &nodes)?, nodes))
     }
 
     /// Whether DOF `dof` (of `dim` per node) is one of this rank's.

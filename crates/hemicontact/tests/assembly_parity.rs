@@ -104,12 +104,14 @@ fn parallel_assembly_is_bitwise_the_serial_one() {
 }
 
 /// Assembly by subdomains, as on several processes: for the nodes of each of 3 contiguous
-/// ranges, the cells around them (owned, then ghost), assembled on a pattern of those cells
-/// alone (whose columns of the range's equations are the whole pattern's), give that
-/// range's gradient entries and Hessian rows of the whole assembly (to the order of
-/// additions), each cell's energy
+/// ranges, the cells around them (owned, then ghost) make the range's part of the mesh, its
+/// own nodes first, then the other nodes of its cells. Assembled on that part alone (its
+/// own pattern, its DOFs prescribed as in the whole problem), it gives the range's gradient
+/// entries and both triangles of its Hessian rows of the whole assembly (to the order of
+/// additions), each row with as many entries as in the whole pattern; each cell's energy
 /// is counted by exactly one range, and the ranges' energies add up to the whole; with 2
-/// and 5 parallel tasks per range, bitwise the one-task pass. In 2D (the paper's mesh) and in 3D (its cube analogue).
+/// and 5 parallel tasks per range, bitwise the one-task pass. In 2D (the paper's mesh) and
+/// in 3D (its cube analogue).
 #[test]
 fn subdomains_give_their_rows_of_the_whole_assembly() {
     let paper3d = std::fs::read_to_string(format!(
@@ -129,24 +131,34 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(mesh, &dofs).unwrap();
         let bulk = BulkAssembler::new(mesh, problem.material());
-        let u: Vec<f64> = (0..d * mesh.n_nodes())
-            .map(|k| {
-                let x = mesh.node(k / d);
-                0.03 * x[0] * x[1] - 0.11 * x[k % d] + 0.01 * x[0] * x[0]
-            })
-            .collect();
+        let displacement = |m: &hemicontact::mesh::Mesh| -> Vec<f64> {
+            (0..d * m.n_nodes())
+                .map(|k| {
+                    let x = m.node(k / d);
+                    0.03 * x[0] * x[1] - 0.11 * x[k % d] + 0.01 * x[0] * x[0]
+                })
+                .collect()
+        };
+        let u = displacement(mesh);
         let n = u.len();
         let (mut g, mut h) = (vec![0.0; n], vec![0.0; pattern.nnz()]);
         let e = bulk.assemble(&u, &mut g, Want::Hessian, &pattern, Some(&mut h));
         let gs = g.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let hs = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        // DOF of every equation, to find the rows of the upper-triangular slots.
-        let mut dof_of = vec![0usize; pattern.n()];
-        for (dof, &eq) in dofs.equations().iter().enumerate() {
-            if eq != u32::MAX {
-                dof_of[eq as usize] = dof;
+        // Entries of every equation's row in both triangles of a pattern.
+        let row_lengths = |p: &SystemPattern| {
+            let mut len = vec![0usize; p.n()];
+            for j in 0..p.n() {
+                for &i in &p.row_idx()[p.col_ptr()[j]..p.col_ptr()[j + 1]] {
+                    len[j] += 1;
+                    if i != j {
+                        len[i] += 1;
+                    }
+                }
             }
-        }
+            len
+        };
+        let whole_rows = row_lengths(&pattern);
         let parts = 3;
         let partition = Partition::ranges(mesh.n_nodes(), parts);
         let mut owner = vec![usize::MAX; mesh.n_cells()];
@@ -154,7 +166,6 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
         for part in 0..parts {
             let nodes = part * mesh.n_nodes() / parts..(part + 1) * mesh.n_nodes() / parts;
             let sub = Subdomain::new(mesh, partition.clone(), part);
-            let rows = d * nodes.start..d * nodes.end;
             // The cells are exactly those with a node in the range, the owned ones those
             // whose lowest node is in it.
             let around: Vec<usize> = (0..mesh.n_cells())
@@ -167,27 +178,69 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                 assert_eq!(owner[c as usize], usize::MAX, "cell {c} owned twice");
                 owner[c as usize] = part;
             }
-            // The pattern of the subdomain's cells alone: the columns of its equations are
-            // those of the whole pattern, and it is smaller.
-            let local = SystemPattern::on_cells(mesh, &dofs, Some(&sub.cells)).unwrap();
-            assert_eq!(local.n(), pattern.n());
-            assert!(local.nnz() < pattern.nnz());
-            let column = |p: &SystemPattern, j: usize| {
-                p.row_idx()[p.col_ptr()[j]..p.col_ptr()[j + 1]].to_vec()
-            };
-            for j in 0..pattern.n() {
-                if rows.contains(&dof_of[j]) {
-                    assert_eq!(column(&local, j), column(&pattern, j), "column {j}");
+            // The part of the mesh: own nodes first, in order, then the ghosts; each cell
+            // the whole mesh's cell with its vertices renumbered, at the same coordinates.
+            let (local_mesh, local_nodes) = sub.local_mesh(mesh).unwrap();
+            let own = nodes.len();
+            assert_eq!(
+                local_nodes[..own],
+                nodes.clone().map(|v| v as u32).collect::<Vec<_>>()[..]
+            );
+            assert!(local_nodes[own..]
+                .iter()
+                .all(|&v| !nodes.contains(&(v as usize))));
+            assert_eq!(local_mesh.n_cells(), sub.cells.len());
+            for (p, &c) in sub.cells.iter().enumerate() {
+                let back: Vec<u32> = local_mesh
+                    .cell(p)
+                    .iter()
+                    .map(|&l| local_nodes[l as usize])
+                    .collect();
+                assert_eq!(back, mesh.cell(c as usize));
+            }
+            for (l, &v) in local_nodes.iter().enumerate() {
+                assert_eq!(local_mesh.node(l), mesh.node(v as usize));
+            }
+            let local_dofs = dofs.restricted(&local_nodes);
+            for (l, &v) in local_nodes.iter().enumerate() {
+                for k in 0..d {
+                    let dof = d * v as usize + k;
+                    assert_eq!(local_dofs.is_fixed(d * l + k), dofs.is_fixed(dof));
                 }
             }
+            let local = SystemPattern::new(&local_mesh, &local_dofs).unwrap();
+            assert!(local.nnz() < pattern.nnz());
+            // The whole equation of every local one.
+            let mut whole_eq = vec![0usize; local.n()];
+            for (dof, &eq) in local_dofs.equations().iter().enumerate() {
+                if eq != u32::MAX {
+                    let v = local_nodes[dof / d] as usize;
+                    whole_eq[eq as usize] = dofs.equation(d * v + dof % d) as usize;
+                }
+            }
+            // Own equations come first.
+            let own_eqs = local_dofs.equations()[..d * own]
+                .iter()
+                .filter(|&&eq| eq != u32::MAX)
+                .count();
+            let local_rows = row_lengths(&local);
+            for j in 0..own_eqs {
+                assert_eq!(
+                    local_rows[j], whole_rows[whole_eq[j]],
+                    "row of equation {j}"
+                );
+            }
+            let u_local = displacement(&local_mesh);
             let mut first: Option<(f64, Vec<f64>, Vec<f64>)> = None;
             for chunks in [1, 2, 5] {
                 let mut ws = Workspace::new(chunks);
                 ws.cells_per_chunk = 1;
-                ws.subdomain = Some(sub.clone());
-                let (mut gp, mut hp) = (vec![0.0; n], vec![0.0; local.nnz()]);
-                let ep = bulk.assemble_parallel(
-                    &u,
+                ws.owned_cells = Some(sub.owned);
+                let mut gp = vec![0.0; u_local.len()];
+                let mut hp = vec![0.0; local.nnz()];
+                let part_bulk = BulkAssembler::new(&local_mesh, problem.material());
+                let ep = part_bulk.assemble_parallel(
+                    &u_local,
                     &mut gp,
                     Want::Hessian,
                     &local,
@@ -206,18 +259,22 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                         assert_eq!(h1, &hp);
                     }
                 }
-                for k in rows.clone() {
-                    assert!((g[k] - gp[k]).abs() <= 1e-14 * gs, "gradient at DOF {k}");
+                for l in 0..own {
+                    for k in 0..d {
+                        let whole = g[d * local_nodes[l] as usize + k];
+                        let diff = (whole - gp[d * l + k]).abs();
+                        assert!(diff <= 1e-14 * gs, "gradient at node {}", local_nodes[l]);
+                    }
                 }
-                // Every entry of a row of the subdomain, found by its (row, column) in the
-                // whole pattern.
+                // Every entry of an own row, found by its (row, column) in the whole
+                // pattern.
                 let (cp, ri) = (local.col_ptr(), local.row_idx());
                 let mut checked = 0;
                 for j in 0..local.n() {
                     for s in cp[j]..cp[j + 1] {
-                        if rows.contains(&dof_of[ri[s]]) || rows.contains(&dof_of[j]) {
-                            let whole = pattern.find(ri[s], j).unwrap();
-                            let diff = (h[whole] - hp[s]).abs();
+                        if ri[s] < own_eqs || j < own_eqs {
+                            let at = pattern.find(whole_eq[ri[s]], whole_eq[j]).unwrap();
+                            let diff = (h[at] - hp[s]).abs();
                             assert!(diff <= 1e-14 * hs, "Hessian entry ({}, {j})", ri[s]);
                             checked += 1;
                         }

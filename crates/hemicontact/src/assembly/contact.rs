@@ -395,9 +395,20 @@ pub fn contact_slots(
     equations: &[u32],
     pattern: &SystemPattern,
 ) -> Vec<u32> {
+    node_block_slots(&nodes.node, dim, equations, pattern)
+}
+
+/// Slots in `pattern` of the diagonal node blocks of the nodes `nodes`, as
+/// [`contact_slots`] (6 per node).
+pub fn node_block_slots(
+    nodes: &[u32],
+    dim: usize,
+    equations: &[u32],
+    pattern: &SystemPattern,
+) -> Vec<u32> {
     let mut slots = vec![FIXED_SLOT; 6 * nodes.len()];
-    for i in 0..nodes.len() {
-        let v = nodes.node[i] as usize;
+    for (i, &v) in nodes.iter().enumerate() {
+        let v = v as usize;
         let mut idx = 0;
         for k in 0..dim {
             for l in k..dim {

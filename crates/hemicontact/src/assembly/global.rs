@@ -6,7 +6,6 @@ use super::pattern::SystemPattern;
 use crate::fem::simplex;
 use crate::material::{AugmentedLocking, LockingSet, StrainEnergy};
 use crate::mesh::Mesh;
-use crate::parallel::Subdomain;
 use crate::tensor::Sym;
 
 /// What one pass of [`BulkAssembler::assemble`] computes.
@@ -19,7 +18,7 @@ pub enum Want {
 }
 
 /// How [`BulkAssembler::assemble_parallel`] splits the cell loop, and its work arrays: the
-/// cells of this process (all of them, or its [`Subdomain`] when the run is several
+/// cells of its mesh (the whole, or a process's part when the run is several
 /// processes), cut into `chunks` parallel tasks, each owning a range of nodes whose
 /// gradient entries and Hessian columns it alone writes; the split is kept between calls so
 /// that assembly does not allocate. A workspace serves one mesh, cell list and pattern (the
@@ -28,8 +27,11 @@ pub enum Want {
 pub struct Workspace {
     /// Number of chunks (parallel tasks); 1 assembles serially.
     pub chunks: usize,
-    /// The cells this process assembles, when it is one of several (`None`: every cell).
-    pub subdomain: Option<Subdomain>,
+    /// When the mesh is one process's part of a distributed mesh
+    /// ([`crate::parallel::Subdomain::local_mesh`]), how many of its first cells it owns:
+    /// only those count their energy (the others are its ghost layer). `None`: every cell
+    /// counts.
+    pub owned_cells: Option<usize>,
     /// Fewest cells per task: a smaller loop runs on fewer tasks (default
     /// [`Workspace::CELLS_PER_CHUNK`]; below a few thousand cells a task costs more than it
     /// saves).
@@ -48,8 +50,9 @@ pub struct Workspace {
 /// cell and added up in cell order afterwards, so the energy too is the serial one.
 #[derive(Clone, Debug, Default)]
 struct TaskPlan {
-    /// What the plan was built for: cells assembled, nodes, pattern entries, tasks.
-    key: [usize; 4],
+    /// What the plan was built for: cells assembled, cells counted, nodes, pattern entries,
+    /// tasks.
+    key: [usize; 5],
     /// Task `t` owns the nodes `bounds[t]..bounds[t + 1]`.
     bounds: Vec<usize>,
     /// The positions (in the pass's cell list) of the cells each task assembles.
@@ -93,7 +96,7 @@ impl Workspace {
     pub fn new(chunks: usize) -> Self {
         Workspace {
             chunks: chunks.max(1),
-            subdomain: None,
+            owned_cells: None,
             cells_per_chunk: Self::CELLS_PER_CHUNK,
             plan: None,
         }
@@ -101,13 +104,14 @@ impl Workspace {
 }
 
 impl TaskPlan {
-    /// The plan of `k` tasks for the cells `cells` (positions `0..n_cells`) of `mesh`: node
-    /// ranges of about equal numbers of cell–node incidences.
-    fn new(mesh: &Mesh, cells: Cells<'_>, n_cells: usize, nnz: usize, k: usize) -> TaskPlan {
+    /// The plan of `k` tasks for the cells of `mesh`, of which the first `counted` add their
+    /// energy: node ranges of about equal numbers of cell–node incidences.
+    fn new(mesh: &Mesh, counted: usize, nnz: usize, k: usize) -> TaskPlan {
+        let n_cells = mesh.n_cells();
         let n_nodes = mesh.n_nodes();
         let mut weight = vec![0usize; n_nodes + 1];
         for p in 0..n_cells {
-            for &v in mesh.cell(cells.at(p)) {
+            for &v in mesh.cell(p) {
                 weight[v as usize + 1] += 1;
             }
         }
@@ -125,11 +129,12 @@ impl TaskPlan {
         }
         let task_of = |v: u32| bounds.partition_point(|&b| b <= v as usize) - 1;
         let mut positions = vec![Vec::new(); k];
-        let counted = cells.counted.min(n_cells);
+        let key = [n_cells, counted, n_nodes, nnz, k];
+        let counted = counted.min(n_cells);
         let mut owner = Vec::with_capacity(counted);
         let mut touched = [usize::MAX; 4];
         for p in 0..n_cells {
-            let cell = mesh.cell(cells.at(p));
+            let cell = mesh.cell(p);
             for (slot, &v) in touched.iter_mut().zip(cell) {
                 *slot = task_of(v);
             }
@@ -151,38 +156,12 @@ impl TaskPlan {
         }
         let energies = counts.iter().map(|&c| Vec::with_capacity(2 * c)).collect();
         TaskPlan {
-            key: [n_cells, n_nodes, nnz, k],
+            key,
             bounds,
             positions,
             owner,
             energies,
             taken: vec![0; k],
-        }
-    }
-}
-
-/// The cells of one pass: positions `0..len` of either every cell (`list` empty) or of
-/// `list`, of which the first `counted` add their energy.
-#[derive(Clone, Copy, Debug)]
-struct Cells<'c> {
-    list: &'c [u32],
-    counted: usize,
-}
-
-impl Cells<'_> {
-    /// Every cell of a mesh.
-    const ALL: Cells<'static> = Cells {
-        list: &[],
-        counted: usize::MAX,
-    };
-
-    /// The cell at position `p`.
-    #[inline]
-    fn at(&self, p: usize) -> usize {
-        if self.list.is_empty() {
-            p
-        } else {
-            self.list[p] as usize
         }
     }
 }
@@ -290,7 +269,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         let hess = if want == Want::Hessian { hess } else { None };
         self.assemble_range(
             0..mesh.n_cells(),
-            Cells::ALL,
+            usize::MAX,
             u,
             pattern,
             Window::whole(grad, hess),
@@ -303,10 +282,9 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
     /// energy, gradient and Hessian are bitwise those of the serial loop over the same cells,
     /// whatever the number of tasks.
     ///
-    /// With a [`Workspace::subdomain`], only its cells are assembled, on a `pattern` built on
-    /// them ([`SystemPattern::on_cells`]): the energy is that of its owned cells, and the
-    /// gradient entries and Hessian rows are exact at the DOFs of its nodes only (partial
-    /// elsewhere).
+    /// On one process's part of a distributed mesh ([`Workspace::owned_cells`]) the energy
+    /// is that of its owned cells, and the gradient entries and Hessian rows are exact at
+    /// the DOFs of its own nodes only (partial at its ghost nodes).
     ///
     /// # Panics
     /// As [`BulkAssembler::assemble`].
@@ -320,16 +298,8 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         hess: Option<&mut [f64]>,
         workspace: &mut Workspace,
     ) -> f64 {
-        let (n_cells, cells) = match &workspace.subdomain {
-            None => (self.mesh.n_cells(), Cells::ALL),
-            Some(sub) => (
-                sub.cells.len(),
-                Cells {
-                    list: &sub.cells,
-                    counted: sub.owned,
-                },
-            ),
-        };
+        let n_cells = self.mesh.n_cells();
+        let counted = workspace.owned_cells.unwrap_or(usize::MAX);
         assert_eq!(u.len(), self.mesh.dim() * self.mesh.n_nodes());
         assert_eq!(grad.len(), u.len());
         if let Some(h) = hess.as_deref() {
@@ -344,11 +314,11 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         let hess = if want == Want::Hessian { hess } else { None };
         let k = Workspace::chunk_count(workspace.chunks, n_cells, workspace.cells_per_chunk);
         if k == 1 {
-            return self.assemble_range(0..n_cells, cells, u, pattern, Window::whole(grad, hess));
+            return self.assemble_range(0..n_cells, counted, u, pattern, Window::whole(grad, hess));
         }
-        let key = [n_cells, self.mesh.n_nodes(), pattern.nnz(), k];
+        let key = [n_cells, counted, self.mesh.n_nodes(), pattern.nnz(), k];
         if workspace.plan.as_ref().is_none_or(|p| p.key != key) {
-            workspace.plan = Some(TaskPlan::new(self.mesh, cells, n_cells, pattern.nnz(), k));
+            workspace.plan = Some(TaskPlan::new(self.mesh, counted, pattern.nnz(), k));
         }
         let Some(plan) = workspace.plan.as_mut() else {
             unreachable!("the plan was just built")
@@ -387,7 +357,13 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             .into_par_iter()
             .zip(positions.par_iter())
             .for_each(|(window, list)| {
-                self.assemble_range(list.iter().map(|&p| p as usize), cells, u, pattern, window);
+                self.assemble_range(
+                    list.iter().map(|&p| p as usize),
+                    counted,
+                    u,
+                    pattern,
+                    window,
+                );
             });
         // The energy in cell order, as the serial loop adds it.
         let terms = if self.ideal.is_some() { 2 } else { 1 };
@@ -404,20 +380,20 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         energy
     }
 
-    /// Serial assembly of the cells at the positions `positions` of `cells` into `window`
-    /// (overwritten).
+    /// Serial assembly of the cells `positions`, of which those below `counted` add their
+    /// energy, into `window` (overwritten).
     fn assemble_range(
         &self,
         positions: impl Iterator<Item = usize>,
-        cells: Cells<'_>,
+        counted: usize,
         u: &[f64],
         pattern: &SystemPattern,
         window: Window<'_>,
     ) -> f64 {
         if self.mesh.dim() == 2 {
-            self.assemble_cells::<6>(positions, cells, u, pattern, window)
+            self.assemble_cells::<6>(positions, counted, u, pattern, window)
         } else {
-            self.assemble_cells::<12>(positions, cells, u, pattern, window)
+            self.assemble_cells::<12>(positions, counted, u, pattern, window)
         }
     }
 
@@ -425,7 +401,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
     fn assemble_cells<const LD: usize>(
         &self,
         positions: impl Iterator<Item = usize>,
-        cells: Cells<'_>,
+        counted: usize,
         u: &[f64],
         pattern: &SystemPattern,
         window: Window<'_>,
@@ -445,14 +421,14 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
         }
         let mut energy = 0.0;
         for p in positions {
-            let c = cells.at(p);
+            let c = p;
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
             let al = self.ideal.map(|l| l.cell(c));
             // Ghost cells (of another process's subdomain) add no energy, nor in parallel
             // the cells of another task's lowest node.
-            let counted = p < cells.counted;
+            let counted = p < counted;
             let mut sigma = self.material.stress(&eps);
             match &mut sink {
                 None if counted => {

@@ -29,35 +29,22 @@ pub struct SystemPattern {
 }
 
 impl SystemPattern {
-    /// Builds the pattern of `mesh` with the DOF map `dofs`.
+    /// Builds the pattern of `mesh` with the DOF map `dofs`: the couplings of nodes that
+    /// share a cell, and a diagonal entry for every free equation (so that
+    /// [`SystemPattern::diagonal_slot`] holds for all).
+    ///
+    /// A process of a distributed run builds it on its part of the mesh
+    /// ([`crate::parallel::Subdomain::local_mesh`]): the rows of its own nodes' equations
+    /// are then those of the whole mesh's pattern, and the rest holds only what its cells
+    /// touch.
     ///
     /// # Errors
     /// [`Error::OutOfMemory`] if the pattern has more than `u32::MAX` entries.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> Result<Self> {
-        Self::on_cells(mesh, dofs, None)
-    }
-
-    /// The pattern of the matrix assembled from the cells `cells` of `mesh` only (all of
-    /// them for `None`), with the DOF map `dofs`: the couplings of nodes that share one of
-    /// these cells, and a diagonal entry for every free equation (so that
-    /// [`SystemPattern::diagonal_slot`] holds for all). The scatter slots follow `cells`:
-    /// [`SystemPattern::cell_slots`]`(p)` are those of cell `cells[p]`.
-    ///
-    /// A process of a distributed run builds it on its subdomain's cells
-    /// ([`crate::parallel::Subdomain`]): the columns of its own nodes' equations are then
-    /// those of the whole mesh's pattern, and the rest holds only what its cells touch.
-    ///
-    /// # Errors
-    /// As [`SystemPattern::new`].
-    pub fn on_cells(mesh: &Mesh, dofs: &DofMap, cells: Option<&[u32]>) -> Result<Self> {
         let d = mesh.dim();
         let n = dofs.n_free();
-        let (ptr, adj) = match cells {
-            None => mesh.node_adjacency(),
-            Some(list) => mesh.node_adjacency_of(list.iter().map(|&c| c as usize)),
-        };
-        let n_cells = cells.map_or(mesh.n_cells(), <[u32]>::len);
-        let cell_at = |p: usize| cells.map_or(p, |list| list[p] as usize);
+        let (ptr, adj) = mesh.node_adjacency();
+        let n_cells = mesh.n_cells();
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0usize);
         let mut row_idx = Vec::with_capacity((adj.len() + mesh.n_nodes()) * d * d / 2 + n);
@@ -100,7 +87,7 @@ impl SystemPattern {
         let n_pairs = ld * (ld + 1) / 2;
         let mut cell_slots = Vec::with_capacity(n_cells * n_pairs);
         let mut eq = [0u32; 12];
-        for c in (0..n_cells).map(cell_at) {
+        for c in 0..n_cells {
             for (a, &v) in mesh.cell(c).iter().enumerate() {
                 for i in 0..d {
                     eq[d * a + i] = dofs.equation(d * v as usize + i);
@@ -161,7 +148,7 @@ impl SystemPattern {
         self.local_dofs
     }
 
-    /// Number of cells the pattern was built on (see [`SystemPattern::on_cells`]).
+    /// Number of cells the pattern was built on.
     #[inline]
     pub fn n_cells(&self) -> usize {
         let np = self.local_dofs * (self.local_dofs + 1) / 2;

@@ -82,4 +82,21 @@ impl DofMap {
     pub fn is_fixed(&self, dof: usize) -> bool {
         self.equation[dof] == FIXED
     }
+
+    /// The map of the nodes `nodes` (local node `l` is node `nodes[l]` of this map): each
+    /// local DOF prescribed exactly when its DOF here is, the free ones numbered afresh in
+    /// local order. What a process of a distributed run holds of the whole problem's map, so
+    /// that nodes at the border of its part keep the prescriptions made outside it.
+    ///
+    /// # Panics
+    /// If a node is not one of this map's.
+    #[track_caller]
+    pub fn restricted(&self, nodes: &[u32]) -> DofMap {
+        let d = self.dim;
+        let fixed: Vec<bool> = nodes
+            .iter()
+            .flat_map(|&v| (0..d).map(move |k| self.is_fixed(d * v as usize + k)))
+            .collect();
+        DofMap::new(d, nodes.len(), &fixed)
+    }
 }

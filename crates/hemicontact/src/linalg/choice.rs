@@ -87,8 +87,8 @@ pub struct PrepareOptions<'a> {
     pub par: faer::Par,
     /// PETSc options of the PETSc solver ([`PetscSettings::options`]).
     pub petsc_options: &'a str,
-    /// How the nodes are split among the processes (PETSc's rows follow it).
-    pub partition: &'a crate::parallel::Partition,
+    /// Where the mesh's nodes sit among the processes (PETSc's rows follow it).
+    pub placement: crate::parallel::Placement<'a>,
 }
 
 impl LinearSolver {
@@ -187,7 +187,7 @@ impl LinearSolver {
                 equations,
                 pattern,
                 options.petsc_options,
-                options.partition,
+                &options.placement,
             )?),
             #[cfg(not(feature = "petsc"))]
             LinearSolver::Petsc => return Err(Self::no_petsc()),

@@ -13,7 +13,7 @@
 //! values in place.
 //!
 //! Run as several MPI processes ([`crate::parallel`]), each rank hands PETSc the rows of
-//! its part of the nodes ([`Partition`]) of a distributed matrix (MatMPIAIJ), numbered in
+//! its part of the nodes ([`crate::parallel::Partition`]) of a distributed matrix (MatMPIAIJ), numbered in
 //! the partition's distributed numbering (each rank's rows contiguous):
 //! complete rows, since it assembled every cell around its nodes
 //! ([`crate::parallel::Subdomain`]); its other rows of `values` are partial and never read.
@@ -43,7 +43,7 @@ use crate::assembly::SystemPattern;
 use crate::error::{Error, Result};
 use crate::fem::dofs::FIXED;
 use crate::mesh::Mesh;
-use crate::parallel::{Partition, Processes};
+use crate::parallel::{Placement, Processes};
 use hemicontact_petsc::KspSystem;
 use std::time::Instant;
 
@@ -66,11 +66,12 @@ pub struct PetscSolver {
     diagonal: Vec<usize>,
     /// Number of free equations (all processes).
     n_free: usize,
-    /// Equation number of every DOF ([`FIXED`] for prescribed DOFs).
+    /// Equation number of every DOF of the whole mesh ([`FIXED`] for prescribed DOFs).
     equations: Vec<u32>,
-    /// The DOFs whose rows this rank holds (every DOF on one process), in PETSc's order.
-    row_dofs: Vec<u32>,
-    /// The nodes in the distributed numbering ([`Partition::order`]), PETSc's order.
+    /// The equation number in the whole system of each of this rank's rows ([`FIXED`]
+    /// for a prescribed DOF), in PETSc's order.
+    row_equations: Vec<u32>,
+    /// The nodes in the distributed numbering ([`crate::parallel::Partition::order`]), PETSc's order.
     order: Vec<u32>,
     /// Displacement components per node (2 or 3).
     dim: usize,
@@ -105,7 +106,9 @@ pub const SETUP_COST: f64 = 50.0;
 impl PetscSolver {
     /// Hands the pattern of `pattern` (the reduced system of `mesh` with equation numbers
     /// `equations`) to PETSc, with the nodes' coordinates for the rigid-body modes, and
-    /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`.
+    /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`. `mesh` is the
+    /// whole mesh on one process, and on several this process's part of it, its own nodes
+    /// first (see [`Placement`]): their rows are the ones it hands PETSc.
     ///
     /// # Errors
     /// [`Error::Invalid`] (field `petsc.options`) when PETSc refuses the options or cannot
@@ -115,12 +118,16 @@ impl PetscSolver {
         equations: &[u32],
         pattern: &SystemPattern,
         options: &str,
-        partition: &Partition,
+        placement: &Placement,
     ) -> Result<Self> {
-        let n = equations.len();
         let d = mesh.dim();
+        let partition = placement.partition;
+        let processes = Processes::current();
+        let rank = processes.rank();
+        // The whole mesh's number of every node of `mesh`.
+        let node = |l: usize| placement.nodes.map_or(l, |nodes| nodes[l] as usize);
         // PETSc's number of every DOF: its node's place in the distributed numbering.
-        let global = |dof: usize| (d * partition.position[dof / d] as usize + dof % d) as u32;
+        let global = |dof: usize| (d * partition.position[node(dof / d)] as usize + dof % d) as u32;
         let mut dof_of = vec![0u32; pattern.n()];
         for (dof, &eq) in equations.iter().enumerate() {
             if eq != FIXED {
@@ -128,27 +135,23 @@ impl PetscSolver {
             }
         }
         let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
-        // This rank's rows: the DOFs of its nodes (all of them on one process), in PETSc's
-        // order; `local_row` numbers them (NOT_MINE: another rank's).
-        let processes = Processes::current();
-        let rank = processes.rank();
-        let row_dofs: Vec<u32> = partition
-            .nodes(rank)
-            .iter()
-            .flat_map(|&v| (0..d).map(move |k| (d * v as usize + k) as u32))
-            .collect();
-        const NOT_MINE: u32 = u32::MAX;
-        let mut local_row = vec![NOT_MINE; n];
-        for (r, &dof) in row_dofs.iter().enumerate() {
-            local_row[dof as usize] = r as u32;
+        // This rank's rows: the DOFs of its own nodes, the first of `mesh` (all of them on
+        // one process), in PETSc's order.
+        let own_nodes = partition.first[rank + 1] - partition.first[rank];
+        if own_nodes > mesh.n_nodes() {
+            return Err(Error::Breakdown(format!(
+                "a part of {} nodes cannot hold its {own_nodes} own nodes",
+                mesh.n_nodes()
+            )));
         }
+        let n_rows = d * own_nodes;
+        let mine = |dof: u32| (dof as usize) < n_rows;
         // Entries per row of this rank: both triangles of the free block, one diagonal
         // entry for each prescribed DOF.
-        let mut local_ptr = vec![0usize; row_dofs.len() + 1];
+        let mut local_ptr = vec![0usize; n_rows + 1];
         let mut count = |dof: u32| {
-            let r = local_row[dof as usize];
-            if r != NOT_MINE {
-                local_ptr[r as usize + 1] += 1;
+            if mine(dof) {
+                local_ptr[dof as usize + 1] += 1;
             }
         };
         for (dof, &eq) in equations.iter().enumerate() {
@@ -164,17 +167,16 @@ impl PetscSolver {
                 }
             }
         }
-        for r in 0..row_dofs.len() {
+        for r in 0..n_rows {
             local_ptr[r + 1] += local_ptr[r];
         }
         // (PETSc's column, source slot) of every entry, sorted by column within each row.
-        let mut entries = vec![(0u32, 0u32); local_ptr[row_dofs.len()]];
+        let mut entries = vec![(0u32, 0u32); local_ptr[n_rows]];
         let mut next = local_ptr.clone();
         let mut push = |row: u32, col: u32, src: u32| {
-            let r = local_row[row as usize];
-            if r != NOT_MINE {
-                entries[next[r as usize]] = (global(col as usize), src);
-                next[r as usize] += 1;
+            if mine(row) {
+                entries[next[row as usize]] = (global(col as usize), src);
+                next[row as usize] += 1;
             }
         };
         for (dof, &eq) in equations.iter().enumerate() {
@@ -191,44 +193,45 @@ impl PetscSolver {
                 }
             }
         }
-        drop(local_row);
-        for r in 0..row_dofs.len() {
+        for r in 0..n_rows {
             entries[local_ptr[r]..local_ptr[r + 1]].sort_unstable();
         }
         let (cols, source): (Vec<usize>, Vec<u32>) =
             entries.into_iter().map(|(c, s)| (c as usize, s)).unzip();
-        let coordinates: Vec<f64> = row_dofs
-            .iter()
-            .map(|&dof| mesh.coords()[dof as usize])
-            .collect();
+        let coordinates = &mesh.coords()[..n_rows];
+        let n = placement.equations.len();
         let first_row = d * partition.first[rank];
         let created = if processes.size() > 1 {
-            KspSystem::new_distributed(n, first_row, &local_ptr, &cols, &coordinates, d, options)
+            KspSystem::new_distributed(n, first_row, &local_ptr, &cols, coordinates, d, options)
         } else {
-            KspSystem::new(&local_ptr, &cols, &coordinates, d, options)
+            KspSystem::new(&local_ptr, &cols, coordinates, d, options)
         };
         let system = created.map_err(|e| Error::Invalid {
             field: "petsc.options".into(),
             value: format!("{options:?}"),
             allowed: format!("options PETSc accepts: {e}"),
         })?;
-        let local = row_dofs.len();
         Ok(PetscSolver {
             csr_values: vec![0.0; source.len()],
             source,
-            diagonal: row_dofs
+            diagonal: equations[..n_rows]
                 .iter()
-                .map(|&dof| equations[dof as usize])
-                .filter(|&eq| eq != FIXED)
-                .map(|eq| col_ptr[eq as usize + 1] - 1)
+                .filter(|&&eq| eq != FIXED)
+                .map(|&eq| col_ptr[eq as usize + 1] - 1)
                 .collect(),
-            n_free: pattern.n(),
-            equations: equations.to_vec(),
-            row_dofs,
+            n_free: placement
+                .equations
+                .iter()
+                .filter(|&&eq| eq != FIXED)
+                .count(),
+            row_equations: (0..n_rows)
+                .map(|dof| placement.equations[d * node(dof / d) + dof % d])
+                .collect(),
+            equations: placement.equations.to_vec(),
             order: partition.order.clone(),
             dim: d,
-            b_local: vec![0.0; local],
-            x_local: vec![0.0; local],
+            b_local: vec![0.0; n_rows],
+            x_local: vec![0.0; n_rows],
             x_all: Vec::new(),
             processes,
             has_matrix: false,
@@ -308,8 +311,7 @@ impl SpdSolver for PetscSolver {
             // Copying values is part of the solve; only set-ups count as factorizations.
             stats.solve_time = t.elapsed().as_secs_f64();
         }
-        for (bl, &dof) in self.b_local.iter_mut().zip(&self.row_dofs) {
-            let eq = self.equations[dof as usize];
+        for (bl, &eq) in self.b_local.iter_mut().zip(&self.row_equations) {
             *bl = if eq == FIXED { 0.0 } else { b[eq as usize] };
         }
         let keep = !unchanged

@@ -50,6 +50,7 @@ mod arrays;
 pub(crate) mod facets;
 pub mod generate;
 pub mod gmsh;
+mod submesh;
 
 use crate::error::{Error, Result};
 use crate::fem::simplex;

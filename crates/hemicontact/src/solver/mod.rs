@@ -19,6 +19,7 @@ pub mod mixing;
 pub mod multipliers;
 pub mod newton;
 pub mod outer;
+mod part;
 pub mod report;
 pub mod scaling;
 pub mod system;

@@ -8,6 +8,7 @@ use super::certificate::{Certificate, ContactResult};
 use super::continuation::Continuation;
 use super::frozen::Frozen;
 use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
+use super::part::Part;
 use super::scaling::Scales;
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
@@ -17,7 +18,7 @@ use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
-use crate::parallel::{ByRank, Partition, Processes, Subdomain};
+use crate::parallel::{Partition, Placement, Processes, Subdomain};
 use crate::problem::Problem;
 use std::time::Instant;
 
@@ -26,9 +27,10 @@ use std::time::Instant;
 pub struct System {
     /// DOF map (Dirichlet DOFs eliminated).
     pub dofs: DofMap,
-    /// Upper-triangular pattern of the reduced system; in a distributed run, of the cells
-    /// this process assembles ([`SystemPattern::on_cells`]), complete in the columns of its
-    /// own nodes' equations only.
+    /// Upper-triangular pattern of the reduced system; in a distributed run, of this
+    /// process's part of the mesh in its own numbering
+    /// ([`crate::parallel::Subdomain::local_mesh`]), complete in the rows of its own
+    /// nodes' equations only.
     pub pattern: SystemPattern,
     /// Stored entries of the upper triangle of the whole reduced system (over all
     /// processes; [`SystemPattern::nnz`] on one).
@@ -62,16 +64,13 @@ pub struct System {
     /// Rigid motions left free by the Dirichlet conditions (carried by contact, else
     /// [`Problem::validate`] refused the problem).
     pub rigid: RigidMotions,
-    /// Diagonal slots of the free equations of the bodies with free rigid motions.
+    /// Diagonal slots of the free equations of the bodies with free rigid motions, in this
+    /// process's rows (all of them on one process).
     rigid_slots: Vec<usize>,
-    /// Those of [`System::rigid_slots`] in this process's rows (all of them on one
-    /// process), whose values are complete here.
-    rigid_slots_owned: Vec<usize>,
-    /// In a distributed run, the contact points of each process: those on its nodes, whose
-    /// terms it alone evaluates; `None` on one process.
-    points_by_rank: Option<ByRank>,
-    /// Work arrays of [`System::evaluate`] in a distributed run, kept between evaluations.
-    gather: GatherBuffers,
+    /// In a distributed run, this process's part of the system: the mesh, DOF map and
+    /// contact points it assembles, and the work arrays of completing an evaluation; `None`
+    /// on one process.
+    part: Option<Part>,
     /// The processes of the run: with several, each assembles its
     /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
     /// [`Processes::sum`] and [`Processes::all_gather`].
@@ -118,7 +117,7 @@ pub struct Evaluation {
     /// forces plus residual), DOF order (N).
     pub grad_bulk: Vec<f64>,
     /// Hessian values at the last evaluation with a Hessian (upper triangle, on
-    /// [`System::pattern`]; N/m).
+    /// [`System::pattern`]: in a distributed run, of this process's part; N/m).
     pub hess: Vec<f64>,
     /// Shift α added to the Newton matrix on the bodies with free rigid motions (0 until
     /// the first Hessian; see [`crate::fem::rigid::NEWTON_SHIFT`]).
@@ -198,32 +197,51 @@ impl System {
         let processes = Processes::current();
         let distributed = processes.size() > 1
             && kind.resolve(problem.mesh.dim(), dofs.n_free()) == super::LinearSolver::Petsc;
-        let subdomain = if distributed {
+        let contact = problem.contact_nodes()?;
+        let mut part = if distributed {
             let partition = Partition::of(&problem.mesh, &processes)?;
-            Some(Subdomain::new(&problem.mesh, partition, processes.rank()))
+            let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
+            Some(Part::new(&problem.mesh, sub, &dofs, &contact)?)
         } else {
             None
         };
-        let cells = subdomain.as_ref().map(|s| s.cells.as_slice());
-        let pattern = SystemPattern::on_cells(&problem.mesh, &dofs, cells)?;
-        let nnz = match &subdomain {
-            None => pattern.nnz(),
-            Some(sub) => whole_nnz(&pattern, &dofs, sub, &processes)?,
+        // The mesh and DOF map this process assembles: the whole, or its part.
+        let (mesh, part_dofs) = match &part {
+            None => (&problem.mesh, &dofs),
+            Some(p) => (&p.mesh, &p.dofs),
         };
-        let contact = problem.contact_nodes()?;
+        let pattern = SystemPattern::new(mesh, part_dofs)?;
+        let nnz = match &part {
+            None => pattern.nnz(),
+            Some(p) => p.whole_nnz(&pattern, &dofs)?,
+        };
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
-        let contact_slots = contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern);
+        let contact_slots = match &mut part {
+            None => contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern),
+            Some(p) => {
+                p.set_point_slots(&contact, &pattern);
+                Vec::new()
+            }
+        };
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
         let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
         let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
+        let (mesh, equations) = match &part {
+            None => (&problem.mesh, dofs.equations()),
+            Some(p) => (&p.mesh, p.dofs.equations()),
+        };
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
             petsc_options: &settings.petsc.options,
-            partition: subdomain.as_ref().map_or(&whole, |s| &s.partition),
+            placement: Placement {
+                partition: part.as_ref().map_or(&whole, |p| &p.sub.partition),
+                nodes: part.as_ref().map(|p| p.nodes.as_slice()),
+                equations: dofs.equations(),
+            },
         };
-        let linear_solver = kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
+        let linear_solver = kind.prepare(mesh, equations, &pattern, &options)?;
         let t2 = Instant::now();
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
@@ -234,29 +252,26 @@ impl System {
             .into_iter()
             .filter(|&k| !dofs.is_fixed(k))
             .collect();
-        let rigid_slot = |&k: &usize| pattern.diagonal_slot(dofs.equation(k) as usize);
-        let rigid_slots_owned: Vec<usize> = shifted
-            .iter()
-            .filter(|&&k| subdomain.as_ref().is_none_or(|s| s.owns_dof(k, d)))
-            .map(rigid_slot)
-            .collect();
-        // Distributed, only this process's rows are handed on: the shift goes there alone.
-        let rigid_slots = match &subdomain {
-            None => shifted.iter().map(rigid_slot).collect(),
-            Some(_) => rigid_slots_owned.clone(),
+        // The diagonal slots of the shifted DOFs in this process's rows (all on one).
+        let rigid_slots: Vec<usize> = match &part {
+            None => shifted
+                .iter()
+                .map(|&k| pattern.diagonal_slot(dofs.equation(k) as usize))
+                .collect(),
+            Some(p) => shifted
+                .iter()
+                .filter(|&&k| p.sub.owns_dof(k, d))
+                .map(|&k| {
+                    let local = d * p.own_node((k / d) as u32) + k % d;
+                    pattern.diagonal_slot(p.dofs.equation(local) as usize)
+                })
+                .collect(),
         };
-        let points_by_rank = subdomain.as_ref().map(|s| {
-            let rank_of = &s.partition.rank_of;
-            ByRank::group(
-                contact.node.iter().map(|&v| rank_of[v as usize] as usize),
-                s.partition.size(),
-            )
-        });
         let mut workspace = Workspace::new(match settings.threads {
             0 => rayon::current_num_threads(),
             t => t,
         });
-        workspace.subdomain = subdomain;
+        workspace.owned_cells = part.as_ref().map(|p| p.sub.owned);
         Ok(System {
             dofs,
             pattern,
@@ -273,9 +288,7 @@ impl System {
             workspace,
             rigid,
             rigid_slots,
-            rigid_slots_owned,
-            points_by_rank,
-            gather: GatherBuffers::default(),
+            part,
             processes,
             scales: None,
             placement: None,
@@ -285,7 +298,7 @@ impl System {
     /// How the nodes are split among the processes when this system is distributed (see
     /// [`crate::parallel::Subdomain`]); `None` on one process.
     pub fn partition(&self) -> Option<&crate::parallel::Partition> {
-        self.workspace.subdomain.as_ref().map(|s| &s.partition)
+        self.part.as_ref().map(|p| &p.sub.partition)
     }
 
     /// The unit of the coordinates in units of the displacements: 1 for a problem in the
@@ -436,11 +449,23 @@ impl System {
         out: &mut Evaluation,
         hessian: bool,
     ) -> f64 {
-        let bulk = BulkAssembler {
-            mesh: &problem.mesh,
-            material: &problem.material,
-            ideal: self.ideal_locking(problem, frozen),
-        };
+        let mut part = self.part.take();
+        let energy = self.evaluate_on(problem, u, frozen, out, hessian, part.as_mut());
+        self.part = part;
+        energy
+    }
+
+    /// [`System::evaluate`] on one process (`part` `None`), or on this process's part of
+    /// the system, completed with the others'.
+    fn evaluate_on(
+        &mut self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        out: &mut Evaluation,
+        hessian: bool,
+        part: Option<&mut Part>,
+    ) -> f64 {
         let want = if hessian {
             Want::Hessian
         } else {
@@ -451,81 +476,111 @@ impl System {
         } else {
             None
         };
-        let e_bulk = bulk.assemble_parallel(
-            u,
-            &mut out.grad_bulk,
-            want,
-            &self.pattern,
-            hess,
-            &mut self.workspace,
-        );
-        let mut buffers = std::mem::take(&mut self.gather);
+        let d = problem.mesh.dim();
+        let (e_bulk, part) = match part {
+            None => {
+                let bulk = BulkAssembler {
+                    mesh: &problem.mesh,
+                    material: &problem.material,
+                    ideal: self.ideal_locking(problem, frozen),
+                };
+                let e = bulk.assemble_parallel(
+                    u,
+                    &mut out.grad_bulk,
+                    want,
+                    &self.pattern,
+                    hess,
+                    &mut self.workspace,
+                );
+                (e, None)
+            }
+            Some(p) => {
+                // The part's displacements and cell multipliers, then its bulk terms.
+                for (l, &v) in p.nodes.iter().enumerate() {
+                    let v = v as usize;
+                    p.u[d * l..d * l + d].copy_from_slice(&u[d * v..d * v + d]);
+                }
+                p.multipliers.clear();
+                let ideal = self.ideal_locking(problem, frozen).map(|whole| {
+                    let cells = p.sub.cells.iter();
+                    p.multipliers
+                        .extend(cells.map(|&c| whole.multipliers[c as usize]));
+                    (whole.set, whole.r)
+                });
+                let bulk = BulkAssembler {
+                    mesh: &p.mesh,
+                    material: &problem.material,
+                    ideal: ideal.map(|(set, r)| IdealLocking {
+                        set,
+                        r,
+                        multipliers: &p.multipliers,
+                    }),
+                };
+                let e = bulk.assemble_parallel(
+                    &p.u,
+                    &mut p.grad,
+                    want,
+                    &self.pattern,
+                    hess,
+                    &mut self.workspace,
+                );
+                (e, Some(p))
+            }
+        };
         let mut contact = self.contact_assembler(problem);
         if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
             out.law_error.get_or_insert(e);
-            self.gather = buffers;
             return f64::NAN;
         }
         contact.responses = &out.normal;
-        let hc = if hessian {
-            Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
-        } else {
-            None
-        };
-        let (e_bulk, e_contact, work) = match (&self.workspace.subdomain, &self.points_by_rank) {
-            (Some(sub), Some(points)) => {
-                let d = problem.mesh.dim();
+        let (e_bulk, e_contact, work) = match part {
+            Some(p) => {
                 let frozen = frozen.contact();
-                // This process's contact points: their terms, and their node blocks of the
-                // Hessian (the rows of its nodes).
-                let own = points.of(sub.rank);
+                let rank = p.sub.rank;
+                // This process's share: its own nodes' bulk gradient (the first of its
+                // part), then its contact points' terms, whose node blocks of the Hessian
+                // go to its rows.
+                let own = p.sub.nodes().len();
+                p.mine.clear();
+                p.mine.extend_from_slice(&p.grad[..d * own]);
                 let mut e_contact = 0.0;
-                let GatherBuffers {
-                    mine,
-                    all,
-                    points: contact_grad,
-                } = &mut buffers;
-                mine.clear();
-                for &v in sub.nodes() {
-                    mine.extend_from_slice(&out.grad_bulk[d * v as usize..d * (v as usize + 1)]);
-                }
-                let mut hc = hc;
-                for &i in own {
+                for (j, &i) in p.points.of(rank).iter().enumerate() {
                     let term = contact.point(u, &frozen, i as usize);
                     e_contact += term.energy;
-                    mine.extend_from_slice(&term.gradient[..d]);
-                    if let Some((h, slots)) = hc.as_mut() {
-                        let i = i as usize;
-                        ContactAssembler::add_block(d, &term, &slots[6 * i..6 * i + 6], h);
+                    p.mine.extend_from_slice(&term.gradient[..d]);
+                    if hessian {
+                        let slots = &p.point_slots[6 * j..6 * j + 6];
+                        ContactAssembler::add_block(d, &term, slots, &mut out.hess);
                     }
                 }
                 // Completed on every process: the energies summed, the bulk gradient at
                 // every node and the contact gradient of every point gathered.
                 let mut e = [e_bulk, e_contact];
-                all.resize(d * (problem.mesh.n_nodes() + self.contact.len()), 0.0);
+                p.all
+                    .resize(d * (problem.mesh.n_nodes() + self.contact.len()), 0.0);
                 let gathered = self
                     .processes
                     .sum(&mut e)
-                    .and_then(|()| self.processes.all_gather_into(mine, all));
+                    .and_then(|()| self.processes.all_gather_into(&p.mine, &mut p.all));
                 if let Err(e) = gathered {
                     out.law_error.get_or_insert(e);
-                    self.gather = buffers;
                     return f64::NAN;
                 }
-                let g = &all[..];
                 // Rank after rank: its nodes' bulk gradient, then its points' contact
                 // gradient.
-                contact_grad.resize(d * self.contact.len(), 0.0);
+                let g = &p.all[..];
+                p.point_grad.resize(d * self.contact.len(), 0.0);
                 let mut at = 0;
-                for r in 0..sub.partition.size() {
-                    for &v in sub.partition.nodes(r) {
+                let partition = &p.sub.partition;
+                for r in 0..partition.size() {
+                    for &v in partition.nodes(r) {
                         let v = v as usize;
                         out.grad_bulk[d * v..d * v + d].copy_from_slice(&g[at..at + d]);
                         at += d;
                     }
-                    for &i in points.of(r) {
+                    for &i in p.points.of(r) {
                         let i = i as usize;
-                        contact_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
+                        p.point_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
                         at += d;
                     }
                 }
@@ -535,25 +590,29 @@ impl System {
                 for (i, &v) in self.contact.node.iter().enumerate() {
                     let v = v as usize;
                     for k in 0..d {
-                        out.grad[d * v + k] += contact_grad[d * i + k];
+                        out.grad[d * v + k] += p.point_grad[d * i + k];
                     }
                 }
                 (e[0], e[1], work)
             }
-            _ => {
+            None => {
+                let hc = if hessian {
+                    Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
+                } else {
+                    None
+                };
                 let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
                 out.grad.copy_from_slice(&out.grad_bulk);
                 let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
                 (e_bulk, e_contact, work)
             }
         };
-        self.gather = buffers;
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
             if out.rigid_shift == 0.0 {
                 let mut max = [self
-                    .rigid_slots_owned
+                    .rigid_slots
                     .iter()
                     .fold(0.0f64, |m, &k| m.max(out.hess[k]))];
                 if let Err(e) = self.processes.max(&mut max) {
@@ -621,18 +680,6 @@ impl System {
     }
 }
 
-/// The work arrays of the completion of an evaluation on several processes
-/// ([`System::evaluate`]): allocated at the first evaluation, reused after.
-#[derive(Debug, Default)]
-struct GatherBuffers {
-    /// This process's part: its nodes' bulk gradient, then its points' contact gradient.
-    mine: Vec<f64>,
-    /// Every process's part, rank after rank.
-    all: Vec<f64>,
-    /// The contact gradient of every point (N), `d` entries per point.
-    points: Vec<f64>,
-}
-
 /// `grad ← grad − f_ext`; returns the work of the external forces `f_ext · u` (J, J/m in
 /// 2D).
 fn subtract_external(grad: &mut [f64], f_ext: &[f64], u: &[f64]) -> f64 {
@@ -642,31 +689,6 @@ fn subtract_external(grad: &mut [f64], f_ext: &[f64], u: &[f64]) -> f64 {
         work += f * x;
     }
     work
-}
-
-/// The entries of the upper triangle of the whole reduced system when each process holds
-/// the pattern `pattern` of its subdomain `sub`: the entries of the columns of its own
-/// nodes' equations (complete there), summed over the processes.
-fn whole_nnz(
-    pattern: &SystemPattern,
-    dofs: &DofMap,
-    sub: &Subdomain,
-    processes: &Processes,
-) -> Result<usize> {
-    let col_ptr = pattern.col_ptr();
-    let d = dofs.dim();
-    let mine = sub
-        .nodes()
-        .iter()
-        .flat_map(|&v| (0..d).map(move |k| d * v as usize + k))
-        .map(|dof| dofs.equation(dof))
-        .filter(|&eq| eq != FIXED)
-        .map(|eq| col_ptr[eq as usize + 1] - col_ptr[eq as usize])
-        .sum::<usize>();
-    // Counts below 2^53 add exactly in floating point.
-    let mut total = [mine as f64];
-    processes.sum(&mut total)?;
-    Ok(total[0] as usize)
 }
 
 /// The cells around each of the nodes `nodes`, in compressed rows (see
