@@ -4,13 +4,15 @@
 //! the bulk on that part alone, so that its pattern and Newton matrix hold its own rows and
 //! nothing of the rest of the mesh.
 
-use crate::assembly::contact::node_block_slots;
-use crate::assembly::SystemPattern;
+use crate::assembly::contact::{node_block_slots, ContactAssembler, ContactData};
+use crate::assembly::global::{IdealLocking, Want, Workspace};
+use crate::assembly::{BulkAssembler, SystemPattern};
 use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::DofMap;
+use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::parallel::{ByRank, Subdomain};
+use crate::parallel::{ByRank, Processes, Subdomain};
 
 /// This process's part of a distributed system; see the module documentation.
 #[derive(Debug)]
@@ -119,5 +121,107 @@ impl Part {
         let mut total = [full as f64];
         crate::parallel::Processes::current().sum(&mut total)?;
         Ok((total[0] as usize + whole.n_free()) / 2)
+    }
+
+    /// The bulk energy of the part's owned cells at the whole mesh's displacement `u`, for
+    /// `material` with the ideal-locking term `ideal` of the whole mesh's cells (J): the
+    /// part's gradient goes to [`Part::grad`] (exact at its own nodes) and with
+    /// [`Want::Hessian`] its Hessian to `hess`, on the part's pattern `pattern`
+    /// ([`BulkAssembler::assemble_parallel`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn assemble_bulk(
+        &mut self,
+        material: &Material,
+        ideal: Option<IdealLocking<'_>>,
+        u: &[f64],
+        want: Want,
+        pattern: &SystemPattern,
+        hess: Option<&mut [f64]>,
+        workspace: &mut Workspace,
+    ) -> f64 {
+        let d = self.mesh.dim();
+        for (l, &v) in self.nodes.iter().enumerate() {
+            let v = v as usize;
+            self.u[d * l..d * l + d].copy_from_slice(&u[d * v..d * v + d]);
+        }
+        self.multipliers.clear();
+        if let Some(whole) = &ideal {
+            let cells = self.sub.cells.iter();
+            self.multipliers
+                .extend(cells.map(|&c| whole.multipliers[c as usize]));
+        }
+        let bulk = BulkAssembler {
+            mesh: &self.mesh,
+            material,
+            ideal: ideal.map(|whole| IdealLocking {
+                set: whole.set,
+                r: whole.r,
+                multipliers: &self.multipliers,
+            }),
+        };
+        bulk.assemble_parallel(&self.u, &mut self.grad, want, pattern, hess, workspace)
+    }
+
+    /// Completes an evaluation with the other processes: the terms of this process's
+    /// contact points (`contact`, for the frozen quantities `frozen`, at the whole mesh's
+    /// displacement `u`; their node blocks of the Hessian added to `hess`), then the bulk
+    /// energies `e_bulk` and contact energies summed ([`Processes::sum`]) and the bulk
+    /// gradient of every node (into `grad_bulk`, DOF order) and the contact gradient of
+    /// every point (into [`Part::point_grad`]) gathered ([`Processes::all_gather_into`]).
+    /// Returns the bulk and contact energies of the whole (J).
+    ///
+    /// # Errors
+    /// MPI's.
+    #[allow(clippy::too_many_arguments)]
+    pub fn complete(
+        &mut self,
+        processes: &Processes,
+        contact: &ContactAssembler<'_>,
+        frozen: &ContactData<'_>,
+        u: &[f64],
+        e_bulk: f64,
+        mut hess: Option<&mut [f64]>,
+        grad_bulk: &mut [f64],
+    ) -> Result<[f64; 2]> {
+        let d = self.mesh.dim();
+        let rank = self.sub.rank;
+        // This process's share: its own nodes' bulk gradient (the first of its part), then
+        // its contact points' terms, whose node blocks of the Hessian go to its rows.
+        let own = self.sub.nodes().len();
+        self.mine.clear();
+        self.mine.extend_from_slice(&self.grad[..d * own]);
+        let mut e_contact = 0.0;
+        for (j, &i) in self.points.of(rank).iter().enumerate() {
+            let term = contact.point(u, frozen, i as usize);
+            e_contact += term.energy;
+            self.mine.extend_from_slice(&term.gradient[..d]);
+            if let Some(h) = hess.as_deref_mut() {
+                let slots = &self.point_slots[6 * j..6 * j + 6];
+                ContactAssembler::add_block(d, &term, slots, h);
+            }
+        }
+        let n_points = contact.nodes.len();
+        let mut e = [e_bulk, e_contact];
+        self.all.resize(grad_bulk.len() + d * n_points, 0.0);
+        processes.sum(&mut e)?;
+        processes.all_gather_into(&self.mine, &mut self.all)?;
+        // Rank after rank: its nodes' bulk gradient, then its points' contact gradient.
+        let g = &self.all[..];
+        self.point_grad.resize(d * n_points, 0.0);
+        let mut at = 0;
+        let partition = &self.sub.partition;
+        for r in 0..partition.size() {
+            for &v in partition.nodes(r) {
+                let v = v as usize;
+                grad_bulk[d * v..d * v + d].copy_from_slice(&g[at..at + d]);
+                at += d;
+            }
+            for &i in self.points.of(r) {
+                let i = i as usize;
+                self.point_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
+                at += d;
+            }
+        }
+        Ok(e)
     }
 }

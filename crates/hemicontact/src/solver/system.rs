@@ -495,30 +495,11 @@ impl System {
                 (e, None)
             }
             Some(p) => {
-                // The part's displacements and cell multipliers, then its bulk terms.
-                for (l, &v) in p.nodes.iter().enumerate() {
-                    let v = v as usize;
-                    p.u[d * l..d * l + d].copy_from_slice(&u[d * v..d * v + d]);
-                }
-                p.multipliers.clear();
-                let ideal = self.ideal_locking(problem, frozen).map(|whole| {
-                    let cells = p.sub.cells.iter();
-                    p.multipliers
-                        .extend(cells.map(|&c| whole.multipliers[c as usize]));
-                    (whole.set, whole.r)
-                });
-                let bulk = BulkAssembler {
-                    mesh: &p.mesh,
-                    material: &problem.material,
-                    ideal: ideal.map(|(set, r)| IdealLocking {
-                        set,
-                        r,
-                        multipliers: &p.multipliers,
-                    }),
-                };
-                let e = bulk.assemble_parallel(
-                    &p.u,
-                    &mut p.grad,
+                let ideal = self.ideal_locking(problem, frozen);
+                let e = p.assemble_bulk(
+                    &problem.material,
+                    ideal,
+                    u,
                     want,
                     &self.pattern,
                     hess,
@@ -535,55 +516,23 @@ impl System {
         contact.responses = &out.normal;
         let (e_bulk, e_contact, work) = match part {
             Some(p) => {
-                let frozen = frozen.contact();
-                let rank = p.sub.rank;
-                // This process's share: its own nodes' bulk gradient (the first of its
-                // part), then its contact points' terms, whose node blocks of the Hessian
-                // go to its rows.
-                let own = p.sub.nodes().len();
-                p.mine.clear();
-                p.mine.extend_from_slice(&p.grad[..d * own]);
-                let mut e_contact = 0.0;
-                for (j, &i) in p.points.of(rank).iter().enumerate() {
-                    let term = contact.point(u, &frozen, i as usize);
-                    e_contact += term.energy;
-                    p.mine.extend_from_slice(&term.gradient[..d]);
-                    if hessian {
-                        let slots = &p.point_slots[6 * j..6 * j + 6];
-                        ContactAssembler::add_block(d, &term, slots, &mut out.hess);
+                let hess = hessian.then_some(out.hess.as_mut_slice());
+                let gathered = p.complete(
+                    &self.processes,
+                    &contact,
+                    &frozen.contact(),
+                    u,
+                    e_bulk,
+                    hess,
+                    &mut out.grad_bulk,
+                );
+                let e = match gathered {
+                    Ok(e) => e,
+                    Err(e) => {
+                        out.law_error.get_or_insert(e);
+                        return f64::NAN;
                     }
-                }
-                // Completed on every process: the energies summed, the bulk gradient at
-                // every node and the contact gradient of every point gathered.
-                let mut e = [e_bulk, e_contact];
-                p.all
-                    .resize(d * (problem.mesh.n_nodes() + self.contact.len()), 0.0);
-                let gathered = self
-                    .processes
-                    .sum(&mut e)
-                    .and_then(|()| self.processes.all_gather_into(&p.mine, &mut p.all));
-                if let Err(e) = gathered {
-                    out.law_error.get_or_insert(e);
-                    return f64::NAN;
-                }
-                // Rank after rank: its nodes' bulk gradient, then its points' contact
-                // gradient.
-                let g = &p.all[..];
-                p.point_grad.resize(d * self.contact.len(), 0.0);
-                let mut at = 0;
-                let partition = &p.sub.partition;
-                for r in 0..partition.size() {
-                    for &v in partition.nodes(r) {
-                        let v = v as usize;
-                        out.grad_bulk[d * v..d * v + d].copy_from_slice(&g[at..at + d]);
-                        at += d;
-                    }
-                    for &i in p.points.of(r) {
-                        let i = i as usize;
-                        p.point_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
-                        at += d;
-                    }
-                }
+                };
                 let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
                 out.grad.copy_from_slice(&out.grad_bulk);
                 // Added point by point in their order, as on one process.
