@@ -216,21 +216,10 @@ impl System {
             Some(p) => p.whole_nnz(&pattern, &dofs)?,
         };
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
-        let contact_slots = match &mut part {
-            None => contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern),
-            Some(p) => {
-                p.set_point_slots(&contact, &pattern);
-                Vec::new()
-            }
-        };
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
         let point_cells = cells_around(&problem.mesh, &contact.node);
         let t1 = Instant::now();
         let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
-        let (mesh, equations) = match &part {
-            None => (&problem.mesh, dofs.equations()),
-            Some(p) => (&p.mesh, p.dofs.equations()),
-        };
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
@@ -241,8 +230,15 @@ impl System {
                 equations: dofs.equations(),
             },
         };
-        let linear_solver = kind.prepare(mesh, equations, &pattern, &options)?;
+        let linear_solver = kind.prepare(mesh, part_dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();
+        let contact_slots = match &mut part {
+            None => contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern),
+            Some(p) => {
+                p.set_point_slots(&contact, &pattern);
+                Vec::new()
+            }
+        };
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
         let bodies = Bodies::new(problem, &rigid, &contact);
