@@ -1,7 +1,9 @@
 //! `mpirun -np N hemicontact solve` (cargo feature `petsc`): 1, 2 and 3 processes (3
 //! oversubscribed on two cores) give the serial direct solver's displacement to 1e-8 on
 //! the paper's example, its 3D analogue, Hertz 3D, Hertz 2D (a free rigid motion carried
-//! by contact) and a Gmsh scenario; a given number of processes is bitwise reproducible;
+//! by contact), a Gmsh scenario, ideal locking, exact Signorini contact and a block held by
+//! friction alone (refused above its limit with the serial message); a given number of
+//! processes is bitwise reproducible;
 //! one result set is written, by rank 0, and the summary says how many processes ran; an
 //! invalid scenario and a solve that does not converge end every process with the serial
 //! program's message and exit code, without hanging.
@@ -189,6 +191,15 @@ fn agrees_across_processes(name: &str) {
             s["report"]["linear_solver"]
         );
         assert!(diff <= 1e-8, "{name}, {np} processes: {diff:e}");
+        // The certificate's counts of exact constraints (cells, Signorini points, exact
+        // friction points) are sums over the processes of what each counts.
+        let kkt = &whole["report"]["certificate"]["kkt"];
+        if !kkt.is_null() {
+            assert_eq!(
+                s["report"]["certificate"]["kkt"]["n_constraints"], kkt["n_constraints"],
+                "{name}, {np} processes"
+            );
+        }
         // The Newton shift on free rigid motions is the largest diagonal entry on them,
         // found from each process's complete rows.
         let s_np = s["report"]["rigid_shift"].as_f64().unwrap();
@@ -224,6 +235,85 @@ fn hertz2d_free_rigid_motion_across_processes() {
 #[test]
 fn gmsh_half_disc_across_processes() {
     agrees_across_processes("half-disc.toml");
+}
+
+/// A block held sideways by friction alone, 0.5 m above a compliant foundation: dropped
+/// onto it first (a linear programme over every process's contact points), then its side
+/// load, 0.9 of the friction limit μ N = 3 N, relieved in the first outer iteration and its
+/// slips centred (sums over the body's nodes and points, completed over the processes).
+/// Above the limit every process refuses it with the serial program's message.
+#[test]
+fn a_block_held_by_friction_across_processes() {
+    let dir = tempfile::tempdir().unwrap();
+    let block = |side: f64| {
+        format!(
+            r#"
+[mesh]
+kind = "box"
+size = [1.0, 1.0, 0.5]
+n = [6, 6, 3]
+[material]
+young = 1000.0
+poisson = 0.3
+[[contact]]
+part = "bottom"
+gap = 0.5
+law = "normal-compliance"
+c_nu = 2000.0
+[contact.friction]
+bound = "coulomb"
+mu = {{ law = "constant", mu = 0.3 }}
+potential = {{ kind = "norm" }}
+[[loads.traction]]
+part = "top"
+value = [{side}, 0.0, -10.0]
+"#
+        )
+    };
+    let held = dir.path().join("held.toml");
+    std::fs::write(&held, block(2.7)).unwrap();
+    agrees_across_processes(held.to_str().unwrap());
+    let above = dir.path().join("above.toml");
+    std::fs::write(&above, block(3.03)).unwrap();
+    let serial = bin()
+        .args(["solve", "-q"])
+        .arg(&above)
+        .arg("--out")
+        .arg(dir.path().join("s"))
+        .output()
+        .unwrap();
+    let code = serial.status.code().unwrap();
+    assert_ne!(code, 0);
+    let message = common::text(&serial.stderr);
+    assert!(message.contains("above the friction limit"), "{message}");
+    let out = mpirun(3)
+        .args(["solve", "-q"])
+        .arg(&above)
+        .arg("--out")
+        .arg(dir.path().join("m"))
+        .output()
+        .unwrap();
+    assert_exit(&out, code);
+    let stderr = common::text(&out.stderr);
+    // The serial message, after its `error:` prefix (each rank names itself instead).
+    let first = message.lines().next().unwrap();
+    let (_, text) = first.split_once(": ").unwrap();
+    assert!(stderr.contains(text), "{first}\n{stderr}");
+}
+
+/// Exact constraints: ideal locking (a multiplier per cell, in the outer loop's mixing and
+/// the KKT certificate) and exact Signorini contact.
+#[test]
+fn exact_constraints_across_processes() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["paper-ideal.toml", "paper-signorini.toml"] {
+        // On a 64 × 64 mesh instead of 128 × 128, for time.
+        let text = std::fs::read_to_string(repo_root().join("scenarios").join(name)).unwrap();
+        assert!(text.contains("n = [128, 128]"), "{name}");
+        let file = dir.path().join(name);
+        std::fs::write(&file, text.replace("n = [128, 128]", "n = [64, 64]")).unwrap();
+        agrees_across_processes(file.to_str().unwrap());
+    }
 }
 
 /// Two runs on the same number of processes write the same bytes of displacement: on 2

@@ -290,3 +290,106 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
         );
     }
 }
+
+/// The reductions of the outer loop, Newton and the certificate are split among the
+/// processes by what each counts (`Share`): every node, DOF, equation, contact point and
+/// cell is counted by exactly one of 3 processes, for a partition in contiguous ranges and
+/// for a scattered one, and the processes' shares of a body's norm, energy norm and a dot
+/// product add up to the whole one (each share computed here on one process, whose
+/// completion is the identity).
+#[test]
+fn each_entry_is_counted_by_one_process() {
+    use hemicontact::parallel::{Processes, Share};
+    use hemicontact::solver::local_scales::Bodies;
+    let paper3d = std::fs::read_to_string(format!(
+        "{}/../../scenarios/paper3d.toml",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap()
+    .replace("n = [16, 16, 16]", "n = [8, 8, 8]");
+    for text in [builtin::paper(32, 1.0e4), paper3d] {
+        let problem = Scenario::from_str(&text, "test")
+            .unwrap()
+            .into_problem()
+            .unwrap();
+        let mesh = problem.mesh();
+        let d = mesh.dim();
+        let dofs = problem.dof_map();
+        let contact = problem.contact_nodes().unwrap();
+        assert!(contact.len() > 10);
+        let bodies = Bodies::new(&problem, &problem.rigid_motions().unwrap(), &contact);
+        let hooke = problem.material().elasticity.small_strain_hooke(d);
+        let v: Vec<f64> = (0..d * mesh.n_nodes())
+            .map(|k| {
+                let x = mesh.node(k / d);
+                0.03 * x[0] * x[1] - 0.11 * x[k % d] + 0.01 * x[0] * x[0]
+            })
+            .collect();
+        let x: Vec<f64> = (0..dofs.n_free()).map(|e| (e as f64).sin()).collect();
+        let whole = Share::whole();
+        let (mut norm, mut energy) = (Vec::new(), Vec::new());
+        bodies.norms(&whole, d, v.len(), |k| v[k], &mut norm);
+        bodies.energy_norms(&whole, mesh, &hooke, &v, &mut energy);
+        let dot = whole.dot_equations(&x, &x);
+        let parts = 3;
+        let scattered: Vec<u32> = (0..mesh.n_nodes()).map(|v| (v * 7 % 3) as u32).collect();
+        for partition in [
+            Partition::ranges(mesh.n_nodes(), parts),
+            Partition::from_ranks(scattered, parts),
+        ] {
+            let mut nodes = vec![0; mesh.n_nodes()];
+            let mut equations = vec![0; dofs.n_free()];
+            let mut points = vec![0; contact.len()];
+            let mut cells = vec![0; mesh.n_cells()];
+            let (mut norm2, mut energy2, mut dots) =
+                (vec![0.0; bodies.count], vec![0.0; bodies.count], 0.0);
+            for rank in 0..parts {
+                let sub = Subdomain::new(mesh, partition.clone(), rank);
+                let share = Share::of(mesh, &dofs, &contact, &sub, Processes::current());
+                assert!(share.is_split());
+                for (v, n) in nodes.iter_mut().enumerate() {
+                    *n += usize::from(share.counts_node(v));
+                    for k in 0..d {
+                        assert_eq!(share.counts_dof(d * v + k), share.counts_node(v));
+                    }
+                }
+                for (e, n) in equations.iter_mut().enumerate() {
+                    *n += usize::from(share.counts_equation(e));
+                }
+                for (i, n) in points.iter_mut().enumerate() {
+                    *n += usize::from(share.counts_point(i));
+                    assert_eq!(
+                        share.counts_point(i),
+                        share.counts_node(contact.node[i] as usize)
+                    );
+                }
+                for (c, n) in cells.iter_mut().enumerate() {
+                    *n += usize::from(share.counts_cell(c));
+                }
+                let (mut part_norm, mut part_energy) = (Vec::new(), Vec::new());
+                bodies.norms(&share, d, v.len(), |k| v[k], &mut part_norm);
+                bodies.energy_norms(&share, mesh, &hooke, &v, &mut part_energy);
+                for b in 0..bodies.count {
+                    norm2[b] += part_norm[b].powi(2);
+                    energy2[b] += part_energy[b].powi(2);
+                }
+                dots += share.dot_equations(&x, &x);
+            }
+            assert!(nodes.iter().all(|&n| n == 1));
+            assert!(equations.iter().all(|&n| n == 1));
+            assert!(points.iter().all(|&n| n == 1));
+            assert!(cells.iter().all(|&n| n == 1));
+            for b in 0..bodies.count {
+                assert!(
+                    (norm2[b].sqrt() - norm[b]).abs() <= 1e-13 * norm[b],
+                    "body {b}"
+                );
+                assert!(
+                    (energy2[b].sqrt() - energy[b]).abs() <= 1e-13 * energy[b],
+                    "body {b}"
+                );
+            }
+            assert!((dots - dot).abs() <= 1e-13 * dot);
+        }
+    }
+}

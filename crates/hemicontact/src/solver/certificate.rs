@@ -70,6 +70,7 @@ use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
+use crate::parallel::Share;
 use serde::Serialize;
 
 /// Normal contact state of a point.
@@ -283,6 +284,8 @@ pub struct Inputs<'a> {
     pub frozen: ContactData<'a>,
     /// Certificate tolerance.
     pub tolerance: f64,
+    /// What this process counts of the equilibrium check's sums.
+    pub share: &'a Share,
 }
 
 /// Evaluates the contact results and the certificate; see the module documentation.
@@ -302,6 +305,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         floor,
         frozen,
         tolerance,
+        share,
     } = *inp;
     let d = ca.dim;
     let m = d - 1;
@@ -313,13 +317,14 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     }
     let (mut residual, mut external, mut scale) = (Vec::new(), Vec::new(), Vec::new());
     bodies.residuals(
+        share,
         d,
         grad_bulk,
         |k| fixed(k) || on_contact[k / d],
         &mut residual,
     );
-    bodies.norms(d, f_ext.len(), |k| f_ext[k], &mut external);
-    bodies.force_scales(d, grad_bulk, f_ext, &external, &mut scale);
+    bodies.norms(share, d, f_ext.len(), |k| f_ext[k], &mut external);
+    bodies.force_scales(share, d, grad_bulk, f_ext, &external, &mut scale);
     let equilibrium =
         residual.iter().zip(&scale).fold(
             0.0f64,
@@ -408,10 +413,12 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                     let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
                     let stick = frozen.bound[i] > 0.0
                         && crate::assembly::contact::project_ball(&z, m, frozen.bound[i]).1;
-                    if stick {
-                        kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
+                    if share.counts_point(i) {
+                        if stick {
+                            kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
+                        }
+                        kkt.n_constraints.2 += 1;
                     }
-                    kkt.n_constraints.2 += 1;
                     !stick && s.slip > 0.0
                 } else {
                     s.slip > stick_threshold
@@ -443,7 +450,8 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 friction_traction[k] += ft[a] * t[a][k] / w;
             }
         }
-        exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
+        exact_any |= share.counts_point(i)
+            && (cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact()));
         results.push(ContactResult {
             node: ca.nodes.node[i],
             boundary: ca.nodes.boundary[i] as usize,
@@ -466,8 +474,14 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             slip_scale,
         });
     }
+    // Over the processes: whether any point has an exact law, the exact friction's
+    // largest slip at a sticking point and its count.
+    let mut worst = [f64::from(u8::from(exact_any)), kkt.stick_slip];
+    share.max(&mut worst);
+    kkt.stick_slip = worst[1];
+    kkt.n_constraints.2 = share.count(kkt.n_constraints.2);
     let mut cert = Certificate {
-        kkt: exact_any.then_some(kkt),
+        kkt: (worst[0] > 0.0).then_some(kkt),
         tolerance,
         equilibrium,
         ..Certificate::default()
@@ -484,7 +498,11 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             });
         }
     };
-    for r in &results {
+    let counted = results
+        .iter()
+        .enumerate()
+        .filter(|&(i, _)| share.counts_point(i));
+    for (_, r) in counted {
         worse(
             &mut cert.worst_normal,
             &mut cert.normal_law,
@@ -501,5 +519,40 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_stick += usize::from(r.friction_state == FrictionState::Stick);
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
+    if share.is_split() {
+        (cert.worst_normal, cert.normal_law) =
+            worst_of_all(share, cert.worst_normal, cert.normal_law);
+        (cert.worst_friction, cert.friction_law) =
+            worst_of_all(share, cert.worst_friction, cert.friction_law);
+        cert.n_contact = share.count(cert.n_contact);
+        cert.n_stick = share.count(cert.n_stick);
+        cert.n_slip = share.count(cert.n_slip);
+    }
     (results, cert)
+}
+
+/// The worst point of every process (`worst`, with its relative residual `value`), picked
+/// as one pass over the points would, in rank order: the largest residual, a NaN before
+/// any number, the first of equals.
+fn worst_of_all(share: &Share, worst: Option<Worst>, value: f64) -> (Option<Worst>, f64) {
+    let mine = match worst {
+        Some(w) => [value, 1.0, f64::from(w.node), w.boundary as f64],
+        None => [value, 0.0, 0.0, 0.0],
+    };
+    let all = share.gather(&mine);
+    let (mut worst, mut value) = (None, 0.0f64);
+    for p in all.chunks_exact(4) {
+        let rel = p[0];
+        let better = rel > value || (rel.is_nan() && !value.is_nan());
+        if p[1] > 0.0 && (better || worst.is_none()) {
+            value = rel;
+            // Node and boundary numbers below 2^32 are exact in floating point.
+            worst = Some(Worst {
+                node: p[2] as u32,
+                boundary: p[3] as usize,
+                residual: rel,
+            });
+        }
+    }
+    (worst, value)
 }

@@ -53,7 +53,9 @@ impl<'a> ConvexProblem<'a> {
         let mut external = Vec::new();
         let d = problem.mesh.dim();
         let f = &system.f_ext;
-        system.bodies.norms(d, f.len(), |k| f[k], &mut external);
+        system
+            .bodies
+            .norms(system.share(), d, f.len(), |k| f[k], &mut external);
         ConvexProblem {
             gradient: vec![0.0; system.dofs.n_free()],
             system,
@@ -97,14 +99,22 @@ impl ConvexEnergy for ConvexProblem<'_> {
             .system
             .evaluate(self.problem, &self.u, self.frozen, self.eval, hessian);
         self.system.reduce(&self.eval.grad, &mut self.gradient);
-        let (d, dofs, bodies) = (
+        let (d, dofs, bodies, share) = (
             self.problem.mesh.dim(),
             &self.system.dofs,
             &self.system.bodies,
+            self.system.share(),
         );
         let eval = &mut *self.eval;
-        bodies.residuals(d, &eval.grad, |k| dofs.is_fixed(k), &mut self.body_residual);
+        bodies.residuals(
+            share,
+            d,
+            &eval.grad,
+            |k| dofs.is_fixed(k),
+            &mut self.body_residual,
+        );
         bodies.force_scales(
+            share,
             d,
             &eval.grad_bulk,
             &self.system.f_ext,
@@ -132,6 +142,11 @@ impl ConvexEnergy for ConvexProblem<'_> {
         &self.gradient
     }
 
+    /// Over the equations this process counts, completed over the processes.
+    fn dot(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.system.share().dot_equations(a, b)
+    }
+
     /// Per body b: the residual `‖∇E_k|_b‖` over its free DOFs against
     /// `max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)`: ‖∇W‖ the internal forces over all DOFs, reactions
     /// included, and f_D,b the force unit of the body's prescribed motions
@@ -144,8 +159,11 @@ impl ConvexEnergy for ConvexProblem<'_> {
         let (mut res, mut scale) =
             super::local_scales::Bodies::worst(&self.body_residual, &self.eval.body_scale);
         let d = self.problem.mesh.dim();
-        let (eval, dofs) = (&*self.eval, &self.system.dofs);
+        let (eval, dofs, share) = (&*self.eval, &self.system.dofs, self.system.share());
         for (i, &v) in self.system.contact.node.iter().enumerate() {
+            if !share.counts_point(i) {
+                continue;
+            }
             let v = v as usize;
             let r = (0..d)
                 .filter(|&k| !dofs.is_fixed(d * v + k))
@@ -155,6 +173,15 @@ impl ConvexEnergy for ConvexProblem<'_> {
             let s = eval.point_force[i]
                 .max(eval.point_floor[i])
                 .max(f64::MIN_POSITIVE);
+            if r.is_nan() || r / s > res / scale {
+                (res, scale) = (r, s);
+            }
+        }
+        // The worst of every process's worst, in rank order (the same pick as one pass).
+        let all = share.gather(&[res, scale]);
+        (res, scale) = (all[0], all[1]);
+        for pair in all.chunks_exact(2).skip(1) {
+            let (r, s) = (pair[0], pair[1]);
             if r.is_nan() || r / s > res / scale {
                 (res, scale) = (r, s);
             }
@@ -195,10 +222,11 @@ impl ConvexEnergy for ConvexProblem<'_> {
         if self.eval.rigid_shift > 0.0 {
             self.expand(x);
             let length = self.system.length_unit();
+            let share = self.system.share();
             let Some(r) = self
                 .system
                 .rigid
-                .runaway(&self.problem.mesh, &self.u, length)
+                .runaway(&self.problem.mesh, &self.u, length, share)
             else {
                 return Ok(());
             };
@@ -213,15 +241,16 @@ impl ConvexEnergy for ConvexProblem<'_> {
                 let rigid = &self.system.rigid;
                 let mesh = &self.problem.mesh;
                 let contact = &self.system.contact;
-                let reach = rigid.bodies[r.body]
-                    .nodes
-                    .iter()
+                let nodes = rigid.bodies[r.body].nodes.iter();
+                let reach = nodes
+                    .filter(|&&v| share.counts_node(v as usize))
                     .map(|&v| {
                         let m = rigid.displacement(r.body, &r.motion, mesh.node(v as usize));
                         m.iter().map(|c| c * c).sum::<f64>().sqrt()
                     })
                     .fold(0.0f64, f64::max);
                 let into = (0..contact.len())
+                    .filter(|&i| share.counts_point(i))
                     .filter(|&i| rigid.body_of[contact.node[i] as usize] as usize == r.body)
                     .map(|i| {
                         let m = rigid.displacement(
@@ -232,13 +261,17 @@ impl ConvexEnergy for ConvexProblem<'_> {
                         (0..d).map(|j| m[j] * contact.normal[i][j]).sum::<f64>()
                     })
                     .fold(0.0f64, f64::max);
+                let mut extent = [reach, into];
+                share.max(&mut extent);
+                let [reach, into] = extent;
                 if into > 1e-2 * reach {
                     return Ok(());
                 }
                 self.evaluate(x, false);
-                let rigid = &self.system.rigid;
+                let (rigid, share) = (&self.system.rigid, self.system.share());
                 let mut push = 0.0;
-                for &v in &rigid.bodies[r.body].nodes {
+                let nodes = rigid.bodies[r.body].nodes.iter();
+                for &v in nodes.filter(|&&v| share.counts_node(v as usize)) {
                     let m =
                         rigid.displacement(r.body, &r.motion, self.problem.mesh.node(v as usize));
                     for i in 0..d {
@@ -248,7 +281,9 @@ impl ConvexEnergy for ConvexProblem<'_> {
                         }
                     }
                 }
-                if push <= 0.0 {
+                let mut push = [push];
+                share.sum(&mut push);
+                if push[0] <= 0.0 {
                     return Ok(());
                 }
             }

@@ -8,6 +8,7 @@ use super::multipliers::Multipliers;
 use super::System;
 use crate::assembly::contact::{ContactData, FrictionData};
 use crate::error::Result;
+use crate::parallel::Share;
 use crate::problem::Problem;
 
 /// The quantities frozen for one convex problem.
@@ -77,7 +78,7 @@ impl Frozen {
     /// `g = G(z)`, each contact point on its own scale `scale[i]` (N, see
     /// [`super::local_scales`]): the larger of the largest change of a point's friction data
     /// as a force, `w_i ‖(F, b)_g − (F, b)_z‖_i / scale_i`, and the multiplier change as a
-    /// primal residual ([`Multipliers::change`]).
+    /// primal residual ([`Multipliers::change`]); over every process.
     pub fn residual(
         &self,
         image: &Frozen,
@@ -86,8 +87,9 @@ impl Frozen {
         scale: &[f64],
     ) -> f64 {
         let (z, g) = (&self.friction, &image.friction);
+        let share = system.share();
         let mut fp = 0.0f64;
-        for i in 0..z.bound.len() {
+        for i in (0..z.bound.len()).filter(|&i| share.counts_point(i)) {
             let mut diff = (g.bound[i] - z.bound[i]).powi(2);
             for a in 0..2 {
                 diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
@@ -106,12 +108,15 @@ impl Frozen {
             &system.contact.weight,
             problem,
             scale,
+            share,
         );
-        if multipliers.is_nan() {
+        let mut worst = [if multipliers.is_nan() {
             multipliers
         } else {
             fp.max(multipliers)
-        }
+        }];
+        share.max(&mut worst);
+        worst[0]
     }
 
     /// The fixed-point vector
@@ -130,6 +135,22 @@ impl Frozen {
         }
         z.extend_from_slice(&m.locking);
         z
+    }
+
+    /// The entries of [`Frozen::flatten`]'s vector for `n` contact points and `n_cells`
+    /// locking multipliers that `share` counts: those of its contact points and cells
+    /// (empty when it counts everything).
+    pub fn counted(share: &Share, n: usize, n_cells: usize) -> Vec<bool> {
+        if !share.is_split() {
+            return Vec::new();
+        }
+        let point = |i: usize| share.counts_point(i);
+        let mut counts: Vec<bool> = (0..n).map(point).collect();
+        counts.extend((0..2 * n).map(|k| point(k / 2)));
+        counts.extend((0..n).map(point));
+        counts.extend((0..2 * n).map(|k| point(k / 2)));
+        counts.extend((0..n_cells).map(|c| share.counts_cell(c)));
+        counts
     }
 
     /// Inverse of [`Frozen::flatten`] for `n` contact points and `n_cells` locking

@@ -78,6 +78,7 @@ use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
 use crate::fem::rigid::{solve_small, RigidMotions, Runaway};
+use crate::parallel::Share;
 use crate::problem::Problem;
 
 /// Most steps of the rigid drop of one body; each adds a touching contact point (a body
@@ -113,6 +114,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
     let d = rigid.dim;
     let f = &system.f_ext;
     let contact = &system.contact;
+    let share = system.share();
     let mut placed = vec![0.0; u.len()];
     let mut moves = Vec::new();
     for b in 0..rigid.bodies.len() {
@@ -125,7 +127,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         // The load along each pressed motion, and the size of the body's load.
         let mut load = [0.0; 6];
         let mut total = 0.0;
-        for &v in nodes {
+        for &v in nodes.iter().filter(|&&v| share.counts_node(v as usize)) {
             let x = mesh.node(v as usize);
             for (l, c) in basis.iter().enumerate() {
                 let r = rigid.displacement(b, c, x);
@@ -140,6 +142,12 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
                 total += f[d * v as usize + i].abs();
             }
         }
+        if share.is_split() {
+            let mut sums: Vec<f64> = load.iter().chain([&total]).copied().collect();
+            share.sum(&mut sums);
+            load.copy_from_slice(&sums[..6]);
+            total = sums[6];
+        }
         let load_norm = norm(&load[..k]);
         if load_norm.is_nan() || load_norm <= ROUND_OFF * total {
             continue;
@@ -148,7 +156,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         let mut rows = Vec::new();
         let mut gaps = Vec::new();
         let mut tresca = false;
-        for i in 0..contact.len() {
+        for i in (0..contact.len()).filter(|&i| share.counts_point(i)) {
             let v = contact.node[i] as usize;
             if rigid.body_of[v] as usize != b {
                 continue;
@@ -167,6 +175,23 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
             let (u_nu, _) = contact.kinematics(d, u, i);
             rows.push(row);
             gaps.push(contact.gap[i] - u_nu);
+        }
+        if share.is_split() {
+            // Every process's points, rank after rank: 6 coefficients and a gap each.
+            let mine: Vec<f64> = rows
+                .iter()
+                .zip(&gaps)
+                .flat_map(|(r, &h)| r.iter().copied().chain([h]))
+                .collect();
+            let all = share.gather_varying(&mine);
+            rows = all
+                .chunks_exact(7)
+                .map(|p| std::array::from_fn(|l| p[l]))
+                .collect();
+            gaps = all.chunks_exact(7).map(|p| p[6]).collect();
+            let mut any = [f64::from(u8::from(tresca))];
+            share.max(&mut any);
+            tresca = any[0] > 0.0;
         }
         // A body already pressed into its contact has nothing to drop.
         if gaps.iter().any(|&h| h < 0.0) {
@@ -205,12 +230,13 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
                 *x = 0.0;
             }
         }
-        let mut largest = 0.0f64;
-        for &v in nodes {
+        let mut largest = [0.0f64];
+        for &v in nodes.iter().filter(|&&v| share.counts_node(v as usize)) {
             let r = rigid.displacement(b, &coefficients, mesh.node(v as usize));
-            largest = largest.max(norm(&r[..d]));
+            largest[0] = largest[0].max(norm(&r[..d]));
         }
-        if largest <= 1.0 {
+        share.max(&mut largest);
+        if largest[0] <= 1.0 {
             continue;
         }
         for &v in nodes {
@@ -244,11 +270,14 @@ pub fn describe_placement(
         .map(|(b, c)| {
             let size = norm(&c[..m]);
             let unit = c.map(|x| x / size);
-            let largest = rigid.bodies[*b]
-                .nodes
-                .iter()
+            let share = system.share();
+            let nodes = rigid.bodies[*b].nodes.iter();
+            let mut largest = [nodes
+                .filter(|&&v| share.counts_node(v as usize))
                 .map(|&v| norm(&rigid.displacement(*b, c, problem.mesh.node(v as usize))[..d]))
-                .fold(0.0f64, f64::max);
+                .fold(0.0f64, f64::max)];
+            share.max(&mut largest);
+            let largest = largest[0];
             format!(
                 "{} by up to {} m",
                 describe(rigid, *b, &unit, units.length),
@@ -444,7 +473,8 @@ struct SlidingLoad {
     /// The load along r, `f·r / s` (a force or moment, solver's units), with `s` the size
     /// of r per unit coefficient: `|a|` for a translation, `|ω|` for a rotation.
     load: f64,
-    /// The contact points of the body with friction, with `‖r_τ(x_i)‖ / s`.
+    /// The contact points of the body with friction, with `‖r_τ(x_i)‖ / s` (each sum over
+    /// them runs over the points this process counts, completed over the processes).
     points: Vec<(usize, f64)>,
 }
 
@@ -477,6 +507,7 @@ impl Sliding {
         let d = rigid.dim;
         let m = crate::fem::rigid::n_modes(d);
         let f = &system.f_ext;
+        let share = system.share();
         let mut bodies = Vec::new();
         for b in 0..rigid.bodies.len() {
             if rigid.sliding[b].is_empty() || !rigid.uncarried[b].is_empty() {
@@ -485,7 +516,7 @@ impl Sliding {
             let nodes = &rigid.bodies[b].nodes;
             let mut direction = [0.0; 6];
             let mut size = 0.0;
-            for &v in nodes {
+            for &v in nodes.iter().filter(|&&v| share.counts_node(v as usize)) {
                 let x = mesh.node(v as usize);
                 for c in &rigid.sliding[b] {
                     let r = rigid.displacement(b, c, x);
@@ -500,6 +531,12 @@ impl Sliding {
                 for i in 0..d {
                     size += f[d * v as usize + i].abs();
                 }
+            }
+            if share.is_split() {
+                let mut sums: Vec<f64> = direction.iter().chain([&size]).copied().collect();
+                share.sum(&mut sums);
+                direction.copy_from_slice(&sums[..6]);
+                size = sums[6];
             }
             let along = norm(&direction[..m]);
             if along.is_nan() || along <= ROUND_OFF * size {
@@ -566,6 +603,8 @@ impl Sliding {
         let d = rigid.dim;
         let contact = &system.contact;
         let f = &system.f_ext;
+        let share = system.share();
+        let counted = |v: &&u32| share.counts_node(**v as usize);
         let mut relief = vec![0.0; f.len()];
         for s in &self.bodies {
             let b = s.body;
@@ -573,7 +612,7 @@ impl Sliding {
             let k = basis.len();
             // The load along each sliding motion.
             let mut load = [0.0; 6];
-            for &v in &rigid.bodies[b].nodes {
+            for &v in rigid.bodies[b].nodes.iter().filter(counted) {
                 let x = mesh.node(v as usize);
                 for (l, c) in basis.iter().enumerate() {
                     let r = rigid.displacement(b, c, x);
@@ -604,7 +643,7 @@ impl Sliding {
             }
             // M β = −F with M_lm = ψ_l · r_m.
             let mut gram = [[0.0; 6]; 6];
-            for &v in &rigid.bodies[b].nodes {
+            for &v in rigid.bodies[b].nodes.iter().filter(counted) {
                 let x = mesh.node(v as usize);
                 for (m_, c) in basis.iter().enumerate() {
                     let r = rigid.displacement(b, c, x);
@@ -613,6 +652,7 @@ impl Sliding {
                     }
                 }
             }
+            complete_small(share, &mut gram, &mut load);
             let minus = load.map(|x| -x);
             let beta = solve_small(&gram, &minus, k);
             for (l, p) in psi.iter().enumerate() {
@@ -636,13 +676,14 @@ impl Sliding {
         let mesh = &problem.mesh;
         let d = rigid.dim;
         let contact = &system.contact;
+        let share = system.share();
         for s in &self.bodies {
             let b = s.body;
             let basis = &rigid.sliding[b];
             let k = basis.len();
             let mut gram = [[0.0; 6]; 6];
             let mut rhs = [0.0; 6];
-            for &(i, _) in &s.points {
+            for &(i, _) in s.points.iter().filter(|&&(i, _)| share.counts_point(i)) {
                 let v = contact.node[i] as usize;
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
@@ -668,6 +709,7 @@ impl Sliding {
                     }
                 }
             }
+            complete_small(share, &mut gram, &mut rhs);
             let y = solve_small(&gram, &rhs, k);
             let mut c = [0.0; 6];
             for (l, bl) in basis.iter().enumerate() {
@@ -762,10 +804,29 @@ impl Sliding {
 /// of the sliding load `s`: `Σ w_i F_i ‖r_τ(x_i)‖` over its frictional points, in the units
 /// of [`SlidingLoad::load`].
 fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
-    s.points
+    let share = system.share();
+    let mut sum = [s
+        .points
         .iter()
+        .filter(|&&(i, _)| share.counts_point(i))
         .map(|&(i, t)| system.contact.weight[i] * bound[i] * t)
-        .sum()
+        .sum()];
+    share.sum(&mut sum);
+    sum[0]
+}
+
+/// The small normal equations `gram`, `rhs` of a fit over the nodes or points this process
+/// counts, completed over the processes.
+fn complete_small(share: &Share, gram: &mut [[f64; 6]; 6], rhs: &mut [f64; 6]) {
+    if !share.is_split() {
+        return;
+    }
+    let mut sums: Vec<f64> = gram.iter().flatten().chain(rhs.iter()).copied().collect();
+    share.sum(&mut sums);
+    for (l, row) in gram.iter_mut().enumerate() {
+        row.copy_from_slice(&sums[6 * l..6 * l + 6]);
+    }
+    rhs.copy_from_slice(&sums[36..]);
 }
 
 /// The friction limit of body `s` at the largest bounds `bounds`, with the pressures and
@@ -783,7 +844,8 @@ fn limit(
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     let (mut coulomb, mut tresca) = (false, false);
     let mut flat = !s.rotation;
-    for &(i, t) in &s.points {
+    let share = system.share();
+    for &(i, t) in s.points.iter().filter(|&&(i, _)| share.counts_point(i)) {
         let w = system.contact.weight[i];
         let boundary = &problem.contact[system.contact.boundary[i] as usize];
         let is_coulomb = boundary
@@ -800,6 +862,16 @@ fn limit(
         lo = lo.min(mu[i]);
         hi = hi.max(mu[i]);
         flat &= (t - 1.0).abs() <= 1e-9;
+    }
+    if share.is_split() {
+        let mut sums = [normal_force, area];
+        share.sum(&mut sums);
+        [normal_force, area] = sums;
+        let flag = |b: bool| f64::from(u8::from(b));
+        let mut most = [-lo, hi, flag(coulomb), flag(tresca), flag(!flat)];
+        share.max(&mut most);
+        (lo, hi) = (-most[0], most[1]);
+        (coulomb, tresca, flat) = (most[2] > 0.0, most[3] > 0.0, most[4] == 0.0);
     }
     Limit {
         value: capacity(system, s, bounds),

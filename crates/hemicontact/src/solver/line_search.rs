@@ -68,12 +68,7 @@ impl LineSearch {
                     evaluated: Some((e_trial, hessian)),
                 };
             }
-            let d: f64 = energy
-                .gradient()
-                .iter()
-                .zip(delta)
-                .map(|(g, di)| g * di)
-                .sum();
+            let d = energy.dot(energy.gradient(), delta);
             // Near the solution the energy change drowns in the round-off of the energy (a
             // sum over all cells with cancellation): then the directional derivative decides
             // — the step is accepted if it at least halves |φ'|.

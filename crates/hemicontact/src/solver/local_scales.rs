@@ -43,6 +43,7 @@ use crate::contact::ContactNodes;
 use crate::fem::rigid::RigidMotions;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
+use crate::parallel::Share;
 use crate::problem::Problem;
 
 /// The floor η of the force scale of a contact point, as a fraction of the force its node
@@ -125,30 +126,45 @@ impl Bodies {
 
     /// The Euclidean norm per body of the DOF vector whose entry `k` is `value(k)` (`n`
     /// entries, DOF order, dimension `d`; 0 for a DOF left out), into `out` (one per body),
-    /// summed in DOF order.
-    pub fn norms(&self, d: usize, n: usize, value: impl Fn(usize) -> f64, out: &mut Vec<f64>) {
+    /// summed in DOF order over the DOFs `share` counts, then over the processes.
+    pub fn norms(
+        &self,
+        share: &Share,
+        d: usize,
+        n: usize,
+        value: impl Fn(usize) -> f64,
+        out: &mut Vec<f64>,
+    ) {
         out.clear();
         out.resize(self.count, 0.0);
         for k in 0..n {
             let b = self.of_node[k / d];
-            if b != u32::MAX {
+            if b != u32::MAX && share.counts_dof(k) {
                 let x = value(k);
                 out[b as usize] += x * x;
             }
         }
+        share.sum(out);
         out.iter_mut().for_each(|s| *s = s.sqrt());
     }
 
     /// The equilibrium residual `‖∇E|_b‖` of every body over its free DOFs (`fixed(k)`: DOF
-    /// k prescribed) for the gradient `grad` (DOF order), into `out`.
+    /// k prescribed) for the gradient `grad` (DOF order), into `out` ([`Bodies::norms`]).
     pub fn residuals(
         &self,
+        share: &Share,
         d: usize,
         grad: &[f64],
         fixed: impl Fn(usize) -> bool,
         out: &mut Vec<f64>,
     ) {
-        self.norms(d, grad.len(), |k| if fixed(k) { 0.0 } else { grad[k] }, out);
+        self.norms(
+            share,
+            d,
+            grad.len(),
+            |k| if fixed(k) { 0.0 } else { grad[k] },
+            out,
+        );
     }
 
     /// The force scale `F_b = max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)` of every body (N; at least
@@ -157,6 +173,7 @@ impl Bodies {
     /// holds `‖f_ext|_b‖` ([`Bodies::norms`] of `f_ext`).
     pub fn force_scales(
         &self,
+        share: &Share,
         d: usize,
         grad_bulk: &[f64],
         f_ext: &[f64],
@@ -164,7 +181,7 @@ impl Bodies {
         out: &mut Vec<f64>,
     ) {
         // Internal forces ∇W over every DOF, reactions included.
-        self.norms(d, grad_bulk.len(), |k| grad_bulk[k] + f_ext[k], out);
+        self.norms(share, d, grad_bulk.len(), |k| grad_bulk[k] + f_ext[k], out);
         for ((s, e), floor) in out.iter_mut().zip(external).zip(&self.force_floor) {
             *s = e.max(*s).max(*floor).max(f64::MIN_POSITIVE);
         }
@@ -189,16 +206,25 @@ impl Bodies {
 
     /// The energy norm `‖v|_b‖_E = (Σ_{T ∈ b} |T| A ε_T(v):ε_T(v))^{1/2}` of `v` on each body
     /// (Hooke law `hooke`; the same sum as [`crate::norms::energy_norm`], cell by cell,
-    /// scaled by a power of two against overflow), into `out`.
-    pub fn energy_norms(&self, mesh: &Mesh, hooke: &Hooke, v: &[f64], out: &mut Vec<f64>) {
+    /// scaled by a power of two against overflow), into `out`; the cells `share` counts,
+    /// then over the processes.
+    pub fn energy_norms(
+        &self,
+        share: &Share,
+        mesh: &Mesh,
+        hooke: &Hooke,
+        v: &[f64],
+        out: &mut Vec<f64>,
+    ) {
         let d = mesh.dim();
         let mut scale = vec![0.0f64; self.count];
         for (k, x) in v.iter().enumerate() {
             let b = self.of_node[k / d];
-            if b != u32::MAX {
+            if b != u32::MAX && share.counts_dof(k) {
                 scale[b as usize] = scale[b as usize].max(x.abs());
             }
         }
+        share.max(&mut scale);
         for s in scale.iter_mut() {
             if *s != 0.0 && s.is_finite() {
                 *s = s.log2().ceil().min(1023.0).exp2();
@@ -209,12 +235,13 @@ impl Bodies {
         for c in 0..mesh.n_cells() {
             let b = self.of_node[mesh.cell(c)[0] as usize] as usize;
             let s = scale[b];
-            if s == 0.0 || !s.is_finite() {
+            if s == 0.0 || !s.is_finite() || !share.counts_cell(c) {
                 continue;
             }
             let (measure, eps) = element::cell_strain(mesh, v, c);
             out[b] += measure * hooke.energy(&eps.scaled(1.0 / s));
         }
+        share.sum(out);
         for (n, s) in out.iter_mut().zip(&scale) {
             *n = if *s == 0.0 {
                 0.0

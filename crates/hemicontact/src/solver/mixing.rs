@@ -10,6 +10,7 @@
 //!   the relaxation factor ω (down to 1/8); the report records it.
 
 use super::outer::{Acceleration, OuterSettings};
+use crate::parallel::Share;
 use serde::{Serialize, Serializer};
 
 /// How the frozen quantities of the next outer iteration were formed (or why there is no
@@ -98,8 +99,40 @@ impl Serialize for Mixing {
     }
 }
 
-fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+/// What a process counts of the fixed-point vectors: the entries `counts` marks (every
+/// entry if it is empty), the partial sums completed over the processes by `share`.
+#[derive(Clone, Copy, Debug)]
+pub struct Counted<'a> {
+    /// Per entry of the fixed-point vector: counted here (empty: every entry).
+    pub counts: &'a [bool],
+    /// The completion of partial sums over the processes.
+    pub share: &'a Share,
+}
+
+impl Counted<'_> {
+    /// Every entry, on one process.
+    pub const WHOLE: Counted<'static> = Counted {
+        counts: &[],
+        share: &Share::WHOLE,
+    };
+
+    /// `Σ a_k b_k` over the entries counted here, in order (not completed).
+    fn local_dot(&self, a: &[f64], b: &[f64]) -> f64 {
+        let all = self.counts.is_empty();
+        a.iter()
+            .zip(b)
+            .enumerate()
+            .filter(|&(k, _)| all || self.counts[k])
+            .map(|(_, (x, y))| x * y)
+            .sum()
+    }
+
+    /// The Euclidean norm of `x` over every process.
+    fn norm(&self, x: &[f64]) -> f64 {
+        let mut s = [self.local_dot(x, x)];
+        self.share.sum(&mut s);
+        s[0].sqrt()
+    }
 }
 
 /// The fixed-point mixer: produces the next frozen vector from the current one and its
@@ -136,10 +169,11 @@ impl Mixer {
         }
     }
 
-    /// Next iterate from `z` and `g = G(z)`; returns it with the step taken.
-    pub fn next(&mut self, z: &[f64], g: &[f64]) -> (Vec<f64>, Mixing) {
+    /// Next iterate from `z` and `g = G(z)`, whose norms and inner products are over the
+    /// entries `counted` (completed over the processes); returns it with the step taken.
+    pub fn next(&mut self, z: &[f64], g: &[f64], counted: Counted<'_>) -> (Vec<f64>, Mixing) {
         let f: Vec<f64> = g.iter().zip(z).map(|(a, b)| a - b).collect();
-        let res = norm(&f);
+        let res = counted.norm(&f);
         let prev = self.residuals.last().copied();
         self.residuals.push(res);
         match self.acceleration {
@@ -185,14 +219,18 @@ impl Mixer {
                             .collect()
                     })
                     .collect();
-                let mut a = vec![vec![0.0; m]; m];
-                let mut rhs = vec![0.0; m];
+                // The normal equations' entries, completed over the processes at once.
+                let mut sums = vec![0.0; m * m + m];
                 for i in 0..m {
                     for j in 0..m {
-                        a[i][j] = df[i].iter().zip(&df[j]).map(|(x, y)| x * y).sum();
+                        sums[m * i + j] = counted.local_dot(&df[i], &df[j]);
                     }
-                    rhs[i] = df[i].iter().zip(&f).map(|(x, y)| x * y).sum();
+                    sums[m * m + i] = counted.local_dot(&df[i], &f);
                 }
+                counted.share.sum(&mut sums);
+                let mut a: Vec<Vec<f64>> =
+                    sums[..m * m].chunks_exact(m).map(<[f64]>::to_vec).collect();
+                let rhs = sums[m * m..].to_vec();
                 let trace: f64 = (0..m).map(|i| a[i][i]).sum();
                 for (i, row) in a.iter_mut().enumerate() {
                     row[i] += 1e-12 * trace + f64::MIN_POSITIVE;
@@ -208,7 +246,8 @@ impl Mixer {
                 }
                 // Stagnation: the mixed iterate does not move although the residual is not
                 // small. Restart from a damped step.
-                let moved = norm(&next.iter().zip(z).map(|(a, b)| a - b).collect::<Vec<_>>());
+                let moved =
+                    counted.norm(&next.iter().zip(z).map(|(a, b)| a - b).collect::<Vec<_>>());
                 if moved < 1e-3 * res {
                     return self.restart(z, &f, g, false);
                 }
@@ -285,9 +324,10 @@ mod tests {
         let mut mixer = Mixer::new(&s);
         let mut z = vec![0.0, 0.0];
         let mut iters = 0;
-        while norm(&g(&z).iter().zip(&z).map(|(a, b)| a - b).collect::<Vec<_>>()) > 1e-12 {
+        let whole = Counted::WHOLE;
+        while whole.norm(&g(&z).iter().zip(&z).map(|(a, b)| a - b).collect::<Vec<_>>()) > 1e-12 {
             let gz = g(&z);
-            z = mixer.next(&z, &gz).0;
+            z = mixer.next(&z, &gz, whole).0;
             iters += 1;
             assert!(iters < 20, "Anderson did not converge");
         }

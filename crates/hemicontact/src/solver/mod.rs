@@ -309,7 +309,7 @@ fn solve_dimensionless(
     );
     if constraints::has_exact_constraints(problem) {
         let kkt = certificate.kkt.get_or_insert_with(Default::default);
-        updated.kkt(&ca, problem, &u, &contact, kkt);
+        updated.kkt(&ca, problem, &u, &contact, system.share(), kkt);
     }
     // A run counts as converged only with a passing certificate.
     if let Some(worst) = certificate.failures().first().filter(|_| report.converged) {
@@ -346,7 +346,11 @@ fn solve_dimensionless(
         .body_scale
         .iter()
         .fold(f64::MIN_POSITIVE, |m, &s| m.max(s));
-    report.rigid_residual = system.rigid.generalized_force(&problem.mesh, &eval.grad) / body_scale;
+    report.rigid_residual =
+        system
+            .rigid
+            .generalized_force(&problem.mesh, &eval.grad, system.share())
+            / body_scale;
     report.rigid_shift = eval.rigid_shift;
     // The answer is the rigid drop plus the displacement relative to it.
     let mut energy = energy;
@@ -355,12 +359,17 @@ fn solve_dimensionless(
         for (x, p) in u.iter_mut().zip(placed) {
             *x += p;
         }
-        energy -= system
+        let share = system.share();
+        let mut work = [system
             .f_ext
             .iter()
             .zip(placed)
-            .map(|(f, p)| f * p)
-            .sum::<f64>();
+            .enumerate()
+            .filter(|&(k, _)| share.counts_dof(k))
+            .map(|(_, (f, p))| f * p)
+            .sum::<f64>()];
+        share.sum(&mut work);
+        energy -= work[0];
         for (c, p) in contact.iter_mut().zip(&system.contact.placed_normal) {
             c.u_nu += p;
         }
@@ -435,10 +444,13 @@ pub fn certify(
     }
     let (mut external, mut body_scale) = (Vec::new(), Vec::new());
     let (d, f) = (scaled.mesh.dim(), &system.f_ext);
-    system.bodies.norms(d, f.len(), |k| f[k], &mut external);
+    let share = system.share();
     system
         .bodies
-        .force_scales(d, &eval.grad_bulk, f, &external, &mut body_scale);
+        .norms(share, d, f.len(), |k| f[k], &mut external);
+    system
+        .bodies
+        .force_scales(share, d, &eval.grad_bulk, f, &external, &mut body_scale);
     let mu = system
         .contact_assembler(&scaled)
         .friction_coefficients(&u)?;

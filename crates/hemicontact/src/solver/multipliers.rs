@@ -11,6 +11,7 @@ use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::assembly::element;
 use crate::material::LockingSet;
 use crate::mesh::Mesh;
+use crate::parallel::Share;
 use crate::problem::Problem;
 use serde::Serialize;
 
@@ -92,7 +93,7 @@ impl Multipliers {
     /// for a sticking point `Δτ/r` the slip: the standard primal stopping test of the
     /// augmented Lagrangian method. (Measured in force units instead, the change has a floor
     /// of r times the Newton tolerance, far above the tolerance for the large penalties
-    /// used.)
+    /// used.) Over the points and cells `share` counts: the caller completes the maximum.
     pub fn change(
         &self,
         next: &Multipliers,
@@ -101,9 +102,10 @@ impl Multipliers {
         weight: &[f64],
         problem: &Problem,
         scale: &[f64],
+        share: &Share,
     ) -> f64 {
         let mut fp = 0.0f64;
-        for i in 0..self.pressure.len() {
+        for i in (0..self.pressure.len()).filter(|&i| share.counts_point(i)) {
             let slip_scale = scale[i] / (weight[i] * stiffness[i]);
             let r = penalties.contact()[i] * slip_scale;
             let dt = ((next.traction[i][0] - self.traction[i][0]).powi(2)
@@ -115,7 +117,8 @@ impl Multipliers {
         }
         if let Some(set) = problem.material.locking.ideal() {
             let r = penalties.locking() * set.size();
-            for (a, b) in next.locking.iter().zip(&self.locking) {
+            let counted = next.locking.iter().zip(&self.locking).enumerate();
+            for (_, (a, b)) in counted.filter(|&(c, _)| share.counts_cell(c)) {
                 fp = fp.max((a - b).abs() / r);
             }
         }
@@ -128,13 +131,15 @@ impl Multipliers {
     /// point relative to that point's own scales (`slip_scale` δ_i and `force_scale` f_i of
     /// its certificate results `points`, see [`super::certificate`]): the penetration
     /// `(u_ν − g)_+ / δ_i` and `λ_i |g − u_ν| w_i / (f_i δ_i)`. The stick/slip residual of
-    /// exact friction is the certificate's, which classifies the points.
+    /// exact friction is the certificate's, which classifies the points. Over the points
+    /// and cells `share` counts, then over the processes.
     pub fn kkt(
         &self,
         ca: &ContactAssembler<'_>,
         problem: &Problem,
         u: &[f64],
         points: &[ContactResult],
+        share: &Share,
         kkt: &mut KktCertificate,
     ) {
         let exact = |i: usize| {
@@ -143,12 +148,14 @@ impl Multipliers {
                 .is_exact()
         };
         let (mut max_pressure, mut min_pressure) = (0.0f64, f64::INFINITY);
-        for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
+        let mut n_points = 0;
+        let counted = (0..ca.nodes.len()).filter(|&i| share.counts_point(i));
+        for i in counted.filter(|&i| exact(i)) {
             let gap = ca.nodes.gap[i];
             let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
             let p = self.pressure[i];
             let (f, delta) = (points[i].force_scale, points[i].slip_scale);
-            kkt.n_constraints.1 += 1;
+            n_points += 1;
             max_pressure = max_pressure.max(p);
             min_pressure = min_pressure.min(p);
             kkt.contact_violation = kkt.contact_violation.max((u_nu - gap).max(0.0) / delta);
@@ -156,11 +163,21 @@ impl Multipliers {
                 .contact_complementarity
                 .max(p * (gap - u_nu).abs() * ca.nodes.weight[i] / (f * delta));
         }
+        let mut worst = [
+            max_pressure,
+            -min_pressure,
+            kkt.contact_violation,
+            kkt.contact_complementarity,
+        ];
+        share.max(&mut worst);
+        [max_pressure, min_pressure] = [worst[0], -worst[1]];
+        [kkt.contact_violation, kkt.contact_complementarity] = [worst[2], worst[3]];
+        kkt.n_constraints.1 += share.count(n_points);
         if max_pressure > 0.0 {
             kkt.contact_min_multiplier = min_pressure / max_pressure;
         }
         if let Some(set) = problem.material.locking.ideal() {
-            locking_kkt(&problem.mesh, &set, u, &self.locking, kkt);
+            locking_kkt(&problem.mesh, &set, u, &self.locking, share, kkt);
         }
     }
 }
@@ -225,15 +242,31 @@ impl KktCertificate {
 }
 
 /// The locking part of the KKT certificate for the multipliers `lambda` (the updated
-/// ones) at `u`.
-fn locking_kkt(mesh: &Mesh, set: &LockingSet, u: &[f64], lambda: &[f64], kkt: &mut KktCertificate) {
+/// ones) at `u`, over the cells `share` counts and then over the processes.
+fn locking_kkt(
+    mesh: &Mesh,
+    set: &LockingSet,
+    u: &[f64],
+    lambda: &[f64],
+    share: &Share,
+    kkt: &mut KktCertificate,
+) {
     let q_ref = set.size();
-    let lmax = lambda.iter().fold(0.0f64, |m, &l| m.max(l.abs()));
-    let lmin = lambda.iter().fold(f64::INFINITY, |m, &l| m.min(l));
+    let counted = || {
+        lambda
+            .iter()
+            .enumerate()
+            .filter(|&(c, _)| share.counts_cell(c))
+    };
+    let lmax = counted().fold(0.0f64, |m, (_, &l)| m.max(l.abs()));
+    let lmin = counted().fold(f64::INFINITY, |m, (_, &l)| m.min(l));
+    let mut extremes = [lmax, -lmin];
+    share.max(&mut extremes);
+    let (lmax, lmin) = (extremes[0], -extremes[1]);
     kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
-    kkt.n_locked = lambda.iter().filter(|&&l| l > 0.0).count();
-    kkt.n_constraints.0 = mesh.n_cells();
-    for (c, &l) in lambda.iter().enumerate() {
+    kkt.n_locked = share.count(counted().filter(|&(_, &l)| l > 0.0).count());
+    kkt.n_constraints.0 = share.count(counted().count());
+    for (c, &l) in counted() {
         let (_, eps) = element::cell_strain(mesh, u, c);
         let q = set.q(&eps);
         kkt.locking_violation = kkt.locking_violation.max(q.max(0.0) / q_ref);
@@ -243,4 +276,7 @@ fn locking_kkt(mesh: &Mesh, set: &LockingSet, u: &[f64], lambda: &[f64], kkt: &m
                 .max(l * q.abs() / (lmax * q_ref));
         }
     }
+    let mut worst = [kkt.locking_violation, kkt.locking_complementarity];
+    share.max(&mut worst);
+    [kkt.locking_violation, kkt.locking_complementarity] = worst;
 }

@@ -130,6 +130,12 @@ pub trait ConvexEnergy {
     fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64;
     /// `∇Π` at the last evaluation (N), length n.
     fn gradient(&self) -> &[f64];
+    /// The dot product `Σ_e a_e b_e` of two vectors of the n unknowns (a force and a
+    /// displacement: J), added in order; an energy distributed over several processes
+    /// completes it over them.
+    fn dot(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| x * y).sum()
+    }
     /// The residual norm and the force scale (N) that makes it dimensionless, at the last
     /// evaluation: for an energy of independent parts (the bodies of a mesh,
     /// [`super::local_scales`]), those of the part farthest from equilibrium relative to its own
@@ -285,12 +291,7 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
         let (res_f, scale_f) = energy.forcing_residual();
         let eta = (0.1 * tolerance * scale_f / res_f).clamp(1e-12, settings.pcg_tolerance);
         let linear = energy.newton_direction(&r_neg, &mut delta, eta, &mut record.timings)?;
-        let slope: f64 = energy
-            .gradient()
-            .iter()
-            .zip(&delta)
-            .map(|(a, b)| a * b)
-            .sum();
+        let slope = energy.dot(energy.gradient(), &delta);
         let t = Instant::now();
         // The full step is evaluated with the Hessian, for the next Newton step — unless
         // the factorization was reused unchanged (the active sets are settled, so the full

@@ -29,7 +29,7 @@
 use super::convex;
 use super::frozen::Frozen;
 use super::held;
-use super::mixing::{Mixer, Mixing};
+use super::mixing::{Counted, Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
 use super::report::{OuterStep, SolveReport};
 use super::system::Evaluation;
@@ -277,6 +277,7 @@ pub fn run(
     }
     let relieved_first = relieved.is_some();
     let mut z = frozen.flatten();
+    let z_counts = Frozen::counted(system.share(), n_points, n_locking);
     let mut mixer = Mixer::new(&settings.outer);
     let mut u_prev = u.to_vec();
     let (mut norm_u, mut norm_diff, mut point_scale) = (Vec::new(), Vec::new(), Vec::new());
@@ -356,10 +357,14 @@ pub fn run(
             // Body by body: the largest relative change of a body.
             system
                 .bodies
-                .energy_norms(&problem.mesh, &hooke, u, &mut norm_u);
-            system
-                .bodies
-                .energy_norms(&problem.mesh, &hooke, &diff, &mut norm_diff);
+                .energy_norms(system.share(), &problem.mesh, &hooke, u, &mut norm_u);
+            system.bodies.energy_norms(
+                system.share(),
+                &problem.mesh,
+                &hooke,
+                &diff,
+                &mut norm_diff,
+            );
             norm_diff
                 .iter()
                 .zip(&norm_u)
@@ -442,7 +447,11 @@ pub fn run(
             z = g;
             frozen = next;
         } else if outer_loop {
-            let (mixed, how) = mixer.next(&z, &g);
+            let counted = Counted {
+                counts: &z_counts,
+                share: system.share(),
+            };
+            let (mixed, how) = mixer.next(&z, &g, counted);
             step.mixing = how;
             z = mixed;
             frozen = Frozen::unflatten(&z, n_points, n_locking);

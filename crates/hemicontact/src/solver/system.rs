@@ -18,6 +18,7 @@ use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::fem::rigid::{RigidMotions, NEWTON_SHIFT};
 use crate::linalg::{PrepareOptions, SolveRequest, SpdSolver};
+use crate::parallel::Share;
 use crate::parallel::{Partition, Placement, Processes, Subdomain};
 use crate::problem::Problem;
 use std::time::Instant;
@@ -71,6 +72,9 @@ pub struct System {
     /// contact points it assembles, and the work arrays of completing an evaluation; `None`
     /// on one process.
     part: Option<Part>,
+    /// What this process counts in the global sums and maxima of the outer loop, Newton
+    /// and the certificate, and the reductions that complete them.
+    share: Share,
     /// The processes of the run: with several, each assembles its
     /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
     /// [`Processes::sum`] and [`Processes::all_gather`].
@@ -268,6 +272,10 @@ impl System {
             t => t,
         });
         workspace.owned_cells = part.as_ref().map(|p| p.sub.owned);
+        let share = match &part {
+            None => Share::whole(),
+            Some(p) => Share::of(&problem.mesh, &dofs, &contact, &p.sub, processes),
+        };
         Ok(System {
             dofs,
             pattern,
@@ -285,6 +293,7 @@ impl System {
             rigid,
             rigid_slots,
             part,
+            share,
             processes,
             scales: None,
             placement: None,
@@ -295,6 +304,12 @@ impl System {
     /// [`crate::parallel::Subdomain`]); `None` on one process.
     pub fn partition(&self) -> Option<&crate::parallel::Partition> {
         self.part.as_ref().map(|p| &p.sub.partition)
+    }
+
+    /// What this process counts in global sums and maxima, and their completion over the
+    /// processes (see [`crate::parallel::share`]).
+    pub fn share(&self) -> &Share {
+        &self.share
     }
 
     /// The unit of the coordinates in units of the displacements: 1 for a problem in the
@@ -420,6 +435,7 @@ impl System {
                 floor: &floor,
                 frozen: frozen.contact(),
                 tolerance,
+                share: &self.share,
             },
         )
     }

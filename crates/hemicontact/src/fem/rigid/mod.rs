@@ -49,6 +49,7 @@ use words::{point, remedy};
 use crate::contact::ContactNodes;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
+use crate::parallel::Share;
 
 /// Relative tolerance on the eigenvalues of the normal matrices: an eigenvalue at most
 /// `NULL_TOLERANCE · tr N` spans a free motion (see the module documentation).
@@ -589,21 +590,35 @@ impl RigidMotions {
     /// orthonormal free motions `r` of every body, for the nodal force vector `g` (DOF
     /// order): for a translation the net force along it, for a rotation the moment about
     /// its axis divided by the body's size. Zero without free motions.
-    pub fn generalized_force(&self, mesh: &Mesh, g: &[f64]) -> f64 {
+    ///
+    /// The sums and maxima run over the nodes `share` counts and are completed over the
+    /// processes.
+    pub fn generalized_force(&self, mesh: &Mesh, g: &[f64], share: &Share) -> f64 {
         let d = self.dim;
-        let mut worst = 0.0f64;
+        let (mut forces, mut reaches) = (Vec::new(), Vec::new());
         for (b, body) in self.bodies.iter().enumerate() {
             for c in &self.free[b] {
                 let (mut force, mut reach) = (0.0, 0.0f64);
-                for &v in &body.nodes {
+                for &v in body
+                    .nodes
+                    .iter()
+                    .filter(|&&v| share.counts_node(v as usize))
+                {
                     let r = self.displacement(b, c, mesh.node(v as usize));
                     let n = (0..d).map(|i| r[i] * r[i]).sum::<f64>().sqrt();
                     reach = reach.max(n);
                     force += (0..d).map(|i| r[i] * g[d * v as usize + i]).sum::<f64>();
                 }
-                if reach > 0.0 {
-                    worst = worst.max(force.abs() / reach);
-                }
+                forces.push(force);
+                reaches.push(reach);
+            }
+        }
+        share.sum(&mut forces);
+        share.max(&mut reaches);
+        let mut worst = 0.0f64;
+        for (force, reach) in forces.iter().zip(&reaches) {
+            if *reach > 0.0 {
+                worst = worst.max(force.abs() / reach);
             }
         }
         worst
@@ -613,14 +628,16 @@ impl RigidMotions {
     /// that body, in the least-squares sense over its nodes: its coefficients (first m
     /// entries; see the module documentation), with components below 10⁻⁹ of the largest
     /// set to zero so that a motion along an axis reads as such. Zero if `b` has no free
-    /// motion.
-    pub fn fitted_motion(&self, mesh: &Mesh, b: usize, u: &[f64]) -> [f64; 6] {
+    /// motion. The sums run over the nodes `share` counts and are completed over the
+    /// processes.
+    pub fn fitted_motion(&self, mesh: &Mesh, b: usize, u: &[f64], share: &Share) -> [f64; 6] {
         let d = self.dim;
         let basis = &self.free[b];
         let k = basis.len();
         let mut gram = [[0.0; 6]; 6];
         let mut rhs = [0.0; 6];
-        for &v in &self.bodies[b].nodes {
+        let nodes = self.bodies[b].nodes.iter();
+        for &v in nodes.filter(|&&v| share.counts_node(v as usize)) {
             let x = mesh.node(v as usize);
             let fields: Vec<[f64; 3]> = basis.iter().map(|c| self.displacement(b, c, x)).collect();
             for l in 0..k {
@@ -631,6 +648,14 @@ impl RigidMotions {
                     gram[l][j] += (0..d).map(|i| fields[l][i] * fields[j][i]).sum::<f64>();
                 }
             }
+        }
+        if share.is_split() {
+            let mut sums: Vec<f64> = gram.iter().flatten().chain(&rhs).copied().collect();
+            share.sum(&mut sums);
+            for (l, row) in gram.iter_mut().enumerate() {
+                row.copy_from_slice(&sums[6 * l..6 * l + 6]);
+            }
+            rhs.copy_from_slice(&sums[36..]);
         }
         let y = solve_small(&gram, &rhs, k);
         let mut c = [0.0; 6];
@@ -678,25 +703,39 @@ impl RigidMotions {
     /// the dimensionless variables of [`crate::solver::scaling`]). Small-strain
     /// displacements never approach the size of the body: such a body has left the contact
     /// that was to carry its free motions (or slid off the friction meant to hold it).
-    pub fn runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Option<Runaway> {
+    /// Over the nodes `share` counts, completed over the processes.
+    pub fn runaway(&self, mesh: &Mesh, u: &[f64], length: f64, share: &Share) -> Option<Runaway> {
         let d = self.dim;
+        // How far each body moved, over every process (0 for one without free motions).
+        let mut moved: Vec<f64> = self
+            .bodies
+            .iter()
+            .enumerate()
+            .map(|(b, body)| {
+                if self.free[b].is_empty() {
+                    return 0.0;
+                }
+                let nodes = body.nodes.iter();
+                nodes
+                    .filter(|&&v| share.counts_node(v as usize))
+                    .map(|&v| {
+                        (0..d)
+                            .map(|i| u[d * v as usize + i].powi(2))
+                            .sum::<f64>()
+                            .sqrt()
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .collect();
+        share.max(&mut moved);
         for (b, body) in self.bodies.iter().enumerate() {
             if self.free[b].is_empty() {
                 continue;
             }
-            let moved = body
-                .nodes
-                .iter()
-                .map(|&v| {
-                    (0..d)
-                        .map(|i| u[d * v as usize + i].powi(2))
-                        .sum::<f64>()
-                        .sqrt()
-                })
-                .fold(0.0, f64::max);
+            let moved = moved[b];
             if moved > body.size * length || !moved.is_finite() {
                 let motion = if moved.is_finite() {
-                    self.fitted_motion(mesh, b, u)
+                    self.fitted_motion(mesh, b, u, share)
                 } else {
                     [0.0; 6]
                 };
@@ -716,7 +755,7 @@ impl RigidMotions {
     /// the message names the motion it moved along and how far, in the units of `u` and of
     /// the mesh.
     pub fn check_runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Result<()> {
-        match self.runaway(mesh, u, length) {
+        match self.runaway(mesh, u, length, &Share::WHOLE) {
             None => Ok(()),
             Some(r) => Err(self.contact_lost(&r, 1.0, length)),
         }

@@ -12,7 +12,14 @@
 //! nodes ([`Placement`]); the bulk energy and gradient are completed by two collective
 //! operations per evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank
 //! still holds the whole mesh besides its part and runs the whole outer loop on the same
-//! (gathered) data, so every rank takes the same decisions without further communication.
+//! (gathered) data; but each sum, norm and maximum the solver decides on counts every entry
+//! on one rank only and is completed over the ranks ([`Share`]), so every rank takes the
+//! same decisions, and the step to vectors of the part's length changes what is counted,
+//! not the reductions.
+
+pub mod share;
+
+pub use share::Share;
 
 use crate::error::{Error, Result};
 use std::sync::OnceLock;

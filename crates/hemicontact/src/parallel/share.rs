@@ -1,0 +1,216 @@
+//! What this process counts of the solver's arrays in a sum or maximum over the whole
+//! problem, and the reductions that complete such a partial result over the processes.
+//!
+//! Every global quantity the outer loop, Newton and the certificate decide on (a norm, a
+//! dot product, a largest residual) is computed in two steps: each process reduces the
+//! entries it *counts* ([`Share::counts_dof`], [`Share::counts_point`], …), then
+//! [`Share::sum`] or [`Share::max`] completes the partial results over the processes. A
+//! process counts the DOFs and equations of its own nodes, the contact points on them and
+//! the cells it owns ([`crate::parallel::Subdomain`]), so every entry is counted by exactly
+//! one process. On one process (and whenever every process holds and solves the whole
+//! system alone) it counts everything and the completions do nothing, so the serial solve
+//! adds the same numbers in the same order as without this seam.
+
+use crate::contact::ContactNodes;
+use crate::fem::dofs::{DofMap, FIXED};
+use crate::mesh::Mesh;
+use crate::parallel::{Processes, Subdomain};
+
+/// Which entries of the solver's arrays this process counts; see the module documentation.
+#[derive(Clone, Debug)]
+pub struct Share {
+    /// The processes that complete a partial result; `None`: this process counts every
+    /// entry and completes nothing.
+    processes: Option<Processes>,
+    /// The DOFs per node.
+    dim: usize,
+    /// Per node of the whole mesh: counted here.
+    nodes: Vec<bool>,
+    /// Per equation (free DOF): counted here.
+    equations: Vec<bool>,
+    /// Per contact point: counted here.
+    points: Vec<bool>,
+    /// Per cell of the whole mesh: counted here.
+    cells: Vec<bool>,
+}
+
+impl Share {
+    /// Everything, completed by nothing: one process, or one that holds and solves the
+    /// whole system alone.
+    pub const WHOLE: Share = Share {
+        processes: None,
+        dim: 1,
+        nodes: Vec::new(),
+        equations: Vec::new(),
+        points: Vec::new(),
+        cells: Vec::new(),
+    };
+
+    /// [`Share::WHOLE`].
+    pub fn whole() -> Share {
+        Share::WHOLE
+    }
+
+    /// What the process of `sub` counts of `mesh` (whose DOF map is `dofs` and contact
+    /// points `contact`): its own nodes and their DOFs and equations, the contact points on
+    /// them and its owned cells; completed over `processes`.
+    pub fn of(
+        mesh: &Mesh,
+        dofs: &DofMap,
+        contact: &ContactNodes,
+        sub: &Subdomain,
+        processes: Processes,
+    ) -> Share {
+        let d = mesh.dim();
+        let rank = sub.rank;
+        let nodes: Vec<bool> = sub
+            .partition
+            .rank_of
+            .iter()
+            .map(|&r| r as usize == rank)
+            .collect();
+        let mut equations = vec![false; dofs.n_free()];
+        for (k, &eq) in dofs.equations().iter().enumerate() {
+            if eq != FIXED {
+                equations[eq as usize] = nodes[k / d];
+            }
+        }
+        let points = contact.node.iter().map(|&v| nodes[v as usize]).collect();
+        let mut cells = vec![false; mesh.n_cells()];
+        for &c in &sub.cells[..sub.owned] {
+            cells[c as usize] = true;
+        }
+        Share {
+            processes: Some(processes),
+            dim: d,
+            nodes,
+            equations,
+            points,
+            cells,
+        }
+    }
+
+    /// Whether the results are completed over several processes (`false`: this process
+    /// counts every entry).
+    pub fn is_split(&self) -> bool {
+        self.processes.is_some()
+    }
+
+    /// Whether node `v` is counted here.
+    #[inline]
+    pub fn counts_node(&self, v: usize) -> bool {
+        self.nodes.is_empty() || self.nodes[v]
+    }
+
+    /// Whether DOF `k` (DOF order) is counted here.
+    #[inline]
+    pub fn counts_dof(&self, k: usize) -> bool {
+        self.nodes.is_empty() || self.nodes[k / self.dim]
+    }
+
+    /// Whether equation `e` (free DOF) is counted here.
+    #[inline]
+    pub fn counts_equation(&self, e: usize) -> bool {
+        self.equations.is_empty() || self.equations[e]
+    }
+
+    /// Whether contact point `i` is counted here.
+    #[inline]
+    pub fn counts_point(&self, i: usize) -> bool {
+        self.points.is_empty() || self.points[i]
+    }
+
+    /// Whether cell `c` is counted here.
+    #[inline]
+    pub fn counts_cell(&self, c: usize) -> bool {
+        self.cells.is_empty() || self.cells[c]
+    }
+
+    /// `values` ← their element-wise sum over the processes, added in rank order so that
+    /// every process gets the same bits ([`Processes::sum`]); nothing on one process.
+    pub fn sum(&self, values: &mut [f64]) {
+        if let Some(p) = &self.processes {
+            or_abort(p, p.sum(values));
+        }
+    }
+
+    /// `values` ← their element-wise maximum over the processes, a NaN on any process
+    /// giving a NaN (an MPI maximum leaves NaNs to the implementation); nothing on one
+    /// process.
+    pub fn max(&self, values: &mut [f64]) {
+        let Some(p) = &self.processes else {
+            return;
+        };
+        let m = values.len();
+        let mut both: Vec<f64> = values
+            .iter()
+            .map(|&x| if x.is_nan() { f64::NEG_INFINITY } else { x })
+            .collect();
+        both.extend(values.iter().map(|x| f64::from(u8::from(x.is_nan()))));
+        or_abort(p, p.max(&mut both));
+        for (k, v) in values.iter_mut().enumerate() {
+            *v = if both[m + k] > 0.0 { f64::NAN } else { both[k] };
+        }
+    }
+
+    /// The sum over the processes of a count (`local` here).
+    pub fn count(&self, local: usize) -> usize {
+        // Counts below 2^53 add exactly in floating point.
+        let mut n = [local as f64];
+        self.sum(&mut n);
+        n[0] as usize
+    }
+
+    /// Every process's `local` values (the same number on each), rank after rank; `local`
+    /// itself on one process.
+    pub fn gather(&self, local: &[f64]) -> Vec<f64> {
+        match &self.processes {
+            None => local.to_vec(),
+            Some(p) => {
+                let total = local.len() * p.size();
+                let all = p.all_gather(local, total);
+                or_abort(p, all)
+            }
+        }
+    }
+
+    /// Every process's `local` values (any number on each), rank after rank; `local`
+    /// itself on one process.
+    pub fn gather_varying(&self, local: &[f64]) -> Vec<f64> {
+        match &self.processes {
+            None => local.to_vec(),
+            Some(p) => {
+                let counts = or_abort(p, p.all_gather(&[local.len() as f64], p.size()));
+                // Lengths below 2^53 add exactly in floating point.
+                let total = counts.iter().sum::<f64>() as usize;
+                or_abort(p, p.all_gather(local, total))
+            }
+        }
+    }
+
+    /// The sum over the processes of the dot product `Σ a_e b_e` over the equations each
+    /// counts (free-DOF vectors); on one process the plain dot product in order.
+    pub fn dot_equations(&self, a: &[f64], b: &[f64]) -> f64 {
+        let mut s = [a
+            .iter()
+            .zip(b)
+            .enumerate()
+            .filter(|&(e, _)| self.counts_equation(e))
+            .map(|(_, (x, y))| x * y)
+            .sum::<f64>()];
+        self.sum(&mut s);
+        s[0]
+    }
+}
+
+/// The value of a collective operation, or every process ended with a message: MPI failing
+/// in the middle of a solve leaves nothing to recover.
+fn or_abort<T>(processes: &Processes, result: crate::error::Result<T>) -> T {
+    match result {
+        Ok(value) => value,
+        Err(e) => {
+            eprintln!("error: {e}");
+            processes.abort(1)
+        }
+    }
+}
