@@ -191,6 +191,37 @@ fn agrees_across_processes(name: &str) {
             s["report"]["linear_solver"]
         );
         assert!(diff <= 1e-8, "{name}, {np} processes: {diff:e}");
+        // The contact results, each computed by the process that owns its point: every
+        // point of the serial file, in its order, with its states and the same slips
+        // and pressures to 1e-6 of the largest.
+        let rows = |dir: &Path| -> Vec<Vec<String>> {
+            let text = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+            text.lines()
+                .map(|l| l.split(',').map(str::to_string).collect())
+                .collect()
+        };
+        let (mine, theirs) = (rows(&folder), rows(&serial));
+        assert_eq!(mine.len(), theirs.len(), "{name}, {np}: contact.csv rows");
+        let column = |name: &str| theirs[0].iter().position(|c| c == name).unwrap();
+        for field in ["slip", "pressure"] {
+            let k = column(field);
+            let value = |r: &Vec<String>| r[k].parse::<f64>().unwrap();
+            let largest = theirs[1..].iter().map(value).fold(0.0, f64::max);
+            for (a, b) in mine[1..].iter().zip(&theirs[1..]) {
+                assert!(
+                    (value(a) - value(b)).abs() <= 1e-6 * largest,
+                    "{name}, {np}: {field} {} against {}",
+                    value(a),
+                    value(b)
+                );
+            }
+        }
+        for field in ["node", "boundary", "normal_state", "friction_state"] {
+            let k = column(field);
+            for (a, b) in mine[1..].iter().zip(&theirs[1..]) {
+                assert_eq!(a[k], b[k], "{name}, {np}: {field}");
+            }
+        }
         // The certificate's counts of exact constraints (cells, Signorini points, exact
         // friction points) are sums over the processes of what each counts.
         let kkt = &whole["report"]["certificate"]["kkt"];

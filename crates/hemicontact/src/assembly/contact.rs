@@ -229,12 +229,19 @@ impl<'a> ContactAssembler<'a> {
     /// multipliers of `current`. At a Signorini point a Coulomb bound takes the pressure from
     /// the current multiplier λ_i, not from its update `(λ_i + r_i(u_ν − g))_+`: the two
     /// agree at the fixed point, but the update amplifies the error of an inexact solve by
-    /// the large penalty r, which would put a floor under the fixed-point residual.
+    /// the large penalty r, which would put a floor under the fixed-point residual. Only the
+    /// points `counted` (this process's; every point on one process) are computed, the
+    /// others read as NaN.
     ///
     /// # Errors
     /// As [`ContactAssembler::friction_coefficients`] and
     /// [`ContactAssembler::normal_responses`].
-    pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> Result<FrictionData> {
+    pub fn convexify(
+        &self,
+        u: &[f64],
+        current: &ContactData<'_>,
+        counted: &dyn Fn(usize) -> bool,
+    ) -> Result<FrictionData> {
         let n = self.nodes.len();
         let mu = self.friction_coefficients(u)?;
         let mut responses = Vec::new();
@@ -245,6 +252,12 @@ impl<'a> ContactAssembler<'a> {
         };
         let mut data = FrictionData::zero(n);
         for i in 0..n {
+            if !counted(i) {
+                // Another process's point: computed there, read as NaN here.
+                data.bound[i] = f64::NAN;
+                data.linear[i] = [f64::NAN; 2];
+                continue;
+            }
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
             let Some(fr) = &cb.friction else { continue };
             let s = at_u.state(u, i, current);

@@ -267,7 +267,7 @@ impl Partition {
         }
     }
 
-    /// Contiguous ranges of node numbers ([`share`]) for `size` ranks.
+    /// Contiguous ranges of node numbers ([`share()`]) for `size` ranks.
     pub fn ranges(nodes: usize, size: usize) -> Partition {
         let rank_of = (0..size)
             .flat_map(|r| share(nodes, r, size).map(move |_| r as u32))

@@ -32,6 +32,9 @@ pub struct Share {
     points: Vec<bool>,
     /// Per cell of the whole mesh: counted here.
     cells: Vec<bool>,
+    /// Per cell of the whole mesh: in this process's part (its owned and ghost cells), whose
+    /// per-cell quantities it computes.
+    held_cells: Vec<bool>,
 }
 
 impl Share {
@@ -44,6 +47,7 @@ impl Share {
         equations: Vec::new(),
         points: Vec::new(),
         cells: Vec::new(),
+        held_cells: Vec::new(),
     };
 
     /// [`Share::WHOLE`].
@@ -80,6 +84,10 @@ impl Share {
         for &c in &sub.cells[..sub.owned] {
             cells[c as usize] = true;
         }
+        let mut held_cells = vec![false; mesh.n_cells()];
+        for &c in &sub.cells {
+            held_cells[c as usize] = true;
+        }
         Share {
             processes: Some(processes),
             dim: d,
@@ -87,6 +95,7 @@ impl Share {
             equations,
             points,
             cells,
+            held_cells,
         }
     }
 
@@ -124,6 +133,38 @@ impl Share {
     #[inline]
     pub fn counts_cell(&self, c: usize) -> bool {
         self.cells.is_empty() || self.cells[c]
+    }
+
+    /// Whether cell `c` is in this process's part: its per-cell quantities are computed
+    /// here (those of the other cells are not, and read as NaN).
+    #[inline]
+    pub fn holds_cell(&self, c: usize) -> bool {
+        self.held_cells.is_empty() || self.held_cells[c]
+    }
+
+    /// Completes `values`, `width` numbers per entry, over the processes: each process sends
+    /// the entries it counts (`counted(i)`), and every process receives each entry from the
+    /// one that counts it. For per-point and per-cell results that every process computes
+    /// for its own entries only; nothing on one process.
+    pub fn complete_entries(
+        &self,
+        values: &mut [f64],
+        width: usize,
+        counted: impl Fn(usize) -> bool,
+    ) {
+        if self.processes.is_none() || width == 0 {
+            return;
+        }
+        let mut mine = Vec::new();
+        for i in (0..values.len() / width).filter(|&i| counted(i)) {
+            // Entry numbers below 2^53 are exact in floating point.
+            mine.push(i as f64);
+            mine.extend_from_slice(&values[width * i..width * i + width]);
+        }
+        for entry in self.gather_varying(&mine).chunks_exact(width + 1) {
+            let i = entry[0] as usize;
+            values[width * i..width * i + width].copy_from_slice(&entry[1..]);
+        }
     }
 
     /// `values` ← their element-wise sum over the processes, added in rank order so that

@@ -183,6 +183,76 @@ pub struct ContactResult {
     pub slip_scale: f64,
 }
 
+impl ContactResult {
+    /// The numbers of a [`ContactResult`] as a row ([`ContactResult::to_row`]).
+    pub const ROW: usize = 25;
+
+    /// These results as [`ContactResult::ROW`] numbers (the states as their codes): what
+    /// a process sends of its points.
+    pub fn to_row(&self) -> [f64; Self::ROW] {
+        let mut row = [0.0; Self::ROW];
+        let scalars = [
+            f64::from(self.node),
+            self.boundary as f64,
+            self.weight,
+            self.u_nu,
+            self.gap,
+            self.slip,
+            self.pressure,
+            self.bound,
+            self.force_normal,
+            f64::from(self.normal_state.code()),
+            f64::from(self.friction_state.code()),
+            self.normal_residual,
+            self.friction_residual,
+            self.force_scale,
+            self.slip_scale,
+        ];
+        row[..15].copy_from_slice(&scalars);
+        row[15..17].copy_from_slice(&self.u_tau);
+        row[17..19].copy_from_slice(&self.force_tangential);
+        row[19..22].copy_from_slice(&self.force);
+        row[22..25].copy_from_slice(&self.friction_traction);
+        row
+    }
+
+    /// The results a row of [`ContactResult::to_row`] holds.
+    pub fn from_row(row: &[f64]) -> ContactResult {
+        let pair = |k: usize| [row[k], row[k + 1]];
+        let triple = |k: usize| [row[k], row[k + 1], row[k + 2]];
+        ContactResult {
+            // Node and boundary numbers below 2^32 are exact in floating point.
+            node: row[0] as u32,
+            boundary: row[1] as usize,
+            weight: row[2],
+            u_nu: row[3],
+            gap: row[4],
+            slip: row[5],
+            pressure: row[6],
+            bound: row[7],
+            force_normal: row[8],
+            normal_state: if row[9] == 1.0 {
+                NormalState::Contact
+            } else {
+                NormalState::Separated
+            },
+            friction_state: match row[10] as i32 {
+                1 => FrictionState::Stick,
+                2 => FrictionState::Slip,
+                _ => FrictionState::None,
+            },
+            normal_residual: row[11],
+            friction_residual: row[12],
+            force_scale: row[13],
+            slip_scale: row[14],
+            u_tau: pair(15),
+            force_tangential: pair(17),
+            force: triple(19),
+            friction_traction: triple(22),
+        }
+    }
+}
+
 /// Where a law residual is largest: the point's node, contact boundary and residual.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Worst {
@@ -346,6 +416,11 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     for i in 0..ca.nodes.len() {
+        if !share.counts_point(i) {
+            // Another process's point: received from it below.
+            results.push(ContactResult::from_row(&[f64::NAN; ContactResult::ROW]));
+            continue;
+        }
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         // The friction bound F at this state (not frozen).
@@ -520,6 +595,12 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
     if share.is_split() {
+        let mut rows: Vec<f64> = results.iter().flat_map(ContactResult::to_row).collect();
+        share.complete_entries(&mut rows, ContactResult::ROW, |i| share.counts_point(i));
+        let whole = rows
+            .chunks_exact(ContactResult::ROW)
+            .map(ContactResult::from_row);
+        results = whole.collect();
         (cert.worst_normal, cert.normal_law) =
             worst_of_all(share, cert.worst_normal, cert.normal_law);
         (cert.worst_friction, cert.friction_law) =
@@ -555,4 +636,48 @@ fn worst_of_all(share: &Share, worst: Option<Worst>, value: f64) -> (Option<Wors
         }
     }
     (worst, value)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What a process sends of a contact point's results is read back bit for bit, states
+    /// included.
+    #[test]
+    fn a_contact_result_travels_as_a_row() {
+        let mut k = 0.0f64;
+        let mut next = || {
+            k += 1.0;
+            k.sqrt() * if (k as i32) % 2 == 0 { -1.0 } else { 1.0 }
+        };
+        for (normal_state, friction_state) in [
+            (NormalState::Separated, FrictionState::None),
+            (NormalState::Contact, FrictionState::Stick),
+            (NormalState::Contact, FrictionState::Slip),
+        ] {
+            let r = ContactResult {
+                node: 4_000_000_007,
+                boundary: 3,
+                weight: next(),
+                u_nu: next(),
+                gap: next(),
+                u_tau: [next(), next()],
+                slip: next(),
+                pressure: next(),
+                bound: next(),
+                force_normal: next(),
+                force_tangential: [next(), next()],
+                force: [next(), next(), next()],
+                friction_traction: [next(), next(), next()],
+                normal_state,
+                friction_state,
+                normal_residual: next(),
+                friction_residual: next(),
+                force_scale: next(),
+                slip_scale: next(),
+            };
+            assert_eq!(ContactResult::from_row(&r.to_row()), r);
+        }
+    }
 }

@@ -45,10 +45,11 @@ impl Frozen {
             friction: FrictionData::zero(n),
             multipliers: Multipliers::zero(n, n_cells),
         };
+        let share = system.share();
         Ok(Frozen {
             friction: system
                 .contact_assembler(problem)
-                .convexify(u, &zero.contact())?,
+                .convexify(u, &zero.contact(), &|i| share.counts_point(i))?,
             multipliers: zero.multipliers,
         })
     }
@@ -62,14 +63,16 @@ impl Frozen {
     pub fn image(&self, system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let ca = system.contact_assembler(problem);
         let data = self.contact();
+        let share = system.share();
         Ok(Frozen {
-            friction: ca.convexify(u, &data)?,
+            friction: ca.convexify(u, &data, &|i| share.counts_point(i))?,
             multipliers: self.multipliers.updated(
                 &ca,
                 &data,
                 &system.continuation.penalties,
                 problem,
                 u,
+                share,
             ),
         })
     }
@@ -135,6 +138,19 @@ impl Frozen {
         }
         z.extend_from_slice(&m.locking);
         z
+    }
+
+    /// These quantities completed over the processes: each process computes those of its
+    /// own contact points and part's cells, the others are received from the process that
+    /// counts them ([`Share::complete_entries`]). Nothing on one process.
+    pub fn complete(&mut self, share: &Share) {
+        let point = |i: usize| share.counts_point(i);
+        let (f, m) = (&mut self.friction, &mut self.multipliers);
+        share.complete_entries(&mut f.bound, 1, point);
+        share.complete_entries(f.linear.as_flattened_mut(), 2, point);
+        share.complete_entries(&mut m.pressure, 1, point);
+        share.complete_entries(m.traction.as_flattened_mut(), 2, point);
+        share.complete_entries(&mut m.locking, 1, |c| share.counts_cell(c));
     }
 
     /// The entries of [`Frozen::flatten`]'s vector for `n` contact points and `n_cells`

@@ -297,6 +297,7 @@ fn solve_dimensionless(
         &system.continuation.penalties,
         problem,
         &u,
+        system.share(),
     );
     let (contact, mut certificate) = system.certificate(
         problem,
@@ -374,13 +375,20 @@ fn solve_dimensionless(
             c.u_nu += p;
         }
     }
+    // Each process computed the multipliers and frozen quantities of its own points and
+    // cells: the whole of them on every process.
+    let mut locking_multiplier = updated.locking;
+    let share = system.share();
+    share.complete_entries(&mut locking_multiplier, 1, |c| share.counts_cell(c));
+    let mut frozen = frozen;
+    frozen.complete(share);
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,
         reactions,
         energy,
         contact,
-        locking_multiplier: updated.locking,
+        locking_multiplier,
         frozen,
         report,
         partition: system.partition().cloned(),

@@ -48,7 +48,8 @@ impl Multipliers {
     ///   of `data` (so that τ_i is the friction traction of the problem just solved),
     /// - `λ_T ← (λ_T + r_T Q(ε_T(u)))_+` per cell with ideal locking,
     ///
-    /// with the penalties of `penalties` at their current stage.
+    /// with the penalties of `penalties` at their current stage; the cells' for the cells of
+    /// this process's part (`share`, NaN for the others).
     pub fn updated(
         &self,
         ca: &ContactAssembler<'_>,
@@ -56,6 +57,7 @@ impl Multipliers {
         penalties: &AugmentedLagrangian,
         problem: &Problem,
         u: &[f64],
+        share: &Share,
     ) -> Multipliers {
         let n = ca.nodes.len();
         let m = ca.dim - 1;
@@ -79,7 +81,14 @@ impl Multipliers {
             }
         }
         next.locking = match problem.material.locking.ideal() {
-            Some(set) => update_locking(&problem.mesh, &set, penalties.locking(), u, &self.locking),
+            Some(set) => update_locking(
+                &problem.mesh,
+                &set,
+                penalties.locking(),
+                u,
+                &self.locking,
+                share,
+            ),
             None => self.locking.clone(),
         };
         next
@@ -183,16 +192,20 @@ impl Multipliers {
 }
 
 /// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+` of the locking set `set`
-/// with penalty `r`.
+/// with penalty `r`, for the cells of this process's part (`share`; NaN for the others).
 pub fn update_locking(
     mesh: &Mesh,
     set: &LockingSet,
     r: f64,
     u: &[f64],
     current: &[f64],
+    share: &Share,
 ) -> Vec<f64> {
     (0..mesh.n_cells())
         .map(|c| {
+            if !share.holds_cell(c) {
+                return f64::NAN;
+            }
             let (_, eps) = element::cell_strain(mesh, u, c);
             (current[c] + r * set.q(&eps)).max(0.0)
         })

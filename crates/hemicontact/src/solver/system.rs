@@ -307,7 +307,7 @@ impl System {
     }
 
     /// What this process counts in global sums and maxima, and their completion over the
-    /// processes (see [`crate::parallel::share`]).
+    /// processes (see [`Share`]).
     pub fn share(&self) -> &Share {
         &self.share
     }
@@ -360,7 +360,8 @@ impl System {
     /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
     /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
     /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
-    /// force scale of its body, from `body_scale`) into `floor`.
+    /// force scale of its body, from `body_scale`) into `floor`; NaN for the points another
+    /// process counts ([`Share::counts_point`]).
     pub fn point_scales(
         &self,
         problem: &Problem,
@@ -384,6 +385,12 @@ impl System {
         floor.clear();
         let (offsets, cells) = &self.point_cells;
         for i in 0..n {
+            // Another process's point: computed there, read as NaN here.
+            if !self.share.counts_point(i) {
+                force.push(f64::NAN);
+                floor.push(f64::NAN);
+                continue;
+            }
             let p = ca.state(u, i, &data).pressure;
             force.push(self.contact.weight[i] * data.bound[i].max(p));
             let around = &cells[offsets[i]..offsets[i + 1]];
