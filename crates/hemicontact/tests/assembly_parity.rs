@@ -112,20 +112,29 @@ fn parallel_assembly_is_bitwise_the_serial_one() {
 /// is counted by exactly one range, and the ranges' energies add up to the whole; with 2
 /// and 5 parallel tasks per range, bitwise the one-task pass. In 2D (the paper's mesh) and
 /// in 3D (its cube analogue).
-#[test]
-fn subdomains_give_their_rows_of_the_whole_assembly() {
-    let paper3d = std::fs::read_to_string(format!(
+/// `scenarios/paper3d.toml` on an `n × n × n` mesh.
+fn paper3d(n: usize) -> String {
+    let text = std::fs::read_to_string(format!(
         "{}/../../scenarios/paper3d.toml",
         env!("CARGO_MANIFEST_DIR")
     ))
-    .unwrap()
-    .replace("n = [16, 16, 16]", "n = [12, 12, 12]");
-    assert!(paper3d.contains("n = [12, 12, 12]"));
-    for text in [builtin::paper(64, 1.0e4), paper3d] {
-        let problem = Scenario::from_str(&text, "test")
-            .unwrap()
-            .into_problem()
-            .unwrap();
+    .unwrap();
+    assert!(text.contains("n = [16, 16, 16]"));
+    text.replace("n = [16, 16, 16]", &format!("n = [{n}, {n}, {n}]"))
+}
+
+/// The problem of the scenario `text`.
+fn problem(text: &str) -> hemicontact::problem::Problem {
+    Scenario::from_str(text, "test")
+        .unwrap()
+        .into_problem()
+        .unwrap()
+}
+
+#[test]
+fn subdomains_give_their_rows_of_the_whole_assembly() {
+    for text in [builtin::paper(64, 1.0e4), paper3d(12)] {
+        let problem = problem(&text);
         let mesh = problem.mesh();
         let d = mesh.dim();
         let dofs = problem.dof_map();
@@ -301,17 +310,8 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
 fn each_entry_is_counted_by_one_process() {
     use hemicontact::parallel::{Processes, Share};
     use hemicontact::solver::local_scales::Bodies;
-    let paper3d = std::fs::read_to_string(format!(
-        "{}/../../scenarios/paper3d.toml",
-        env!("CARGO_MANIFEST_DIR")
-    ))
-    .unwrap()
-    .replace("n = [16, 16, 16]", "n = [8, 8, 8]");
-    for text in [builtin::paper(32, 1.0e4), paper3d] {
-        let problem = Scenario::from_str(&text, "test")
-            .unwrap()
-            .into_problem()
-            .unwrap();
+    for text in [builtin::paper(32, 1.0e4), paper3d(8)] {
+        let problem = problem(&text);
         let mesh = problem.mesh();
         let d = mesh.dim();
         let dofs = problem.dof_map();

@@ -232,11 +232,22 @@ impl Share {
     /// The sum over the processes of the dot product `Σ a_e b_e` over the equations each
     /// counts (free-DOF vectors); on one process the plain dot product in order.
     pub fn dot_equations(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.dot(a, b, |e| self.counts_equation(e))
+    }
+
+    /// The sum over the processes of the dot product `Σ a_k b_k` over the DOFs each counts
+    /// (DOF-order vectors); on one process the plain dot product in order.
+    pub fn dot_dofs(&self, a: &[f64], b: &[f64]) -> f64 {
+        self.dot(a, b, |k| self.counts_dof(k))
+    }
+
+    /// `Σ a_k b_k` over the entries `counted`, in order, completed over the processes.
+    fn dot(&self, a: &[f64], b: &[f64], counted: impl Fn(usize) -> bool) -> f64 {
         let mut s = [a
             .iter()
             .zip(b)
             .enumerate()
-            .filter(|&(e, _)| self.counts_equation(e))
+            .filter(|&(k, _)| counted(k))
             .map(|(_, (x, y))| x * y)
             .sum::<f64>()];
         self.sum(&mut s);

@@ -360,17 +360,7 @@ fn solve_dimensionless(
         for (x, p) in u.iter_mut().zip(placed) {
             *x += p;
         }
-        let share = system.share();
-        let mut work = [system
-            .f_ext
-            .iter()
-            .zip(placed)
-            .enumerate()
-            .filter(|&(k, _)| share.counts_dof(k))
-            .map(|(_, (f, p))| f * p)
-            .sum::<f64>()];
-        share.sum(&mut work);
-        energy -= work[0];
+        energy -= system.share().dot_dofs(&system.f_ext, placed);
         for (c, p) in contact.iter_mut().zip(&system.contact.placed_normal) {
             c.u_nu += p;
         }
