@@ -215,9 +215,9 @@ fn mpi_error(e: hemicontact_petsc::Error) -> Error {
     Error::Breakdown(format!("MPI: {e}"))
 }
 
-/// Share `rank` of `count` items split into `size` contiguous ranges of (almost) equal
+/// Range `rank` of `count` items split into `size` contiguous ranges of (almost) equal
 /// length, in rank order: `rank · count / size .. (rank + 1) · count / size`.
-pub fn share(count: usize, rank: usize, size: usize) -> std::ops::Range<usize> {
+pub fn contiguous_range(count: usize, rank: usize, size: usize) -> std::ops::Range<usize> {
     rank * count / size..(rank + 1) * count / size
 }
 
@@ -267,10 +267,10 @@ impl Partition {
         }
     }
 
-    /// Contiguous ranges of node numbers ([`share()`]) for `size` ranks.
+    /// Contiguous ranges of node numbers ([`contiguous_range`]) for `size` ranks.
     pub fn ranges(nodes: usize, size: usize) -> Partition {
         let rank_of = (0..size)
-            .flat_map(|r| share(nodes, r, size).map(move |_| r as u32))
+            .flat_map(|r| contiguous_range(nodes, r, size).map(move |_| r as u32))
             .collect();
         Partition::from_ranks(rank_of, size)
     }

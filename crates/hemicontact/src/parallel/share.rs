@@ -10,6 +10,11 @@
 //! one process. On one process (and whenever every process holds and solves the whole
 //! system alone) it counts everything and the completions do nothing, so the serial solve
 //! adds the same numbers in the same order as without this seam.
+//!
+//! The per-point and per-cell quantities of the outer loop (frozen friction data, force
+//! scales, certificate results, ideal-locking multipliers) are likewise computed only for
+//! the points a process counts and the cells of its part ([`Share::holds_cell`]); the
+//! answer's are completed by [`Share::complete_entries`].
 
 use crate::contact::ContactNodes;
 use crate::fem::dofs::{DofMap, FIXED};
