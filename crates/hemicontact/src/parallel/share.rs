@@ -14,12 +14,14 @@
 //! The per-point and per-cell quantities of the outer loop (frozen friction data, force
 //! scales, certificate results, ideal-locking multipliers) are likewise computed only for
 //! the points a process counts and the cells of its part ([`Share::holds_cell`]); the
-//! answer's are completed by [`Share::complete_entries`].
+//! answer's are completed by [`Share::complete_entries`]. A completion that fails (MPI's
+//! error) leaves NaN and is recorded; the solve then ends with that error ([`failure`]).
 
 use crate::contact::ContactNodes;
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::mesh::Mesh;
 use crate::parallel::{Processes, Subdomain};
+use std::sync::OnceLock;
 
 /// Which entries of the solver's arrays this process counts; see the module documentation.
 #[derive(Clone, Debug)]
@@ -176,7 +178,10 @@ impl Share {
     /// every process gets the same bits ([`Processes::sum`]); nothing on one process.
     pub fn sum(&self, values: &mut [f64]) {
         if let Some(p) = &self.processes {
-            or_abort(p, p.sum(values));
+            if let Err(e) = p.sum(values) {
+                fail(e);
+                values.fill(f64::NAN);
+            }
         }
     }
 
@@ -193,7 +198,10 @@ impl Share {
             .map(|&x| if x.is_nan() { f64::NEG_INFINITY } else { x })
             .collect();
         both.extend(values.iter().map(|x| f64::from(u8::from(x.is_nan()))));
-        or_abort(p, p.max(&mut both));
+        if let Err(e) = p.max(&mut both) {
+            fail(e);
+            both.fill(f64::NAN);
+        }
         for (k, v) in values.iter_mut().enumerate() {
             *v = if both[m + k] > 0.0 { f64::NAN } else { both[k] };
         }
@@ -214,8 +222,10 @@ impl Share {
             None => local.to_vec(),
             Some(p) => {
                 let total = local.len() * p.size();
-                let all = p.all_gather(local, total);
-                or_abort(p, all)
+                p.all_gather(local, total).unwrap_or_else(|e| {
+                    fail(e);
+                    vec![f64::NAN; total]
+                })
             }
         }
     }
@@ -226,10 +236,14 @@ impl Share {
         match &self.processes {
             None => local.to_vec(),
             Some(p) => {
-                let counts = or_abort(p, p.all_gather(&[local.len() as f64], p.size()));
-                // Lengths below 2^53 add exactly in floating point.
-                let total = counts.iter().sum::<f64>() as usize;
-                or_abort(p, p.all_gather(local, total))
+                let gathered = p
+                    .all_gather(&[local.len() as f64], p.size())
+                    // Lengths below 2^53 add exactly in floating point.
+                    .and_then(|counts| p.all_gather(local, counts.iter().sum::<f64>() as usize));
+                gathered.unwrap_or_else(|e| {
+                    fail(e);
+                    Vec::new()
+                })
             }
         }
     }
@@ -260,14 +274,20 @@ impl Share {
     }
 }
 
-/// The value of a collective operation, or every process ended with a message: MPI failing
-/// in the middle of a solve leaves nothing to recover.
-fn or_abort<T>(processes: &Processes, result: crate::error::Result<T>) -> T {
-    match result {
-        Ok(value) => value,
-        Err(e) => {
-            eprintln!("error: {e}");
-            processes.abort(1)
-        }
-    }
+/// The first failure of a collective operation of a [`Share`] (MPI's error, in words),
+/// until the solve reports it ([`failure`]).
+static FAILURE: OnceLock<String> = OnceLock::new();
+
+/// Records the failure `e` of a collective operation; the operation's result is then NaN
+/// (or nothing, for a gather), and the solve ends with the error ([`failure`]).
+fn fail(e: crate::Error) {
+    let _ = FAILURE.set(e.to_string());
+}
+
+/// The failure of a collective operation of a [`Share`] in this process, if one failed:
+/// [`crate::Error::Breakdown`] with MPI's message. The solve checks it after every
+/// evaluation and before it returns, so that a failed reduction ends it with this error
+/// rather than with the NaN it left behind.
+pub fn failure() -> Option<crate::Error> {
+    FAILURE.get().map(|m| crate::Error::Breakdown(m.clone()))
 }

@@ -238,6 +238,23 @@ pub fn solve_observed(
 fn solve_dimensionless(
     problem: &Problem,
     settings: &SolverSettings,
+    u: Vec<f64>,
+    scales: &scaling::Scales,
+    stop: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
+) -> Result<Solution> {
+    let solution = solve_scaled(problem, settings, u, scales, stop, observe);
+    // A reduction over the processes that failed left NaNs behind: its error, not theirs.
+    match crate::parallel::share::failure() {
+        Some(e) => Err(e),
+        None => solution,
+    }
+}
+
+/// The body of [`solve_dimensionless`].
+fn solve_scaled(
+    problem: &Problem,
+    settings: &SolverSettings,
     mut u: Vec<f64>,
     scales: &scaling::Scales,
     stop: &AtomicBool,

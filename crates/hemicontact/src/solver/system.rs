@@ -593,6 +593,11 @@ impl System {
                 out.hess[k] += out.rigid_shift;
             }
         }
+        // A failed reduction of the solver's (MPI's error) ends the solve with that error.
+        if let Some(e) = crate::parallel::share::failure() {
+            out.law_error.get_or_insert(e);
+            return f64::NAN;
+        }
         e_bulk + e_contact - work
     }
 
