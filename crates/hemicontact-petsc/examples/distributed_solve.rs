@@ -4,7 +4,9 @@
 //! processes, solved by CG + GAMG with the rigid-body modes of the grid, gathered on every
 //! process, and compared with the known solution `x` of `b = A x`. Exit code 0 when every
 //! process holds the same solution and it agrees with `x` to 1e-8 (relative, maximum
-//! norm), 1 otherwise.
+//! norm), and the values each process fetches of other processes' rows (the rows of their
+//! first nodes, `KspSystem::ghost_values`) are bitwise those of the gathered solution; 1
+//! otherwise.
 //!
 //! ```sh
 //! mpirun -np 3 --oversubscribe target/release/examples/distributed_solve [--n 16] \
@@ -98,13 +100,21 @@ fn main() {
         }
     }
     let total = 3 * nodes;
+    // Rows of other processes to fetch after the solve: the 3 rows of each one's first node.
+    let ghost_rows: Vec<usize> = (0..size)
+        .filter(|&r| r != rank)
+        .flat_map(|r| (0..3).map(move |c| 3 * (r * nodes / size) + c))
+        .collect();
+    let mut ghosts = vec![0.0; ghost_rows.len()];
     let solved =
         KspSystem::new_distributed(total, 3 * first_node, &row_ptr, &cols, &coords, 3, &options)
             .and_then(|mut system| {
                 system.set_values(&values)?;
                 system.setup()?;
                 let mut x = vec![0.0; b.len()];
+                system.set_ghost_rows(&ghost_rows)?;
                 let outcome = system.solve(&b, &mut x, 1e-12, 1000, true)?;
+                system.ghost_values(&mut ghosts)?;
                 Ok((outcome, x, system.describe()))
             });
     let (outcome, x, method) = match solved {
@@ -138,14 +148,26 @@ fn main() {
         world.abort(1);
     }
     let same = spread[0] == -spread[1];
+    // The fetched rows are the owners' values, bit for bit.
+    let fetched = ghost_rows
+        .iter()
+        .zip(&ghosts)
+        .all(|(&r, g)| g.to_bits() == x[r].to_bits());
+    let mut all_fetched = [f64::from(u8::from(!fetched))];
+    if let Err(e) = world.max(&mut all_fetched) {
+        eprintln!("error on rank {rank}: {e}");
+        world.abort(1);
+    }
+    let fetched = all_fetched[0] == 0.0;
     if rank == 0 {
         println!(
             "{size} ranks: {total} DOFs, {method}, {} iterations ({}), max relative error \
-             {error:.1e}, the same solution on every rank: {same}",
+             {error:.1e}, the same solution on every rank: {same}, the rows fetched from \
+             other ranks are theirs: {fetched}",
             outcome.iterations, outcome.reason_name
         );
     }
-    if !(outcome.converged() && error <= 1e-8 && same) {
+    if !(outcome.converged() && error <= 1e-8 && same && fetched) {
         std::process::exit(1);
     }
 }

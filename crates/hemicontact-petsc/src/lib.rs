@@ -72,6 +72,8 @@ mod ffi {
             reason: *mut c_int,
             residual: *mut f64,
         ) -> c_int;
+        pub fn hc_system_set_ghosts(system: *mut System, n: i64, rows: *const i64) -> c_int;
+        pub fn hc_system_ghost_values(system: *mut System, out: *mut f64) -> c_int;
         pub fn hc_converged_reason(reason: c_int) -> *const c_char;
         pub fn hc_system_describe(system: *mut System, buf: *mut c_char, size: usize) -> c_int;
     }
@@ -346,6 +348,8 @@ pub struct KspSystem {
     n: usize,
     nnz: usize,
     prefix: String,
+    /// Number of ghost rows set ([`KspSystem::set_ghost_rows`]).
+    ghosts: usize,
 }
 
 // SAFETY: a system's PETSc objects are used by one thread at a time (`&mut self`), and every
@@ -480,6 +484,7 @@ impl KspSystem {
             n,
             nnz,
             prefix,
+            ghosts: 0,
         })
     }
 
@@ -586,6 +591,40 @@ impl KspSystem {
             reason_name,
             residual_norm: residual,
         })
+    }
+
+    /// Sets the rows `rows` (global numbers, held by any process) whose values of the last
+    /// solution [`KspSystem::ghost_values`] fetches: a PETSc scatter from the distributed
+    /// solution vector, built once. Collective: every process calls it, with its own rows
+    /// (none is allowed).
+    ///
+    /// # Errors
+    /// PETSc's, e.g. a row beyond the system's order.
+    pub fn set_ghost_rows(&mut self, rows: &[usize]) -> Result<(), Error> {
+        let rows: Vec<i64> = rows.iter().map(|&r| r as i64).collect();
+        let _guard = lock();
+        // SAFETY: `rows` has the length passed; the shim copies it; the system is alive.
+        check(unsafe { ffi::hc_system_set_ghosts(self.raw, rows.len() as i64, rows.as_ptr()) })?;
+        self.ghosts = rows.len();
+        Ok(())
+    }
+
+    /// The values of the last solution ([`KspSystem::solve`]) at the rows of
+    /// [`KspSystem::set_ghost_rows`], in their order, into `out`, each from the process
+    /// that holds it. Collective: every process calls it after the same solve.
+    ///
+    /// # Errors
+    /// PETSc's; no ghost rows set; an `out` of another length.
+    pub fn ghost_values(&mut self, out: &mut [f64]) -> Result<(), Error> {
+        if out.len() != self.ghosts {
+            return Err(Error {
+                code: -1,
+                message: format!("{} values for {} ghost rows", out.len(), self.ghosts),
+            });
+        }
+        let _guard = lock();
+        // SAFETY: `out` has the number of ghost rows set (the shim refuses if none was).
+        check(unsafe { ffi::hc_system_ghost_values(self.raw, out.as_mut_ptr()) })
     }
 
     /// The Krylov method and preconditioner in use, e.g. `ksp cg, pc gamg`, or

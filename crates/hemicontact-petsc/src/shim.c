@@ -129,6 +129,8 @@ typedef struct {
   PetscBool fixed_maxit; /* the options set -ksp_max_it: the per-solve cap is not imposed */
   PetscBool true_residual_cg; /* CG on the unpreconditioned residual: a kept (lagged)
                                * preconditioner cannot give a wrong answer, only iterations */
+  VecScatter ghost_scatter;   /* from x to this process's ghost rows (NULL: none set) */
+  Vec ghosts;                 /* the ghost rows' values, sequential */
 } hc_system;
 
 static PetscErrorCode copy_indices(PetscInt count, const int64_t *from, PetscInt **to)
@@ -235,6 +237,8 @@ void hc_system_destroy(hc_system *s)
   MatDestroy(&s->A);
   VecDestroy(&s->x);
   VecDestroy(&s->b);
+  VecScatterDestroy(&s->ghost_scatter);
+  VecDestroy(&s->ghosts);
   PetscFree(s->row_ptr);
   PetscFree(s->cols);
   PetscFree(s);
@@ -334,6 +338,50 @@ int hc_system_solve(hc_system *s, double rtol, int64_t max_iterations, int keep,
 {
   return (int)solve(s, rtol, max_iterations, keep, b, x, iterations, reason, residual);
 }
+
+static PetscErrorCode set_ghosts(hc_system *s, int64_t n, const int64_t *rows)
+{
+  PetscInt *indices;
+  IS is;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterDestroy(&s->ghost_scatter));
+  PetscCall(VecDestroy(&s->ghosts));
+  PetscCall(copy_indices((PetscInt)n, rows, &indices));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)n, indices, PETSC_OWN_POINTER, &is));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)n, &s->ghosts));
+  PetscCall(VecScatterCreate(s->x, is, s->ghosts, NULL, &s->ghost_scatter));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(0);
+}
+
+/* Sets the n rows (global numbers, any process's) whose values of the last solution
+ * hc_system_ghost_values() fetches: PETSc's scatter from the distributed solution vector
+ * to a sequential vector of those rows, built once (collective). */
+int hc_system_set_ghosts(hc_system *s, int64_t n, const int64_t *rows)
+{
+  return (int)set_ghosts(s, n, rows);
+}
+
+static PetscErrorCode ghost_values(hc_system *s, double *out)
+{
+  const PetscScalar *values;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCheck(s->ghost_scatter, PETSC_COMM_SELF, PETSC_ERR_ORDER, "no ghost rows were set");
+  PetscCall(VecScatterBegin(s->ghost_scatter, s->x, s->ghosts, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(s->ghost_scatter, s->x, s->ghosts, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetLocalSize(s->ghosts, &n));
+  PetscCall(VecGetArrayRead(s->ghosts, &values));
+  for (PetscInt k = 0; k < n; k++) out[k] = values[k];
+  PetscCall(VecRestoreArrayRead(s->ghosts, &values));
+  PetscFunctionReturn(0);
+}
+
+/* The values of the last solution at the rows set by hc_system_set_ghosts(), in their
+ * order, from the processes that hold them (collective). */
+int hc_system_ghost_values(hc_system *s, double *out) { return (int)ghost_values(s, out); }
 
 /* The name of a KSP converged reason. */
 const char *hc_converged_reason(int reason) { return KSPConvergedReasons[reason]; }
