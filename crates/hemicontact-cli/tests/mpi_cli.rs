@@ -50,11 +50,17 @@ fn variant(dir: &Path, name: &str, copy: &str, lines: &str) -> PathBuf {
     file
 }
 
-/// The displacement (3 components per node) of the result folder `dir`: from
+/// The displacement (3 components per node) of the result folder `dir`; see
+/// [`point_field`].
+fn displacement(dir: &Path) -> Vec<f64> {
+    point_field(dir, "displacement")
+}
+
+/// The point field `name` (3 components per node) of the result folder `dir`: from
 /// `solution.vtu`, or from the pieces that `solution.pvtu` names, put together by their
 /// `node_id`. A node in several pieces must have the same bits in each, every node must be
 /// in one, and a folder holds one of the two formats, not both.
-fn displacement(dir: &Path) -> Vec<f64> {
+fn point_field(dir: &Path, name: &str) -> Vec<f64> {
     let serial = dir.join("solution.vtu");
     let index = dir.join("solution.pvtu");
     assert!(
@@ -62,7 +68,7 @@ fn displacement(dir: &Path) -> Vec<f64> {
         "{dir:?}: one of solution.vtu and solution.pvtu"
     );
     if serial.exists() {
-        return vtu::f64s(&std::fs::read(serial).unwrap(), "displacement");
+        return vtu::f64s(&std::fs::read(serial).unwrap(), name);
     }
     let text = std::fs::read_to_string(index).unwrap();
     let mut u: Vec<Option<[u64; 3]>> = Vec::new();
@@ -72,7 +78,7 @@ fn displacement(dir: &Path) -> Vec<f64> {
         .map(|l| l.trim_end_matches("\"/>"))
     {
         let piece = std::fs::read(dir.join(source)).unwrap();
-        let values = vtu::f64s(&piece, "displacement");
+        let values = vtu::f64s(&piece, name);
         for (j, &node) in vtu::i64s(&piece, "node_id").iter().enumerate() {
             let node = node as usize;
             if u.len() <= node {
@@ -179,6 +185,11 @@ fn agrees_across_processes(name: &str) {
             );
         }
         let u = displacement(&folder);
+        // (A NaN would slip through the maxima below.)
+        assert!(
+            u.iter().all(|v| v.is_finite()),
+            "{name}, {np}: displacement"
+        );
         let diff = u
             .iter()
             .zip(&reference)
@@ -191,6 +202,26 @@ fn agrees_across_processes(name: &str) {
             s["report"]["linear_solver"]
         );
         assert!(diff <= 1e-8, "{name}, {np} processes: {diff:e}");
+        // The reactions, each process's own nodes' put together.
+        let (r, r_serial) = (
+            point_field(&folder, "reaction"),
+            point_field(&serial, "reaction"),
+        );
+        assert!(r.iter().all(|v| v.is_finite()), "{name}, {np}: reactions");
+        let r_scale = r_serial.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        let r_diff = r
+            .iter()
+            .zip(&r_serial)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        eprintln!(
+            "{name}, np = {np}: reactions, max difference {r_diff:.1e} of the largest \
+             {r_scale:.1e}"
+        );
+        assert!(
+            r_diff <= 1e-8 * r_scale || (r_scale == 0.0 && r_diff == 0.0),
+            "{name}, {np} processes: reactions differ by {r_diff:e} of {r_scale:e}"
+        );
         // The contact results, each computed by the process that owns its point: every
         // point of the serial file, in its order, with its states and the same slips
         // and pressures to 1e-6 of the largest.

@@ -143,9 +143,10 @@ impl<'a> ContactAssembler<'a> {
     /// The responses (energy, pressure and, if `stiffness`, the derivative) of the points of
     /// the parts with a user-defined compliance law at displacement `u`, into `out` (resized
     /// to one per point; zero elsewhere): one batch of the law per contact part
-    /// ([`crate::contact::CustomCompliance::responses`]). Pass the result as
-    /// [`ContactAssembler::responses`] to assemble at `u`. Nothing is done (and `out` is
-    /// left empty) when no part has such a law.
+    /// ([`crate::contact::CustomCompliance::responses`]), over the points `counted` (this
+    /// process's; every point on one process), the others NaN without calling the law.
+    /// Pass the result as [`ContactAssembler::responses`] to assemble at `u`. Nothing is
+    /// done (and `out` is left empty) when no part has such a law.
     ///
     /// # Errors
     /// [`Error::Law`] naming the law (`contact[k].normal (name)`) and the penetration.
@@ -153,6 +154,7 @@ impl<'a> ContactAssembler<'a> {
         &self,
         u: &[f64],
         stiffness: bool,
+        counted: &dyn Fn(usize) -> bool,
         out: &mut Vec<NormalResponse>,
     ) -> Result<()> {
         out.clear();
@@ -162,7 +164,7 @@ impl<'a> ContactAssembler<'a> {
         let n = self.nodes.len();
         out.resize(n, NormalResponse::default());
         let mut start = 0;
-        let mut penetration = Vec::new();
+        let (mut penetration, mut responses) = (Vec::new(), Vec::new());
         for run in self.nodes.boundary.chunk_by(|a, b| a == b) {
             let range = start..start + run.len();
             start = range.end;
@@ -171,39 +173,52 @@ impl<'a> ContactAssembler<'a> {
             let NormalLaw::Custom(law) = &cb.normal else {
                 continue;
             };
+            let points: Vec<usize> = range.clone().filter(|&i| counted(i)).collect();
             penetration.clear();
             penetration.extend(
-                range
-                    .clone()
-                    .map(|i| self.nodes.kinematics(self.dim, u, i).0 - self.nodes.gap[i]),
+                points
+                    .iter()
+                    .map(|&i| self.nodes.kinematics(self.dim, u, i).0 - self.nodes.gap[i]),
             );
-            law.responses(&penetration, stiffness, &mut out[range])
+            responses.clear();
+            responses.resize(points.len(), NormalResponse::default());
+            law.responses(&penetration, stiffness, &mut responses)
                 .map_err(|message| Error::Law {
                     law: format!("contact[{b}].normal ({})", law.name),
                     message,
                 })?;
+            for i in range {
+                out[i] = NormalResponse {
+                    energy: f64::NAN,
+                    pressure: f64::NAN,
+                    stiffness: f64::NAN,
+                };
+            }
+            for (&i, r) in points.iter().zip(&responses) {
+                out[i] = *r;
+            }
         }
         Ok(())
     }
 
     /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` (or `μ(x_i)` for a law of the position)
-    /// of every point at displacement `u` (0 at frictionless points): the slips of all
-    /// points, then one evaluation of each contact part's law over that part's points
-    /// ([`crate::contact::FrictionCoefficient::values`]). Allocates two vectors of the
+    /// of every point `counted` (this process's; every point on one process) at
+    /// displacement `u`, 0 at frictionless points and NaN at the points not counted: the
+    /// slips of those points, then one evaluation of each contact part's law over its
+    /// points ([`crate::contact::FrictionCoefficient::values`]). Allocates vectors of the
     /// number of points; called once per outer iteration and once for the certificate.
     ///
     /// # Errors
     /// [`Error::Law`] if a user-defined law fails, naming the law
     /// (`contact[k].friction.mu (name)`) and the slip.
-    pub fn friction_coefficients(&self, u: &[f64]) -> Result<Vec<f64>> {
+    pub fn friction_coefficients(
+        &self,
+        u: &[f64],
+        counted: &dyn Fn(usize) -> bool,
+    ) -> Result<Vec<f64>> {
         let n = self.nodes.len();
-        let slips: Vec<f64> = (0..n)
-            .map(|i| {
-                let (_, t) = self.nodes.kinematics(self.dim, u, i);
-                (t[0] * t[0] + t[1] * t[1]).sqrt()
-            })
-            .collect();
         let mut mu = vec![0.0; n];
+        let (mut slips, mut positions, mut values) = (Vec::new(), Vec::new(), Vec::new());
         let mut start = 0;
         // Points are ordered by boundary: each run is one contact part.
         for run in self.nodes.boundary.chunk_by(|a, b| a == b) {
@@ -213,13 +228,26 @@ impl<'a> ContactAssembler<'a> {
             let Some(fr) = &self.boundaries[b].friction else {
                 continue;
             };
-            let positions = &self.nodes.position[range.clone()];
+            let points: Vec<usize> = range.clone().filter(|&i| counted(i)).collect();
+            slips.clear();
+            slips.extend(points.iter().map(|&i| {
+                let (_, t) = self.nodes.kinematics(self.dim, u, i);
+                (t[0] * t[0] + t[1] * t[1]).sqrt()
+            }));
+            positions.clear();
+            positions.extend(points.iter().map(|&i| self.nodes.position[i]));
+            values.clear();
+            values.resize(points.len(), 0.0);
             fr.mu
-                .values(&slips[range.clone()], positions, self.dim, &mut mu[range])
+                .values(&slips, &positions, self.dim, &mut values)
                 .map_err(|message| Error::Law {
                     law: format!("contact[{b}].friction.mu ({})", fr.mu.name()),
                     message,
                 })?;
+            mu[range].fill(f64::NAN);
+            for (&i, &m) in points.iter().zip(&values) {
+                mu[i] = m;
+            }
         }
         Ok(mu)
     }
@@ -243,9 +271,9 @@ impl<'a> ContactAssembler<'a> {
         counted: &dyn Fn(usize) -> bool,
     ) -> Result<FrictionData> {
         let n = self.nodes.len();
-        let mu = self.friction_coefficients(u)?;
+        let mu = self.friction_coefficients(u, counted)?;
         let mut responses = Vec::new();
-        self.normal_responses(u, false, &mut responses)?;
+        self.normal_responses(u, false, counted, &mut responses)?;
         let at_u = ContactAssembler {
             responses: &responses,
             ..*self

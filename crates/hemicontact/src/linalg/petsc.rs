@@ -17,10 +17,12 @@
 //! the partition's distributed numbering (each rank's rows contiguous):
 //! complete rows, since it assembled every cell around its nodes
 //! ([`crate::parallel::Subdomain`]); its other rows of `values` are partial and never read.
-//! Whether the matrix changed is decided on each rank's rows and agreed by all, the Krylov
-//! solve runs on all of them, and the solution is gathered on every rank, which runs the
-//! rest of the Newton step on the whole of it. On one process the same code holds every
-//! row.
+//! Whether the matrix changed is decided on each rank's rows and agreed by all, and the
+//! Krylov solve runs on all of them. Each rank then has the solution at its own rows and
+//! fetches it at its ghost rows (the free DOFs of the other nodes of its part) from their
+//! owners through a PETSc scatter: the rest of the Newton step runs on its part alone, and
+//! the entries of the solution outside its part are NaN, never read. On one process the
+//! same code holds every row.
 //!
 //! A changed matrix does not always get a new preconditioner: a GAMG set-up costs about
 //! [`SETUP_COST`] CG iterations, and between Newton steps the matrix changes only at the
@@ -79,8 +81,12 @@ pub struct PetscSolver {
     b_local: Vec<f64>,
     /// Solution of this rank's rows.
     x_local: Vec<f64>,
-    /// The whole solution gathered from every rank, in DOF numbering (several processes).
-    x_all: Vec<f64>,
+    /// The equation in the whole system of each ghost row of this rank (the free DOFs of
+    /// its part's other nodes), in the order handed to [`KspSystem::set_ghost_rows`]
+    /// (several processes).
+    ghost_equations: Vec<u32>,
+    /// The solution at the ghost rows (several processes).
+    ghost_values: Vec<f64>,
     /// The processes of the run.
     processes: Processes,
     /// Whether PETSc holds matrix values yet.
@@ -206,11 +212,27 @@ impl PetscSolver {
         } else {
             KspSystem::new(&local_ptr, &cols, coordinates, d, options)
         };
-        let system = created.map_err(|e| Error::Invalid {
+        let mut system = created.map_err(|e| Error::Invalid {
             field: "petsc.options".into(),
             value: format!("{options:?}"),
             allowed: format!("options PETSc accepts: {e}"),
         })?;
+        // The free DOFs of the part's other nodes (its ghosts): their solution comes from
+        // the ranks that own them.
+        let mut ghost_rows = Vec::new();
+        let mut ghost_equations = Vec::new();
+        if processes.size() > 1 {
+            for dof in n_rows..d * mesh.n_nodes() {
+                let eq = placement.equations[d * node(dof / d) + dof % d];
+                if eq != FIXED {
+                    ghost_rows.push(global(dof) as usize);
+                    ghost_equations.push(eq);
+                }
+            }
+            system
+                .set_ghost_rows(&ghost_rows)
+                .map_err(|e| Error::Breakdown(format!("PETSc refused the ghost rows: {e}")))?;
+        }
         Ok(PetscSolver {
             csr_values: vec![0.0; source.len()],
             source,
@@ -232,7 +254,8 @@ impl PetscSolver {
             dim: d,
             b_local: vec![0.0; n_rows],
             x_local: vec![0.0; n_rows],
-            x_all: Vec::new(),
+            ghost_values: vec![0.0; ghost_equations.len()],
+            ghost_equations,
             processes,
             has_matrix: false,
             options: options.to_string(),
@@ -362,6 +385,9 @@ impl SpdSolver for PetscSolver {
             stats.solve_time += t.elapsed().as_secs_f64();
             stats.iterations += outcome.iterations;
             if !outcome.converged() {
+                // The right-hand side's norm over every rank's rows (the KSP stopped on all).
+                let mut b_norm = [self.b_local.iter().map(|v| v * v).sum::<f64>()];
+                self.processes.sum(&mut b_norm)?;
                 return Err(Error::Breakdown(format!(
                     "PETSc ({}) did not reach the relative residual {eta:e}: {} after {} \
                      iterations (residual norm {:e}, right-hand side norm {:e}); options {:?}",
@@ -369,7 +395,7 @@ impl SpdSolver for PetscSolver {
                     outcome.reason_name,
                     outcome.iterations,
                     outcome.residual_norm,
-                    b.iter().map(|v| v * v).sum::<f64>().sqrt(),
+                    b_norm[0].sqrt(),
                     self.options
                 )));
             }
@@ -377,21 +403,30 @@ impl SpdSolver for PetscSolver {
                 self.fresh_rate = outcome.iterations.max(1) as f64 / decades;
             }
         }
+        if self.processes.size() > 1 {
+            // This rank's rows, then its ghost rows from their owners; nothing else of the
+            // solution is known here.
+            self.system
+                .ghost_values(&mut self.ghost_values)
+                .map_err(|e| self.breakdown("could not fetch the ghost rows", &e))?;
+            x.fill(f64::NAN);
+            for (&eq, &v) in self.row_equations.iter().zip(&self.x_local) {
+                if eq != FIXED {
+                    x[eq as usize] = v;
+                }
+            }
+            for (&eq, &v) in self.ghost_equations.iter().zip(&self.ghost_values) {
+                x[eq as usize] = v;
+            }
+            return Ok(stats);
+        }
         // PETSc's order: node order[p]'s DOFs at d·p…
-        let x_petsc = if self.processes.size() > 1 {
-            self.x_all.resize(self.equations.len(), 0.0);
-            self.processes
-                .all_gather_into(&self.x_local, &mut self.x_all)?;
-            &self.x_all
-        } else {
-            &self.x_local
-        };
         let d = self.dim;
         for (p, &v) in self.order.iter().enumerate() {
             for k in 0..d {
                 let eq = self.equations[d * v as usize + k];
                 if eq != FIXED {
-                    x[eq as usize] = x_petsc[d * p + k];
+                    x[eq as usize] = self.x_local[d * p + k];
                 }
             }
         }

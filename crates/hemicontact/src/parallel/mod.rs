@@ -9,13 +9,15 @@
 //! node graph), assembles the cells around them (its [`Subdomain`]) as a mesh of its own
 //! ([`Subdomain::local_mesh`]: its own nodes first, then the ghost nodes of those cells) on a
 //! pattern of that part alone, and hands PETSc's distributed matrix the rows of its own
-//! nodes ([`Placement`]); the bulk energy and gradient are completed by two collective
-//! operations per evaluation ([`Processes::sum`], [`Processes::all_gather`]). Every rank
-//! still holds the whole mesh besides its part and runs the whole outer loop on the same
-//! (gathered) data; but each sum, norm and maximum the solver decides on counts every entry
-//! on one rank only and is completed over the ranks ([`Share`]), so every rank takes the
-//! same decisions, and the step to vectors of the part's length changes what is counted,
-//! not the reductions.
+//! nodes ([`Placement`]). An evaluation computes the gradient of its own nodes and the
+//! terms of its own contact points, and sums the energies over the ranks
+//! ([`Processes::sum`]); a Newton step's solution is known at its own rows and fetched at
+//! its ghost rows from their owners (a PETSc scatter). Every rank still holds the whole
+//! mesh besides its part, and vectors of the whole mesh's length, but only the entries of
+//! its part are known (the others are NaN, never read); each sum, norm and maximum the
+//! solver decides on counts every entry on one rank only and is completed over the ranks
+//! ([`Share`]), so every rank takes the same decisions, and the step to vectors of the
+//! part's length changes what is counted, not the reductions.
 
 pub mod share;
 

@@ -965,7 +965,8 @@ pub fn largest_bounds(
 ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let ca = system.contact_assembler(problem);
     let mut responses = Vec::new();
-    ca.normal_responses(u, false, &mut responses)?;
+    let share = system.share();
+    ca.normal_responses(u, false, &|i| share.counts_point(i), &mut responses)?;
     let ca = crate::assembly::contact::ContactAssembler {
         responses: &responses,
         ..ca

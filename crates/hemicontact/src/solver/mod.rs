@@ -306,7 +306,7 @@ fn solve_scaled(
     // User-defined compliance laws: their responses at the answer, from the evaluation.
     ca.responses = &eval.normal;
     // The friction coefficients at the answer, one evaluation per contact part.
-    let mu = ca.friction_coefficients(&u)?;
+    let mu = ca.friction_coefficients(&u, &|i| system.share().counts_point(i))?;
     // The multipliers consistent with the last convex problem (its forces).
     let updated = frozen.multipliers.updated(
         &ca,
@@ -370,6 +370,12 @@ fn solve_scaled(
             .generalized_force(&problem.mesh, &eval.grad, system.share())
             / body_scale;
     report.rigid_shift = eval.rigid_shift;
+    // Each process knows the displacements of its part and the reactions of its own
+    // nodes: the whole of them on every process.
+    let (share, d) = (system.share(), problem.mesh.dim());
+    let mut reactions = reactions;
+    share.complete_entries(&mut u, d, |v| share.counts_node(v));
+    share.complete_entries(&mut reactions, d, |v| share.counts_node(v));
     // The answer is the rigid drop plus the displacement relative to it.
     let mut energy = energy;
     let mut contact = contact;
@@ -468,7 +474,7 @@ pub fn certify(
         .force_scales(share, d, &eval.grad_bulk, f, &external, &mut body_scale);
     let mu = system
         .contact_assembler(&scaled)
-        .friction_coefficients(&u)?;
+        .friction_coefficients(&u, &|i| share.counts_point(i))?;
     let (contact, certificate) = system.certificate(
         &scaled,
         &u,

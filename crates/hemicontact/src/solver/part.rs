@@ -37,13 +37,6 @@ pub(super) struct Part {
     pub grad: Vec<f64>,
     /// The ideal-locking multipliers of the part's cells (work array).
     pub multipliers: Vec<f64>,
-    /// This process's share of an evaluation: its own nodes' bulk gradient, then its
-    /// contact points' gradient (work array).
-    pub mine: Vec<f64>,
-    /// Every process's share, rank after rank (work array).
-    pub all: Vec<f64>,
-    /// The contact gradient of every point (work array; N, `d` entries per point).
-    pub point_grad: Vec<f64>,
 }
 
 impl Part {
@@ -73,9 +66,6 @@ impl Part {
             u: vec![0.0; n],
             grad: vec![0.0; n],
             multipliers: Vec::new(),
-            mine: Vec::new(),
-            all: Vec::new(),
-            point_grad: Vec::new(),
             sub,
         })
     }
@@ -164,11 +154,13 @@ impl Part {
 
     /// Completes an evaluation with the other processes: the terms of this process's
     /// contact points (`contact`, for the frozen quantities `frozen`, at the whole mesh's
-    /// displacement `u`; their node blocks of the Hessian added to `hess`), then the bulk
-    /// energies `e_bulk` and contact energies summed ([`Processes::sum`]) and the bulk
-    /// gradient of every node (into `grad_bulk`, DOF order) and the contact gradient of
-    /// every point (into [`Part::point_grad`]) gathered ([`Processes::all_gather_into`]).
-    /// Returns the bulk and contact energies of the whole (J).
+    /// displacement `u`; their node blocks of the Hessian added to `hess`) added to its own
+    /// nodes' entries of the gradient `grad` (DOF order), which also gets its own nodes'
+    /// bulk gradient minus the external forces `f_ext`, as `grad_bulk` does; the other
+    /// entries of both are NaN here (a ghost node's are partial, the rest unknown), never
+    /// read. Returns the bulk energy (from this process's `e_bulk`), the contact energy and
+    /// the work of the external forces `f_ext · u` of the whole (J), summed over the
+    /// processes ([`Processes::sum`], the one exchange of an evaluation).
     ///
     /// # Errors
     /// MPI's.
@@ -181,47 +173,43 @@ impl Part {
         u: &[f64],
         e_bulk: f64,
         mut hess: Option<&mut [f64]>,
+        f_ext: &[f64],
         grad_bulk: &mut [f64],
-    ) -> Result<[f64; 2]> {
+        grad: &mut [f64],
+    ) -> Result<[f64; 3]> {
         let d = self.mesh.dim();
         let rank = self.sub.rank;
-        // This process's share: its own nodes' bulk gradient (the first of its part), then
-        // its contact points' terms, whose node blocks of the Hessian go to its rows.
+        grad_bulk.fill(f64::NAN);
+        grad.fill(f64::NAN);
+        // Its own nodes, the first of its part: their bulk gradient is complete here.
         let own = self.sub.nodes().len();
-        self.mine.clear();
-        self.mine.extend_from_slice(&self.grad[..d * own]);
+        let mut work = 0.0;
+        for (l, &v) in self.nodes[..own].iter().enumerate() {
+            for k in 0..d {
+                let dof = d * v as usize + k;
+                let g = self.grad[d * l + k] - f_ext[dof];
+                grad_bulk[dof] = g;
+                grad[dof] = g;
+                work += f_ext[dof] * u[dof];
+            }
+        }
+        // Its contact points (on its own nodes), added point by point in their order as on
+        // one process; their node blocks of the Hessian go to its rows.
         let mut e_contact = 0.0;
         for (j, &i) in self.points.of(rank).iter().enumerate() {
             let term = contact.point(u, frozen, i as usize);
             e_contact += term.energy;
-            self.mine.extend_from_slice(&term.gradient[..d]);
+            let v = contact.nodes.node[i as usize] as usize;
+            for k in 0..d {
+                grad[d * v + k] += term.gradient[k];
+            }
             if let Some(h) = hess.as_deref_mut() {
                 let slots = &self.point_slots[6 * j..6 * j + 6];
                 ContactAssembler::add_block(d, &term, slots, h);
             }
         }
-        let n_points = contact.nodes.len();
-        let mut e = [e_bulk, e_contact];
-        self.all.resize(grad_bulk.len() + d * n_points, 0.0);
+        let mut e = [e_bulk, e_contact, work];
         processes.sum(&mut e)?;
-        processes.all_gather_into(&self.mine, &mut self.all)?;
-        // Rank after rank: its nodes' bulk gradient, then its points' contact gradient.
-        let g = &self.all[..];
-        self.point_grad.resize(d * n_points, 0.0);
-        let mut at = 0;
-        let partition = &self.sub.partition;
-        for r in 0..partition.size() {
-            for &v in partition.nodes(r) {
-                let v = v as usize;
-                grad_bulk[d * v..d * v + d].copy_from_slice(&g[at..at + d]);
-                at += d;
-            }
-            for &i in self.points.of(r) {
-                let i = i as usize;
-                self.point_grad[d * i..d * i + d].copy_from_slice(&g[at..at + d]);
-                at += d;
-            }
-        }
         Ok(e)
     }
 }

@@ -76,8 +76,8 @@ pub struct System {
     /// and the certificate, and the reductions that complete them.
     share: Share,
     /// The processes of the run: with several, each assembles its
-    /// [`crate::parallel::Subdomain`] and the energy and gradient are completed by
-    /// [`Processes::sum`] and [`Processes::all_gather`].
+    /// [`crate::parallel::Subdomain`] and the gradient of its own nodes, and the energies
+    /// are summed over them ([`Processes::sum`]).
     processes: Processes,
     /// The scales of the dimensionless variables the problem is solved in (set by the
     /// solver, see [`super::scaling`]); `None` for a problem in the user's units. Only
@@ -115,10 +115,12 @@ pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
 /// ([`System::evaluate`]): the work arrays of the Newton iteration, allocated once per solve.
 #[derive(Debug)]
 pub struct Evaluation {
-    /// Gradient of the total energy, DOF order (N).
+    /// Gradient of the total energy, DOF order (N); in a distributed run known at this
+    /// process's own nodes only (NaN elsewhere).
     pub grad: Vec<f64>,
     /// Gradient of the bulk energy minus the external forces (the negative of the interface
-    /// forces plus residual), DOF order (N).
+    /// forces plus residual), DOF order (N); in a distributed run known at this process's
+    /// own nodes only (NaN elsewhere).
     pub grad_bulk: Vec<f64>,
     /// Hessian values at the last evaluation with a Hessian (upper triangle, on
     /// [`System::pattern`]: in a distributed run, of this process's part; N/m).
@@ -495,7 +497,6 @@ impl System {
         } else {
             None
         };
-        let d = problem.mesh.dim();
         let (e_bulk, part) = match part {
             None => {
                 let bulk = BulkAssembler {
@@ -528,7 +529,9 @@ impl System {
             }
         };
         let mut contact = self.contact_assembler(problem);
-        if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
+        let share = &self.share;
+        let counted = |i: usize| share.counts_point(i);
+        if let Err(e) = contact.normal_responses(u, hessian, &counted, &mut out.normal) {
             out.law_error.get_or_insert(e);
             return f64::NAN;
         }
@@ -536,32 +539,24 @@ impl System {
         let (e_bulk, e_contact, work) = match part {
             Some(p) => {
                 let hess = hessian.then_some(out.hess.as_mut_slice());
-                let gathered = p.complete(
+                let completed = p.complete(
                     &self.processes,
                     &contact,
                     &frozen.contact(),
                     u,
                     e_bulk,
                     hess,
+                    &self.f_ext,
                     &mut out.grad_bulk,
+                    &mut out.grad,
                 );
-                let e = match gathered {
-                    Ok(e) => e,
+                match completed {
+                    Ok([e_bulk, e_contact, work]) => (e_bulk, e_contact, work),
                     Err(e) => {
                         out.law_error.get_or_insert(e);
                         return f64::NAN;
                     }
-                };
-                let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
-                out.grad.copy_from_slice(&out.grad_bulk);
-                // Added point by point in their order, as on one process.
-                for (i, &v) in self.contact.node.iter().enumerate() {
-                    let v = v as usize;
-                    for k in 0..d {
-                        out.grad[d * v + k] += p.point_grad[d * i + k];
-                    }
                 }
-                (e[0], e[1], work)
             }
             None => {
                 let hc = if hessian {
