@@ -299,6 +299,77 @@ fn gmsh_half_disc_across_processes() {
     agrees_across_processes("half-disc.toml");
 }
 
+/// A load path with a moving obstacle: the sliding indenter's five steps, each warm-started
+/// from the last one's answer put together from every process's part. Every step's
+/// contact forces, counts and largest displacement, and the last step's displacements,
+/// agree with the serial direct solve on 2 and 3 processes.
+#[test]
+fn a_load_path_across_processes() {
+    let name = "sliding-indenter.toml";
+    let dir = tempfile::tempdir().unwrap();
+    let direct = variant(
+        dir.path(),
+        name,
+        "direct.toml",
+        "linear_solver = \"direct\"",
+    );
+    let serial = dir.path().join("serial");
+    let out = bin()
+        .args(["solve", "-q"])
+        .arg(&direct)
+        .arg("--out")
+        .arg(&serial)
+        .output()
+        .unwrap();
+    assert_exit(&out, 0);
+    let table = |dir: &Path| -> Vec<Vec<String>> {
+        let text = std::fs::read_to_string(dir.join("load_path.csv")).unwrap();
+        text.lines()
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect()
+    };
+    let theirs = table(&serial);
+    let reference = displacement(&serial.join("step-005"));
+    let scale = reference.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let file = variant(dir.path(), name, "auto.toml", "");
+    for np in [2, 3] {
+        let folder = dir.path().join(format!("np{np}"));
+        solve_on(np, &file, &folder);
+        let mine = table(&folder);
+        assert_eq!(mine.len(), 6, "{np}: a header and five steps");
+        assert_eq!(mine[0], theirs[0], "{np}: columns");
+        let column = |name: &str| theirs[0].iter().position(|c| c == name).unwrap();
+        for (a, b) in mine[1..].iter().zip(&theirs[1..]) {
+            for field in ["load_factor", "n_contact", "n_slip", "converged"] {
+                assert_eq!(a[column(field)], b[column(field)], "{np}: {field}");
+            }
+            for field in ["contact_force_x", "contact_force_y", "max_displacement"] {
+                let (x, y): (f64, f64) = (
+                    a[column(field)].parse().unwrap(),
+                    b[column(field)].parse().unwrap(),
+                );
+                assert!(
+                    (x - y).abs() <= 1e-8 * y.abs(),
+                    "{np}: {field} {x:e} against {y:e}"
+                );
+            }
+        }
+        let u = displacement(&folder.join("step-005"));
+        assert!(u.iter().all(|v| v.is_finite()), "{np}: displacement");
+        let diff = u
+            .iter()
+            .zip(&reference)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / scale;
+        eprintln!(
+            "{name}, np = {np}: last step, max relative difference from the serial direct \
+             solve {diff:.1e}"
+        );
+        assert!(diff <= 1e-8, "{np} processes: {diff:e}");
+    }
+}
+
 /// A block held sideways by friction alone, 0.5 m above a compliant foundation: dropped
 /// onto it first (a linear programme over every process's contact points), then its side
 /// load, 0.9 of the friction limit μ N = 3 N, relieved in the first outer iteration and its
