@@ -185,6 +185,22 @@ impl Share {
         }
     }
 
+    /// Each of `parts` ← its element-wise sum over the processes, all in one
+    /// [`Share::sum`] (small arrays of one decision: normal equations and their right-hand
+    /// side, a direction and its size); nothing on one process.
+    pub fn sum_parts(&self, parts: &mut [&mut [f64]]) {
+        if self.processes.is_none() {
+            return;
+        }
+        let mut all: Vec<f64> = parts.iter().flat_map(|p| p.iter().copied()).collect();
+        self.sum(&mut all);
+        let mut at = 0;
+        for part in parts.iter_mut() {
+            part.copy_from_slice(&all[at..at + part.len()]);
+            at += part.len();
+        }
+    }
+
     /// `values` ← their element-wise maximum over the processes, a NaN on any process
     /// giving a NaN (an MPI maximum leaves NaNs to the implementation); nothing on one
     /// process.

@@ -78,7 +78,6 @@ use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
 use crate::fem::rigid::{solve_small, RigidMotions, Runaway};
-use crate::parallel::Share;
 use crate::problem::Problem;
 
 /// Most steps of the rigid drop of one body; each adds a touching contact point (a body
@@ -142,12 +141,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
                 total += f[d * v as usize + i].abs();
             }
         }
-        if share.is_split() {
-            let mut sums: Vec<f64> = load.iter().chain([&total]).copied().collect();
-            share.sum(&mut sums);
-            load.copy_from_slice(&sums[..6]);
-            total = sums[6];
-        }
+        share.sum_parts(&mut [&mut load, std::slice::from_mut(&mut total)]);
         let load_norm = norm(&load[..k]);
         if load_norm.is_nan() || load_norm <= ROUND_OFF * total {
             continue;
@@ -532,12 +526,7 @@ impl Sliding {
                     size += f[d * v as usize + i].abs();
                 }
             }
-            if share.is_split() {
-                let mut sums: Vec<f64> = direction.iter().chain([&size]).copied().collect();
-                share.sum(&mut sums);
-                direction.copy_from_slice(&sums[..6]);
-                size = sums[6];
-            }
+            share.sum_parts(&mut [&mut direction, std::slice::from_mut(&mut size)]);
             let along = norm(&direction[..m]);
             if along.is_nan() || along <= ROUND_OFF * size {
                 continue;
@@ -652,7 +641,7 @@ impl Sliding {
                     }
                 }
             }
-            complete_small(share, &mut gram, &mut load);
+            share.sum_parts(&mut [gram.as_flattened_mut(), &mut load]);
             let minus = load.map(|x| -x);
             let beta = solve_small(&gram, &minus, k);
             for (l, p) in psi.iter().enumerate() {
@@ -709,7 +698,7 @@ impl Sliding {
                     }
                 }
             }
-            complete_small(share, &mut gram, &mut rhs);
+            share.sum_parts(&mut [gram.as_flattened_mut(), &mut rhs]);
             let y = solve_small(&gram, &rhs, k);
             let mut c = [0.0; 6];
             for (l, bl) in basis.iter().enumerate() {
@@ -813,20 +802,6 @@ fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
         .sum()];
     share.sum(&mut sum);
     sum[0]
-}
-
-/// The small normal equations `gram`, `rhs` of a fit over the nodes or points this process
-/// counts, completed over the processes.
-fn complete_small(share: &Share, gram: &mut [[f64; 6]; 6], rhs: &mut [f64; 6]) {
-    if !share.is_split() {
-        return;
-    }
-    let mut sums: Vec<f64> = gram.iter().flatten().chain(rhs.iter()).copied().collect();
-    share.sum(&mut sums);
-    for (l, row) in gram.iter_mut().enumerate() {
-        row.copy_from_slice(&sums[6 * l..6 * l + 6]);
-    }
-    rhs.copy_from_slice(&sums[36..]);
 }
 
 /// The friction limit of body `s` at the largest bounds `bounds`, with the pressures and

@@ -649,14 +649,7 @@ impl RigidMotions {
                 }
             }
         }
-        if share.is_split() {
-            let mut sums: Vec<f64> = gram.iter().flatten().chain(&rhs).copied().collect();
-            share.sum(&mut sums);
-            for (l, row) in gram.iter_mut().enumerate() {
-                row.copy_from_slice(&sums[6 * l..6 * l + 6]);
-            }
-            rhs.copy_from_slice(&sums[36..]);
-        }
+        share.sum_parts(&mut [gram.as_flattened_mut(), &mut rhs]);
         let y = solve_small(&gram, &rhs, k);
         let mut c = [0.0; 6];
         for (l, zl) in basis.iter().enumerate() {
