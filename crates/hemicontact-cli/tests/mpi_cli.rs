@@ -127,16 +127,11 @@ fn assert_exit(out: &Output, code: i32) {
     );
 }
 
-/// The serial direct solve of a scenario against 1, 2 and 3 processes.
-fn agrees_across_processes(name: &str) {
-    let dir = tempfile::tempdir().unwrap();
-    let direct = variant(
-        dir.path(),
-        name,
-        "direct.toml",
-        "linear_solver = \"direct\"",
-    );
-    let serial = dir.path().join("serial");
+/// The serial program's solve of `scenarios/NAME` with the direct solver, into
+/// `dir/serial`, which it returns.
+fn solve_serial_direct(dir: &Path, name: &str) -> PathBuf {
+    let direct = variant(dir, name, "direct.toml", "linear_solver = \"direct\"");
+    let serial = dir.join("serial");
     let out = bin()
         .args(["solve", "-q"])
         .arg(&direct)
@@ -145,6 +140,36 @@ fn agrees_across_processes(name: &str) {
         .output()
         .unwrap();
     assert_exit(&out, 0);
+    serial
+}
+
+/// The rows of a CSV file, each split at its commas.
+fn csv_rows(file: &Path) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(file).unwrap();
+    text.lines()
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect()
+}
+
+/// `max |a − b|` over the entries, every one of `a` finite (a NaN would slip through the
+/// maximum).
+#[track_caller]
+fn max_difference(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    assert!(
+        a.iter().all(|v| v.is_finite()),
+        "a value that is not finite"
+    );
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The serial direct solve of a scenario against 1, 2 and 3 processes.
+fn agrees_across_processes(name: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let serial = solve_serial_direct(dir.path(), name);
     let reference = displacement(&serial);
     let scale = reference.iter().map(|v| v.abs()).fold(0.0, f64::max);
     let shift = summary(&serial)["report"]["rigid_shift"].as_f64().unwrap();
@@ -184,18 +209,7 @@ fn agrees_across_processes(name: &str) {
                 "{name}, 1 process: {files:?}"
             );
         }
-        let u = displacement(&folder);
-        // (A NaN would slip through the maxima below.)
-        assert!(
-            u.iter().all(|v| v.is_finite()),
-            "{name}, {np}: displacement"
-        );
-        let diff = u
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / scale;
+        let diff = max_difference(&displacement(&folder), &reference) / scale;
         eprintln!(
             "{name}, np = {np} ({}): max relative difference from the serial direct \
              solve {diff:.1e}",
@@ -207,13 +221,8 @@ fn agrees_across_processes(name: &str) {
             point_field(&folder, "reaction"),
             point_field(&serial, "reaction"),
         );
-        assert!(r.iter().all(|v| v.is_finite()), "{name}, {np}: reactions");
         let r_scale = r_serial.iter().map(|v| v.abs()).fold(0.0, f64::max);
-        let r_diff = r
-            .iter()
-            .zip(&r_serial)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let r_diff = max_difference(&r, &r_serial);
         eprintln!(
             "{name}, np = {np}: reactions, max difference {r_diff:.1e} of the largest \
              {r_scale:.1e}"
@@ -225,13 +234,10 @@ fn agrees_across_processes(name: &str) {
         // The contact results, each computed by the process that owns its point: every
         // point of the serial file, in its order, with its states and the same slips
         // and pressures to 1e-6 of the largest.
-        let rows = |dir: &Path| -> Vec<Vec<String>> {
-            let text = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
-            text.lines()
-                .map(|l| l.split(',').map(str::to_string).collect())
-                .collect()
-        };
-        let (mine, theirs) = (rows(&folder), rows(&serial));
+        let (mine, theirs) = (
+            csv_rows(&folder.join("contact.csv")),
+            csv_rows(&serial.join("contact.csv")),
+        );
         assert_eq!(mine.len(), theirs.len(), "{name}, {np}: contact.csv rows");
         let column = |name: &str| theirs[0].iter().position(|c| c == name).unwrap();
         for field in ["slip", "pressure"] {
@@ -307,35 +313,15 @@ fn gmsh_half_disc_across_processes() {
 fn a_load_path_across_processes() {
     let name = "sliding-indenter.toml";
     let dir = tempfile::tempdir().unwrap();
-    let direct = variant(
-        dir.path(),
-        name,
-        "direct.toml",
-        "linear_solver = \"direct\"",
-    );
-    let serial = dir.path().join("serial");
-    let out = bin()
-        .args(["solve", "-q"])
-        .arg(&direct)
-        .arg("--out")
-        .arg(&serial)
-        .output()
-        .unwrap();
-    assert_exit(&out, 0);
-    let table = |dir: &Path| -> Vec<Vec<String>> {
-        let text = std::fs::read_to_string(dir.join("load_path.csv")).unwrap();
-        text.lines()
-            .map(|l| l.split(',').map(str::to_string).collect())
-            .collect()
-    };
-    let theirs = table(&serial);
+    let serial = solve_serial_direct(dir.path(), name);
+    let theirs = csv_rows(&serial.join("load_path.csv"));
     let reference = displacement(&serial.join("step-005"));
     let scale = reference.iter().map(|v| v.abs()).fold(0.0, f64::max);
     let file = variant(dir.path(), name, "auto.toml", "");
     for np in [2, 3] {
         let folder = dir.path().join(format!("np{np}"));
         solve_on(np, &file, &folder);
-        let mine = table(&folder);
+        let mine = csv_rows(&folder.join("load_path.csv"));
         assert_eq!(mine.len(), 6, "{np}: a header and five steps");
         assert_eq!(mine[0], theirs[0], "{np}: columns");
         let column = |name: &str| theirs[0].iter().position(|c| c == name).unwrap();
@@ -354,14 +340,7 @@ fn a_load_path_across_processes() {
                 );
             }
         }
-        let u = displacement(&folder.join("step-005"));
-        assert!(u.iter().all(|v| v.is_finite()), "{np}: displacement");
-        let diff = u
-            .iter()
-            .zip(&reference)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max)
-            / scale;
+        let diff = max_difference(&displacement(&folder.join("step-005")), &reference) / scale;
         eprintln!(
             "{name}, np = {np}: last step, max relative difference from the serial direct \
              solve {diff:.1e}"
