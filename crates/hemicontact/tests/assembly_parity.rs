@@ -301,13 +301,17 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
 }
 
 /// The reductions of the outer loop, Newton and the certificate are split among the
-/// processes by what each counts (`Share`): every node, DOF, equation, contact point and
-/// cell is counted by exactly one of 3 processes, for a partition in contiguous ranges and
-/// for a scattered one, and the processes' shares of a body's norm, energy norm and a dot
-/// product add up to the whole one (each share computed here on one process, whose
-/// completion is the identity).
+/// processes by what each counts (`Share`) of its part of the mesh: every node, DOF,
+/// equation and cell of the whole problem is counted by exactly one of 3
+/// processes, for a partition in contiguous ranges and for a scattered one; the processes'
+/// shares of a body's norm, energy norm and a dot product, each on its part, add up to the
+/// whole one; and the part's entries of a whole array (`Share::of_part`) go back to their
+/// places in the whole (`Share::to_whole`, here on one process: its own entries, the rest
+/// NaN).
 #[test]
 fn each_entry_is_counted_by_one_process() {
+    use hemicontact::fem::dofs::FIXED;
+    use hemicontact::parallel::share::Entries;
     use hemicontact::parallel::{Processes, Share};
     use hemicontact::solver::local_scales::Bodies;
     for text in [builtin::paper(32, 1.0e4), paper3d(8)] {
@@ -331,6 +335,7 @@ fn each_entry_is_counted_by_one_process() {
         bodies.norms(&whole, d, v.len(), |k| v[k], &mut norm);
         bodies.energy_norms(&whole, mesh, &hooke, &v, &mut energy);
         let dot = whole.dot_equations(&x, &x);
+        let sizes = [mesh.n_nodes(), contact.len(), mesh.n_cells()];
         let parts = 3;
         let scattered: Vec<u32> = (0..mesh.n_nodes()).map(|v| (v * 7 % 3) as u32).collect();
         for partition in [
@@ -339,46 +344,82 @@ fn each_entry_is_counted_by_one_process() {
         ] {
             let mut nodes = vec![0; mesh.n_nodes()];
             let mut equations = vec![0; dofs.n_free()];
-            let mut points = vec![0; contact.len()];
             let mut cells = vec![0; mesh.n_cells()];
+            let mut back = vec![f64::NAN; v.len()];
             let (mut norm2, mut energy2, mut dots) =
                 (vec![0.0; bodies.count], vec![0.0; bodies.count], 0.0);
             for rank in 0..parts {
                 let sub = Subdomain::new(mesh, partition.clone(), rank);
-                let share = Share::of(mesh, &dofs, &contact, &sub, Processes::current());
+                let (part, ids) = sub.local_mesh(mesh).unwrap();
+                let part_dofs = dofs.restricted(&ids);
+                let own: Vec<u32> = (0..contact.len() as u32)
+                    .filter(|&i| {
+                        partition.rank_of[contact.node[i as usize] as usize] as usize == rank
+                    })
+                    .collect();
+                let share = Share::of(
+                    d,
+                    &sub,
+                    ids.clone(),
+                    &part_dofs,
+                    own.clone(),
+                    sizes,
+                    Processes::current(),
+                );
                 assert!(share.is_split());
-                for (v, n) in nodes.iter_mut().enumerate() {
-                    *n += usize::from(share.counts_node(v));
+                for (l, &w) in ids.iter().enumerate() {
+                    nodes[w as usize] += usize::from(share.counts_node(l));
+                    assert_eq!(share.whole_node(l as u32), w);
                     for k in 0..d {
-                        assert_eq!(share.counts_dof(d * v + k), share.counts_node(v));
+                        assert_eq!(share.counts_dof(d * l + k), share.counts_node(l));
+                        let eq = part_dofs.equations()[d * l + k];
+                        if eq != FIXED {
+                            assert_eq!(share.counts_equation(eq as usize), share.counts_node(l));
+                            let whole_eq = dofs.equations()[d * w as usize + k];
+                            assert_ne!(whole_eq, FIXED);
+                            equations[whole_eq as usize] +=
+                                usize::from(share.counts_equation(eq as usize));
+                        }
                     }
                 }
-                for (e, n) in equations.iter_mut().enumerate() {
-                    *n += usize::from(share.counts_equation(e));
+                for (c, &w) in sub.cells.iter().enumerate() {
+                    cells[w as usize] += usize::from(share.counts_cell(c));
                 }
-                for (i, n) in points.iter_mut().enumerate() {
-                    *n += usize::from(share.counts_point(i));
-                    assert_eq!(
-                        share.counts_point(i),
-                        share.counts_node(contact.node[i] as usize)
-                    );
+                let v_part = share.of_part(v.clone(), d, Entries::Nodes);
+                for (k, b) in share
+                    .to_whole(v_part.clone(), d, Entries::Nodes)
+                    .iter()
+                    .enumerate()
+                {
+                    if !b.is_nan() {
+                        assert_eq!(partition.rank_of[k / d] as usize, rank);
+                        back[k] = *b;
+                    }
                 }
-                for (c, n) in cells.iter_mut().enumerate() {
-                    *n += usize::from(share.counts_cell(c));
+                let mut x_part = vec![0.0; part_dofs.n_free()];
+                for (k, &eq) in part_dofs.equations().iter().enumerate() {
+                    if eq != FIXED {
+                        x_part[eq as usize] =
+                            x[dofs.equations()[d * ids[k / d] as usize + k % d] as usize];
+                    }
                 }
+                let part_bodies = bodies.restricted(&ids);
                 let (mut part_norm, mut part_energy) = (Vec::new(), Vec::new());
-                bodies.norms(&share, d, v.len(), |k| v[k], &mut part_norm);
-                bodies.energy_norms(&share, mesh, &hooke, &v, &mut part_energy);
+                part_bodies.norms(&share, d, v_part.len(), |k| v_part[k], &mut part_norm);
+                part_bodies.energy_norms(&share, &part, &hooke, &v_part, &mut part_energy);
                 for b in 0..bodies.count {
                     norm2[b] += part_norm[b].powi(2);
                     energy2[b] += part_energy[b].powi(2);
                 }
-                dots += share.dot_equations(&x, &x);
+                dots += share.dot_equations(&x_part, &x_part);
             }
             assert!(nodes.iter().all(|&n| n == 1));
             assert!(equations.iter().all(|&n| n == 1));
-            assert!(points.iter().all(|&n| n == 1));
             assert!(cells.iter().all(|&n| n == 1));
+            assert_eq!(
+                back, v,
+                "the parts' own entries, put back, are the whole array"
+            );
             for b in 0..bodies.count {
                 assert!(
                     (norm2[b].sqrt() - norm[b]).abs() <= 1e-13 * norm[b],

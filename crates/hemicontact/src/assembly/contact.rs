@@ -143,9 +143,7 @@ impl<'a> ContactAssembler<'a> {
     /// The responses (energy, pressure and, if `stiffness`, the derivative) of the points of
     /// the parts with a user-defined compliance law at displacement `u`, into `out` (resized
     /// to one per point; zero elsewhere): one batch of the law per contact part
-    /// ([`crate::contact::CustomCompliance::responses`]), over the points `counted` (this
-    /// process's; every point on one process), the others NaN without calling the law.
-    /// Pass the result as [`ContactAssembler::responses`] to assemble at `u`. Nothing is
+    /// ([`crate::contact::CustomCompliance::responses`]). Pass the result as [`ContactAssembler::responses`] to assemble at `u`. Nothing is
     /// done (and `out` is left empty) when no part has such a law.
     ///
     /// # Errors
@@ -154,7 +152,6 @@ impl<'a> ContactAssembler<'a> {
         &self,
         u: &[f64],
         stiffness: bool,
-        counted: &dyn Fn(usize) -> bool,
         out: &mut Vec<NormalResponse>,
     ) -> Result<()> {
         out.clear();
@@ -173,49 +170,34 @@ impl<'a> ContactAssembler<'a> {
             let NormalLaw::Custom(law) = &cb.normal else {
                 continue;
             };
-            let points: Vec<usize> = range.clone().filter(|&i| counted(i)).collect();
             penetration.clear();
             penetration.extend(
-                points
-                    .iter()
-                    .map(|&i| self.nodes.kinematics(self.dim, u, i).0 - self.nodes.gap[i]),
+                range
+                    .clone()
+                    .map(|i| self.nodes.kinematics(self.dim, u, i).0 - self.nodes.gap[i]),
             );
             responses.clear();
-            responses.resize(points.len(), NormalResponse::default());
+            responses.resize(range.len(), NormalResponse::default());
             law.responses(&penetration, stiffness, &mut responses)
                 .map_err(|message| Error::Law {
                     law: format!("contact[{b}].normal ({})", law.name),
                     message,
                 })?;
-            for i in range {
-                out[i] = NormalResponse {
-                    energy: f64::NAN,
-                    pressure: f64::NAN,
-                    stiffness: f64::NAN,
-                };
-            }
-            for (&i, r) in points.iter().zip(&responses) {
-                out[i] = *r;
-            }
+            out[range].copy_from_slice(&responses);
         }
         Ok(())
     }
 
     /// The friction coefficient `μ_i = μ(‖u_τ,i‖)` (or `μ(x_i)` for a law of the position)
-    /// of every point `counted` (this process's; every point on one process) at
-    /// displacement `u`, 0 at frictionless points and NaN at the points not counted: the
-    /// slips of those points, then one evaluation of each contact part's law over its
+    /// of every point at displacement `u`, 0 at frictionless points: the slips of the
+    /// points, then one evaluation of each contact part's law over its
     /// points ([`crate::contact::FrictionCoefficient::values`]). Allocates vectors of the
     /// number of points; called once per outer iteration and once for the certificate.
     ///
     /// # Errors
     /// [`Error::Law`] if a user-defined law fails, naming the law
     /// (`contact[k].friction.mu (name)`) and the slip.
-    pub fn friction_coefficients(
-        &self,
-        u: &[f64],
-        counted: &dyn Fn(usize) -> bool,
-    ) -> Result<Vec<f64>> {
+    pub fn friction_coefficients(&self, u: &[f64]) -> Result<Vec<f64>> {
         let n = self.nodes.len();
         let mut mu = vec![0.0; n];
         let (mut slips, mut positions, mut values) = (Vec::new(), Vec::new(), Vec::new());
@@ -228,26 +210,22 @@ impl<'a> ContactAssembler<'a> {
             let Some(fr) = &self.boundaries[b].friction else {
                 continue;
             };
-            let points: Vec<usize> = range.clone().filter(|&i| counted(i)).collect();
             slips.clear();
-            slips.extend(points.iter().map(|&i| {
+            slips.extend(range.clone().map(|i| {
                 let (_, t) = self.nodes.kinematics(self.dim, u, i);
                 (t[0] * t[0] + t[1] * t[1]).sqrt()
             }));
             positions.clear();
-            positions.extend(points.iter().map(|&i| self.nodes.position[i]));
+            positions.extend(range.clone().map(|i| self.nodes.position[i]));
             values.clear();
-            values.resize(points.len(), 0.0);
+            values.resize(range.len(), 0.0);
             fr.mu
                 .values(&slips, &positions, self.dim, &mut values)
                 .map_err(|message| Error::Law {
                     law: format!("contact[{b}].friction.mu ({})", fr.mu.name()),
                     message,
                 })?;
-            mu[range].fill(f64::NAN);
-            for (&i, &m) in points.iter().zip(&values) {
-                mu[i] = m;
-            }
+            mu[range].copy_from_slice(&values);
         }
         Ok(mu)
     }
@@ -257,35 +235,22 @@ impl<'a> ContactAssembler<'a> {
     /// multipliers of `current`. At a Signorini point a Coulomb bound takes the pressure from
     /// the current multiplier λ_i, not from its update `(λ_i + r_i(u_ν − g))_+`: the two
     /// agree at the fixed point, but the update amplifies the error of an inexact solve by
-    /// the large penalty r, which would put a floor under the fixed-point residual. Only the
-    /// points `counted` (this process's; every point on one process) are computed, the
-    /// others read as NaN.
+    /// the large penalty r, which would put a floor under the fixed-point residual.
     ///
     /// # Errors
     /// As [`ContactAssembler::friction_coefficients`] and
     /// [`ContactAssembler::normal_responses`].
-    pub fn convexify(
-        &self,
-        u: &[f64],
-        current: &ContactData<'_>,
-        counted: &dyn Fn(usize) -> bool,
-    ) -> Result<FrictionData> {
+    pub fn convexify(&self, u: &[f64], current: &ContactData<'_>) -> Result<FrictionData> {
         let n = self.nodes.len();
-        let mu = self.friction_coefficients(u, counted)?;
+        let mu = self.friction_coefficients(u)?;
         let mut responses = Vec::new();
-        self.normal_responses(u, false, counted, &mut responses)?;
+        self.normal_responses(u, false, &mut responses)?;
         let at_u = ContactAssembler {
             responses: &responses,
             ..*self
         };
         let mut data = FrictionData::zero(n);
         for i in 0..n {
-            if !counted(i) {
-                // Another process's point: computed there, read as NaN here.
-                data.bound[i] = f64::NAN;
-                data.linear[i] = [f64::NAN; 2];
-                continue;
-            }
             let cb = &self.boundaries[self.nodes.boundary[i] as usize];
             let Some(fr) = &cb.friction else { continue };
             let s = at_u.state(u, i, current);

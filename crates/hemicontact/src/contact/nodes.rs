@@ -193,6 +193,33 @@ impl ContactNodes {
         self.node.len()
     }
 
+    /// The points `points` of these (indices, in the order given) with the mesh node `v` of
+    /// each renumbered `local(v)`: a process's own contact points on its part of the mesh
+    /// ([`crate::parallel::Subdomain::local_mesh`]), every datum copied bit for bit.
+    pub(crate) fn restricted(&self, points: &[u32], local: impl Fn(u32) -> u32) -> ContactNodes {
+        fn pick<T: Copy>(all: &[T], points: &[u32]) -> Vec<T> {
+            if all.is_empty() {
+                return Vec::new();
+            }
+            points.iter().map(|&i| all[i as usize]).collect()
+        }
+        ContactNodes {
+            node: points
+                .iter()
+                .map(|&i| local(self.node[i as usize]))
+                .collect(),
+            boundary: pick(&self.boundary, points),
+            weight: pick(&self.weight, points),
+            normal: pick(&self.normal, points),
+            gap: pick(&self.gap, points),
+            tangent: pick(&self.tangent, points),
+            foundation_motion: pick(&self.foundation_motion, points),
+            position: pick(&self.position, points),
+            placed_normal: pick(&self.placed_normal, points),
+            placed_tangential: pick(&self.placed_tangential, points),
+        }
+    }
+
     /// Whether there are no contact points.
     pub fn is_empty(&self) -> bool {
         self.node.is_empty()

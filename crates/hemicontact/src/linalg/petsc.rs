@@ -20,9 +20,8 @@
 //! Whether the matrix changed is decided on each rank's rows and agreed by all, and the
 //! Krylov solve runs on all of them. Each rank then has the solution at its own rows and
 //! fetches it at its ghost rows (the free DOFs of the other nodes of its part) from their
-//! owners through a PETSc scatter: the rest of the Newton step runs on its part alone, and
-//! the entries of the solution outside its part are NaN, never read. On one process the
-//! same code holds every row.
+//! owners through a PETSc scatter: the rest of the Newton step runs on its part alone. On
+//! one process the same code holds every row.
 //!
 //! A changed matrix does not always get a new preconditioner: a GAMG set-up costs about
 //! [`SETUP_COST`] CG iterations, and between Newton steps the matrix changes only at the
@@ -68,22 +67,17 @@ pub struct PetscSolver {
     diagonal: Vec<usize>,
     /// Number of free equations (all processes).
     n_free: usize,
-    /// Equation number of every DOF of the whole mesh ([`FIXED`] for prescribed DOFs).
-    equations: Vec<u32>,
-    /// The equation number in the whole system of each of this rank's rows ([`FIXED`]
-    /// for a prescribed DOF), in PETSc's order.
+    /// The equation number (in the numbering of the system it is given: the part's on
+    /// several processes) of each of this rank's rows ([`FIXED`] for a prescribed DOF), in
+    /// PETSc's order.
     row_equations: Vec<u32>,
-    /// The nodes in the distributed numbering ([`crate::parallel::Partition::order`]), PETSc's order.
-    order: Vec<u32>,
-    /// Displacement components per node (2 or 3).
-    dim: usize,
     /// Right-hand side of this rank's rows.
     b_local: Vec<f64>,
     /// Solution of this rank's rows.
     x_local: Vec<f64>,
-    /// The equation in the whole system of each ghost row of this rank (the free DOFs of
-    /// its part's other nodes), in the order handed to [`KspSystem::set_ghost_rows`]
-    /// (several processes).
+    /// The equation of each ghost row of this rank (the free DOFs of its part's other
+    /// nodes, in the part's numbering), in the order handed to
+    /// [`KspSystem::set_ghost_rows`] (several processes).
     ghost_equations: Vec<u32>,
     /// The solution at the ghost rows (several processes).
     ghost_values: Vec<f64>,
@@ -112,9 +106,10 @@ pub const SETUP_COST: f64 = 50.0;
 impl PetscSolver {
     /// Hands the pattern of `pattern` (the reduced system of `mesh` with equation numbers
     /// `equations`) to PETSc, with the nodes' coordinates for the rigid-body modes, and
-    /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`. `mesh` is the
-    /// whole mesh on one process, and on several this process's part of it, its own nodes
-    /// first (see [`Placement`]): their rows are the ones it hands PETSc.
+    /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`. With
+    /// `placement.nodes`, `mesh` is this process's part of the mesh, its own nodes first, and
+    /// the system is distributed over the processes: the rows of its own nodes are the
+    /// ones it hands PETSc. Without, `mesh` is the whole mesh, solved by this process alone.
     ///
     /// # Errors
     /// [`Error::Invalid`] (field `petsc.options`) when PETSc refuses the options or cannot
@@ -128,7 +123,10 @@ impl PetscSolver {
     ) -> Result<Self> {
         let d = mesh.dim();
         let partition = placement.partition;
-        let processes = Processes::current();
+        let processes = match placement.nodes {
+            Some(_) => Processes::current(),
+            None => Processes::alone(),
+        };
         let rank = processes.rank();
         // The whole mesh's number of every node of `mesh`.
         let node = |l: usize| placement.nodes.map_or(l, |nodes| nodes[l] as usize);
@@ -205,9 +203,15 @@ impl PetscSolver {
         let (cols, source): (Vec<usize>, Vec<u32>) =
             entries.into_iter().map(|(c, s)| (c as usize, s)).unzip();
         let coordinates = &mesh.coords()[..n_rows];
-        let n = placement.equations.len();
+        let row_equations: Vec<u32> = equations[..n_rows].to_vec();
+        let own_free = row_equations.iter().filter(|&&eq| eq != FIXED).count();
+        // Counts below 2^53 add exactly in floating point.
+        let mut n_free = [own_free as f64];
+        processes.sum(&mut n_free)?;
+        let n_free = n_free[0] as usize;
         let first_row = d * partition.first[rank];
         let created = if processes.size() > 1 {
+            let n = d * partition.rank_of.len();
             KspSystem::new_distributed(n, first_row, &local_ptr, &cols, coordinates, d, options)
         } else {
             KspSystem::new(&local_ptr, &cols, coordinates, d, options)
@@ -222,8 +226,7 @@ impl PetscSolver {
         let mut ghost_rows = Vec::new();
         let mut ghost_equations = Vec::new();
         if processes.size() > 1 {
-            for dof in n_rows..d * mesh.n_nodes() {
-                let eq = placement.equations[d * node(dof / d) + dof % d];
+            for (dof, &eq) in equations.iter().enumerate().skip(n_rows) {
                 if eq != FIXED {
                     ghost_rows.push(global(dof) as usize);
                     ghost_equations.push(eq);
@@ -236,22 +239,13 @@ impl PetscSolver {
         Ok(PetscSolver {
             csr_values: vec![0.0; source.len()],
             source,
-            diagonal: equations[..n_rows]
+            diagonal: row_equations
                 .iter()
                 .filter(|&&eq| eq != FIXED)
                 .map(|&eq| col_ptr[eq as usize + 1] - 1)
                 .collect(),
-            n_free: placement
-                .equations
-                .iter()
-                .filter(|&&eq| eq != FIXED)
-                .count(),
-            row_equations: (0..n_rows)
-                .map(|dof| placement.equations[d * node(dof / d) + dof % d])
-                .collect(),
-            equations: placement.equations.to_vec(),
-            order: partition.order.clone(),
-            dim: d,
+            n_free,
+            row_equations,
             b_local: vec![0.0; n_rows],
             x_local: vec![0.0; n_rows],
             ghost_values: vec![0.0; ghost_equations.len()],
@@ -403,31 +397,20 @@ impl SpdSolver for PetscSolver {
                 self.fresh_rate = outcome.iterations.max(1) as f64 / decades;
             }
         }
+        // This rank's rows, then (several processes) its ghost rows from their owners;
+        // nothing else of the solution is known here.
         if self.processes.size() > 1 {
-            // This rank's rows, then its ghost rows from their owners; nothing else of the
-            // solution is known here.
             self.system
                 .ghost_values(&mut self.ghost_values)
                 .map_err(|e| self.breakdown("could not fetch the ghost rows", &e))?;
             x.fill(f64::NAN);
-            for (&eq, &v) in self.row_equations.iter().zip(&self.x_local) {
-                if eq != FIXED {
-                    x[eq as usize] = v;
-                }
-            }
             for (&eq, &v) in self.ghost_equations.iter().zip(&self.ghost_values) {
                 x[eq as usize] = v;
             }
-            return Ok(stats);
         }
-        // PETSc's order: node order[p]'s DOFs at d·p…
-        let d = self.dim;
-        for (p, &v) in self.order.iter().enumerate() {
-            for k in 0..d {
-                let eq = self.equations[d * v as usize + k];
-                if eq != FIXED {
-                    x[eq as usize] = self.x_local[d * p + k];
-                }
+        for (&eq, &v) in self.row_equations.iter().zip(&self.x_local) {
+            if eq != FIXED {
+                x[eq as usize] = v;
             }
         }
         Ok(stats)

@@ -4,20 +4,18 @@
 //! [`Processes`] is the one seam through which the rest of the program learns its rank and
 //! the number of processes, and the few collective operations it needs. Its one-process
 //! form is trivial (rank 0 of 1, every reduction the identity), so a run without MPI pays
-//! nothing for it. What is distributed today is the assembly of the Newton matrix and the
-//! linear solve: each rank owns a part of the nodes ([`Partition`]: Scotch's parts of the
-//! node graph), assembles the cells around them (its [`Subdomain`]) as a mesh of its own
-//! ([`Subdomain::local_mesh`]: its own nodes first, then the ghost nodes of those cells) on a
-//! pattern of that part alone, and hands PETSc's distributed matrix the rows of its own
-//! nodes ([`Placement`]). An evaluation computes the gradient of its own nodes and the
-//! terms of its own contact points, and sums the energies over the ranks
-//! ([`Processes::sum`]); a Newton step's solution is known at its own rows and fetched at
-//! its ghost rows from their owners (a PETSc scatter). Every rank still holds the whole
-//! mesh besides its part, and vectors of the whole mesh's length, but only the entries of
-//! its part are known (the others are NaN, never read); each sum, norm and maximum the
-//! solver decides on counts every entry on one rank only and is completed over the ranks
-//! ([`Share`]), so every rank takes the same decisions, and the step to vectors of the
-//! part's length changes what is counted, not the reductions.
+//! nothing for it. With several processes each rank owns a part of the nodes
+//! ([`Partition`]: Scotch's parts of the node graph) and solves on the cells around them
+//! (its [`Subdomain`]) as a mesh of its own ([`Subdomain::local_mesh`]: its own nodes
+//! first, then the ghost nodes of those cells): every array of the solve is that part's.
+//! It hands PETSc's distributed matrix the rows of its own nodes ([`Placement`]). An
+//! evaluation computes the gradient of its own nodes and the terms of its own contact
+//! points, and sums the energies over the ranks; a Newton step's solution is known at its
+//! own rows and fetched at its ghost rows from their owners (a PETSc scatter). Each sum,
+//! norm and maximum the solver decides on counts every entry on one rank only and is
+//! completed over the ranks ([`Share`]), so every rank takes the same decisions. The whole
+//! problem is still read by every rank and put together from the parts once, for the
+//! answer.
 
 pub mod share;
 
@@ -90,6 +88,16 @@ impl Processes {
             rank,
             size,
             on_machine,
+        }
+    }
+
+    /// This process alone (rank 0 of 1), whatever the launch: for work that one process does
+    /// on its own, every collective then the identity.
+    pub fn alone() -> Processes {
+        Processes {
+            rank: 0,
+            size: 1,
+            on_machine: 1,
         }
     }
 
@@ -348,12 +356,9 @@ impl Partition {
 pub struct Placement<'a> {
     /// How the whole mesh's nodes are split among the processes.
     pub partition: &'a Partition,
-    /// The whole mesh's number of every node of the part (`None`: the part is the whole
-    /// mesh).
+    /// The whole mesh's number of every node of the part, its own first (`None`: the whole
+    /// mesh, which this process solves alone).
     pub nodes: Option<&'a [u32]>,
-    /// The equation number of every DOF of the whole mesh
-    /// ([`crate::fem::dofs::FIXED`] for a prescribed one).
-    pub equations: &'a [u32],
 }
 
 /// Items (contact points, say) grouped by the rank that owns them, each group in increasing

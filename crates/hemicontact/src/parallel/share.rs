@@ -3,27 +3,32 @@
 //!
 //! Every global quantity the outer loop, Newton and the certificate decide on (a norm, a
 //! dot product, a largest residual) is computed in two steps: each process reduces the
-//! entries it *counts* ([`Share::counts_dof`], [`Share::counts_point`], …), then
-//! [`Share::sum`] or [`Share::max`] completes the partial results over the processes. A
-//! process counts the DOFs and equations of its own nodes, the contact points on them and
-//! the cells it owns ([`crate::parallel::Subdomain`]), so every entry is counted by exactly
-//! one process. On one process (and whenever every process holds and solves the whole
-//! system alone) it counts everything and the completions do nothing, so the serial solve
-//! adds the same numbers in the same order as without this seam.
+//! entries it *counts* ([`Share::counts_dof`], [`Share::counts_cell`], …; every contact point it holds), then
+//! [`Share::sum`] or [`Share::max`] completes the partial results over the processes. On
+//! several processes the solver's arrays are those of the process's part of the mesh, and
+//! it counts a prefix of each: its own nodes, their DOFs and equations, its contact points
+//! (it holds its own only) and its owned cells ([`crate::parallel::Subdomain`]), so every
+//! entry of the whole problem is counted by exactly one process. On one process (and
+//! whenever a process holds and solves the whole system alone) it counts everything and
+//! the completions do nothing, so the serial solve adds the same numbers in the same order
+//! as without this seam.
 //!
-//! The per-point and per-cell quantities of the outer loop (frozen friction data, force
-//! scales, certificate results, ideal-locking multipliers) are likewise computed only for
-//! the points a process counts and the cells of its part ([`Share::holds_cell`]); the
-//! answer's are completed by [`Share::complete_entries`]. A completion that fails (MPI's
-//! error) leaves NaN and is recorded; the solve then ends with that error ([`failure`]).
+//! [`Share::of_part`] picks a part's entries from an array of the whole problem (the
+//! prescribed displacements, a starting displacement); [`Share::to_whole`] puts the
+//! answer's arrays together from every process's own entries. A completion that fails
+//! (MPI's error) leaves NaN and is recorded; the solve then ends with that error
+//! ([`failure`]).
 
-use crate::contact::ContactNodes;
 use crate::fem::dofs::{DofMap, FIXED};
-use crate::mesh::Mesh;
 use crate::parallel::{Processes, Subdomain};
 use std::sync::OnceLock;
 
 /// Which entries of the solver's arrays this process counts; see the module documentation.
+///
+/// On several processes the solver's arrays are those of the process's part of the mesh
+/// ([`Subdomain::local_mesh`]): its own nodes first, then its ghost nodes; the DOFs and
+/// equations of its own nodes first; its own contact points only; its owned cells first,
+/// then its ghost cells. What it counts is therefore a prefix of each.
 #[derive(Clone, Debug)]
 pub struct Share {
     /// The processes that complete a partial result; `None`: this process counts every
@@ -31,17 +36,31 @@ pub struct Share {
     processes: Option<Processes>,
     /// The DOFs per node.
     dim: usize,
-    /// Per node of the whole mesh: counted here.
-    nodes: Vec<bool>,
-    /// Per equation (free DOF): counted here.
-    equations: Vec<bool>,
-    /// Per contact point: counted here.
-    points: Vec<bool>,
-    /// Per cell of the whole mesh: counted here.
-    cells: Vec<bool>,
-    /// Per cell of the whole mesh: in this process's part (its owned and ghost cells), whose
-    /// per-cell quantities it computes.
-    held_cells: Vec<bool>,
+    /// Number of nodes counted here: the first ones of the part.
+    own_nodes: usize,
+    /// Number of equations (free DOFs) counted here: the first ones of the part.
+    own_equations: usize,
+    /// Number of cells counted here (owned): the first ones of the part.
+    own_cells: usize,
+    /// The whole mesh's number of every node of the part.
+    node_ids: Vec<u32>,
+    /// The whole problem's number of every contact point of the part.
+    point_ids: Vec<u32>,
+    /// The whole mesh's number of every cell of the part.
+    cell_ids: Vec<u32>,
+    /// Numbers of nodes, contact points and cells of the whole problem.
+    whole: [usize; 3],
+}
+
+/// The kind of entry an array holds, for [`Share::to_whole`] and [`Share::of_part`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Entries {
+    /// Mesh nodes (DOF-order vectors: `d` numbers per node).
+    Nodes,
+    /// Contact points.
+    Points,
+    /// Cells.
+    Cells,
 }
 
 impl Share {
@@ -50,11 +69,13 @@ impl Share {
     pub const WHOLE: Share = Share {
         processes: None,
         dim: 1,
-        nodes: Vec::new(),
-        equations: Vec::new(),
-        points: Vec::new(),
-        cells: Vec::new(),
-        held_cells: Vec::new(),
+        own_nodes: usize::MAX,
+        own_equations: usize::MAX,
+        own_cells: usize::MAX,
+        node_ids: Vec::new(),
+        point_ids: Vec::new(),
+        cell_ids: Vec::new(),
+        whole: [0; 3],
     };
 
     /// [`Share::WHOLE`].
@@ -62,47 +83,35 @@ impl Share {
         Share::WHOLE
     }
 
-    /// What the process of `sub` counts of `mesh` (whose DOF map is `dofs` and contact
-    /// points `contact`): its own nodes and their DOFs and equations, the contact points on
-    /// them and its owned cells; completed over `processes`.
+    /// What the process of `sub` counts of its part of a mesh of dimension `dim`: the part's
+    /// nodes are `nodes` (their whole numbers, its own first), its DOF map `dofs`
+    /// ([`DofMap::restricted`]), its contact points the whole problem's `points` (all its
+    /// own), its cells `sub.cells` (owned first); the whole problem has `whole` nodes,
+    /// contact points and cells. Completed over `processes`.
     pub fn of(
-        mesh: &Mesh,
-        dofs: &DofMap,
-        contact: &ContactNodes,
+        dim: usize,
         sub: &Subdomain,
+        nodes: Vec<u32>,
+        dofs: &DofMap,
+        points: Vec<u32>,
+        whole: [usize; 3],
         processes: Processes,
     ) -> Share {
-        let d = mesh.dim();
-        let rank = sub.rank;
-        let nodes: Vec<bool> = sub
-            .partition
-            .rank_of
+        let own_nodes = sub.nodes().len();
+        let own_equations = dofs.equations()[..dim * own_nodes]
             .iter()
-            .map(|&r| r as usize == rank)
-            .collect();
-        let mut equations = vec![false; dofs.n_free()];
-        for (k, &eq) in dofs.equations().iter().enumerate() {
-            if eq != FIXED {
-                equations[eq as usize] = nodes[k / d];
-            }
-        }
-        let points = contact.node.iter().map(|&v| nodes[v as usize]).collect();
-        let mut cells = vec![false; mesh.n_cells()];
-        for &c in &sub.cells[..sub.owned] {
-            cells[c as usize] = true;
-        }
-        let mut held_cells = vec![false; mesh.n_cells()];
-        for &c in &sub.cells {
-            held_cells[c as usize] = true;
-        }
+            .filter(|&&eq| eq != FIXED)
+            .count();
         Share {
             processes: Some(processes),
-            dim: d,
-            nodes,
-            equations,
-            points,
-            cells,
-            held_cells,
+            dim,
+            own_nodes,
+            own_equations,
+            own_cells: sub.owned,
+            node_ids: nodes,
+            point_ids: points,
+            cell_ids: sub.cells.clone(),
+            whole,
         }
     }
 
@@ -112,66 +121,85 @@ impl Share {
         self.processes.is_some()
     }
 
-    /// Whether node `v` is counted here.
+    /// Whether node `v` (of the part) is counted here.
     #[inline]
     pub fn counts_node(&self, v: usize) -> bool {
-        self.nodes.is_empty() || self.nodes[v]
+        v < self.own_nodes
     }
 
     /// Whether DOF `k` (DOF order) is counted here.
     #[inline]
     pub fn counts_dof(&self, k: usize) -> bool {
-        self.nodes.is_empty() || self.nodes[k / self.dim]
+        k / self.dim < self.own_nodes
     }
 
     /// Whether equation `e` (free DOF) is counted here.
     #[inline]
     pub fn counts_equation(&self, e: usize) -> bool {
-        self.equations.is_empty() || self.equations[e]
+        e < self.own_equations
     }
 
-    /// Whether contact point `i` is counted here.
-    #[inline]
-    pub fn counts_point(&self, i: usize) -> bool {
-        self.points.is_empty() || self.points[i]
-    }
-
-    /// Whether cell `c` is counted here.
+    /// Whether cell `c` (of the part) is counted here.
     #[inline]
     pub fn counts_cell(&self, c: usize) -> bool {
-        self.cells.is_empty() || self.cells[c]
+        c < self.own_cells
     }
 
-    /// Whether cell `c` is in this process's part: its per-cell quantities are computed
-    /// here (those of the other cells are not, and read as NaN).
-    #[inline]
-    pub fn holds_cell(&self, c: usize) -> bool {
-        self.held_cells.is_empty() || self.held_cells[c]
+    /// The whole mesh's number of node `v` of the part (for messages and results).
+    pub fn whole_node(&self, v: u32) -> u32 {
+        if self.node_ids.is_empty() {
+            v
+        } else {
+            self.node_ids[v as usize]
+        }
     }
 
-    /// Completes `values`, `width` numbers per entry, over the processes: each process sends
-    /// the entries it counts (`counted(i)`), and every process receives each entry from the
-    /// one that counts it. For per-point and per-cell results that every process computes
-    /// for its own entries only; nothing on one process.
-    pub fn complete_entries(
-        &self,
-        values: &mut [f64],
-        width: usize,
-        counted: impl Fn(usize) -> bool,
-    ) {
+    /// The part's entries of `whole`, an array of the whole problem with `width` numbers per
+    /// entry of kind `of`: every node of the part (own and ghost), its contact points, its
+    /// cells. `whole` itself on one process.
+    pub fn of_part(&self, whole: Vec<f64>, width: usize, of: Entries) -> Vec<f64> {
+        if self.processes.is_none() {
+            return whole;
+        }
+        let ids = match of {
+            Entries::Nodes => &self.node_ids,
+            Entries::Points => &self.point_ids,
+            Entries::Cells => &self.cell_ids,
+        };
+        let mut part = Vec::with_capacity(width * ids.len());
+        for &i in ids {
+            let i = i as usize;
+            part.extend_from_slice(&whole[width * i..width * i + width]);
+        }
+        part
+    }
+
+    /// The array of the whole problem whose entries (of kind `of`, `width` numbers each)
+    /// this process's `part` holds for its part: each process sends the entries it counts,
+    /// tagged with their whole numbers, and every process receives all of them (one
+    /// gather). `part` itself on one process.
+    pub fn to_whole(&self, part: Vec<f64>, width: usize, of: Entries) -> Vec<f64> {
         if self.processes.is_none() || width == 0 {
-            return;
+            return part;
         }
-        let mut mine = Vec::new();
-        for i in (0..values.len() / width).filter(|&i| counted(i)) {
+        let (ids, counted, n) = match of {
+            Entries::Nodes => (&self.node_ids, self.own_nodes, self.whole[0]),
+            Entries::Points => (&self.point_ids, self.point_ids.len(), self.whole[1]),
+            Entries::Cells => (&self.cell_ids, self.own_cells, self.whole[2]),
+        };
+        let counted = counted.min(part.len() / width);
+        let mut mine = Vec::with_capacity((width + 1) * counted);
+        for (i, &id) in ids[..counted].iter().enumerate() {
             // Entry numbers below 2^53 are exact in floating point.
-            mine.push(i as f64);
-            mine.extend_from_slice(&values[width * i..width * i + width]);
+            mine.push(f64::from(id));
+            mine.extend_from_slice(&part[width * i..width * i + width]);
         }
+        let mut whole = vec![f64::NAN; width * n];
         for entry in self.gather_varying(&mine).chunks_exact(width + 1) {
             let i = entry[0] as usize;
-            values[width * i..width * i + width].copy_from_slice(&entry[1..]);
+            whole[width * i..width * i + width].copy_from_slice(&entry[1..]);
         }
+        whole
     }
 
     /// `values` ← their element-wise sum over the processes, added in rank order so that

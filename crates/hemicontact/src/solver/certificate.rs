@@ -70,6 +70,7 @@ use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
+use crate::parallel::share::Entries;
 use crate::parallel::Share;
 use serde::Serialize;
 
@@ -416,11 +417,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     let mut exact_any = false;
     let mut results = Vec::with_capacity(ca.nodes.len());
     for i in 0..ca.nodes.len() {
-        if !share.counts_point(i) {
-            // Another process's point: received from it below.
-            results.push(ContactResult::from_row(&[f64::NAN; ContactResult::ROW]));
-            continue;
-        }
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         // The friction bound F at this state (not frozen).
@@ -488,12 +484,10 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                     let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
                     let stick = frozen.bound[i] > 0.0
                         && crate::assembly::contact::project_ball(&z, m, frozen.bound[i]).1;
-                    if share.counts_point(i) {
-                        if stick {
-                            kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
-                        }
-                        kkt.n_constraints.2 += 1;
+                    if stick {
+                        kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
                     }
+                    kkt.n_constraints.2 += 1;
                     !stick && s.slip > 0.0
                 } else {
                     s.slip > stick_threshold
@@ -525,8 +519,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 friction_traction[k] += ft[a] * t[a][k] / w;
             }
         }
-        exact_any |= share.counts_point(i)
-            && (cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact()));
+        exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
         results.push(ContactResult {
             node: ca.nodes.node[i],
             boundary: ca.nodes.boundary[i] as usize,
@@ -567,17 +560,13 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         if rel > *value || (rel.is_nan() && !value.is_nan()) || w.is_none() && rel > 0.0 {
             *value = rel;
             *w = Some(Worst {
-                node: r.node,
+                node: share.whole_node(r.node),
                 boundary: r.boundary,
                 residual: rel,
             });
         }
     };
-    let counted = results
-        .iter()
-        .enumerate()
-        .filter(|&(i, _)| share.counts_point(i));
-    for (_, r) in counted {
+    for r in &results {
         worse(
             &mut cert.worst_normal,
             &mut cert.normal_law,
@@ -595,12 +584,6 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
     if share.is_split() {
-        let mut rows: Vec<f64> = results.iter().flat_map(ContactResult::to_row).collect();
-        share.complete_entries(&mut rows, ContactResult::ROW, |i| share.counts_point(i));
-        let whole = rows
-            .chunks_exact(ContactResult::ROW)
-            .map(ContactResult::from_row);
-        results = whole.collect();
         (cert.worst_normal, cert.normal_law) =
             worst_of_all(share, cert.worst_normal, cert.normal_law);
         (cert.worst_friction, cert.friction_law) =
@@ -610,6 +593,26 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_slip = share.count(cert.n_slip);
     }
     (results, cert)
+}
+
+/// The contact results of the whole problem from every process's `results` of its own
+/// points ([`Share::to_whole`]), with the whole mesh's node numbers; `results` itself on
+/// one process.
+pub fn whole_results(share: &Share, results: Vec<ContactResult>) -> Vec<ContactResult> {
+    if !share.is_split() {
+        return results;
+    }
+    let rows: Vec<f64> = results
+        .into_iter()
+        .flat_map(|mut r| {
+            r.node = share.whole_node(r.node);
+            r.to_row()
+        })
+        .collect();
+    let rows = share.to_whole(rows, ContactResult::ROW, Entries::Points);
+    rows.chunks_exact(ContactResult::ROW)
+        .map(ContactResult::from_row)
+        .collect()
 }
 
 /// The worst point of every process (`worst`, with its relative residual `value`), picked

@@ -159,6 +159,19 @@ impl AugmentedLagrangian {
         }
     }
 
+    /// These penalties for the contact points `points` of the ones they were built for (a
+    /// process's own points, in that order).
+    pub(crate) fn restricted(&self, points: &[u32]) -> Self {
+        let pick = |all: &[f64]| points.iter().map(|&i| all[i as usize]).collect();
+        AugmentedLagrangian {
+            settings: self.settings.clone(),
+            full_contact: pick(&self.full_contact),
+            full_locking: self.full_locking,
+            contact: pick(&self.contact),
+            locking: self.locking,
+        }
+    }
+
     /// Sets the penalties of outer iteration `k`: the full ones scaled by
     /// `factor(k, γ)/γ` ([`ConstraintSettings::factor`], continuation).
     pub fn set_stage(&mut self, k: usize) {

@@ -29,6 +29,15 @@ impl Continuation {
         Continuation { penalties, stages }
     }
 
+    /// This continuation for the contact points `points` of the ones it was built for
+    /// ([`AugmentedLagrangian::restricted`]).
+    pub(crate) fn restricted(&self, points: &[u32]) -> Self {
+        Continuation {
+            penalties: self.penalties.restricted(points),
+            stages: self.stages,
+        }
+    }
+
     /// Sets the penalties of outer iteration `k` ([`AugmentedLagrangian::set_stage`]).
     pub fn set_stage(&mut self, k: usize) {
         self.penalties.set_stage(k);

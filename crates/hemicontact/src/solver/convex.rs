@@ -161,9 +161,6 @@ impl ConvexEnergy for ConvexProblem<'_> {
         let d = self.problem.mesh.dim();
         let (eval, dofs, share) = (&*self.eval, &self.system.dofs, self.system.share());
         for (i, &v) in self.system.contact.node.iter().enumerate() {
-            if !share.counts_point(i) {
-                continue;
-            }
             let v = v as usize;
             let r = (0..d)
                 .filter(|&k| !dofs.is_fixed(d * v + k))
@@ -250,7 +247,6 @@ impl ConvexEnergy for ConvexProblem<'_> {
                     })
                     .fold(0.0f64, f64::max);
                 let into = (0..contact.len())
-                    .filter(|&i| share.counts_point(i))
                     .filter(|&i| rigid.body_of[contact.node[i] as usize] as usize == r.body)
                     .map(|i| {
                         let m = rigid.displacement(

@@ -8,6 +8,7 @@ use super::multipliers::Multipliers;
 use super::System;
 use crate::assembly::contact::{ContactData, FrictionData};
 use crate::error::Result;
+use crate::parallel::share::Entries;
 use crate::parallel::Share;
 use crate::problem::Problem;
 
@@ -45,11 +46,10 @@ impl Frozen {
             friction: FrictionData::zero(n),
             multipliers: Multipliers::zero(n, n_cells),
         };
-        let share = system.share();
         Ok(Frozen {
             friction: system
                 .contact_assembler(problem)
-                .convexify(u, &zero.contact(), &|i| share.counts_point(i))?,
+                .convexify(u, &zero.contact())?,
             multipliers: zero.multipliers,
         })
     }
@@ -63,16 +63,14 @@ impl Frozen {
     pub fn image(&self, system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let ca = system.contact_assembler(problem);
         let data = self.contact();
-        let share = system.share();
         Ok(Frozen {
-            friction: ca.convexify(u, &data, &|i| share.counts_point(i))?,
+            friction: ca.convexify(u, &data)?,
             multipliers: self.multipliers.updated(
                 &ca,
                 &data,
                 &system.continuation.penalties,
                 problem,
                 u,
-                share,
             ),
         })
     }
@@ -92,7 +90,7 @@ impl Frozen {
         let (z, g) = (&self.friction, &image.friction);
         let share = system.share();
         let mut fp = 0.0f64;
-        for i in (0..z.bound.len()).filter(|&i| share.counts_point(i)) {
+        for i in 0..z.bound.len() {
             let mut diff = (g.bound[i] - z.bound[i]).powi(2);
             for a in 0..2 {
                 diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
@@ -140,31 +138,43 @@ impl Frozen {
         z
     }
 
-    /// These quantities completed over the processes: each process computes those of its
-    /// own contact points and part's cells, the others are received from the process that
-    /// counts them ([`Share::complete_entries`]). Nothing on one process.
-    pub fn complete(&mut self, share: &Share) {
-        let point = |i: usize| share.counts_point(i);
-        let (f, m) = (&mut self.friction, &mut self.multipliers);
-        share.complete_entries(&mut f.bound, 1, point);
-        share.complete_entries(f.linear.as_flattened_mut(), 2, point);
-        share.complete_entries(&mut m.pressure, 1, point);
-        share.complete_entries(m.traction.as_flattened_mut(), 2, point);
-        share.complete_entries(&mut m.locking, 1, |c| share.counts_cell(c));
+    /// The quantities of the whole problem from every process's of its own contact points
+    /// and cells ([`Share::to_whole`]; the locking multipliers with `ideal` locking only);
+    /// these themselves on one process.
+    pub fn to_whole(self, share: &Share, ideal: bool) -> Frozen {
+        if !share.is_split() {
+            return self;
+        }
+        let points = |v: Vec<f64>, width| share.to_whole(v, width, Entries::Points);
+        let pairs = |v: Vec<[f64; 2]>| -> Vec<[f64; 2]> {
+            let flat = points(v.into_iter().flatten().collect(), 2);
+            flat.chunks_exact(2).map(|p| [p[0], p[1]]).collect()
+        };
+        let (f, m) = (self.friction, self.multipliers);
+        Frozen {
+            friction: FrictionData {
+                bound: points(f.bound, 1),
+                linear: pairs(f.linear),
+            },
+            multipliers: Multipliers {
+                pressure: points(m.pressure, 1),
+                traction: pairs(m.traction),
+                locking: match ideal {
+                    true => share.to_whole(m.locking, 1, Entries::Cells),
+                    false => Vec::new(),
+                },
+            },
+        }
     }
 
     /// The entries of [`Frozen::flatten`]'s vector for `n` contact points and `n_cells`
-    /// locking multipliers that `share` counts: those of its contact points and cells
-    /// (empty when it counts everything).
+    /// locking multipliers that `share` counts: those of its contact points (all it holds)
+    /// and of its owned cells (empty when it counts everything).
     pub fn counted(share: &Share, n: usize, n_cells: usize) -> Vec<bool> {
         if !share.is_split() {
             return Vec::new();
         }
-        let point = |i: usize| share.counts_point(i);
-        let mut counts: Vec<bool> = (0..n).map(point).collect();
-        counts.extend((0..2 * n).map(|k| point(k / 2)));
-        counts.extend((0..n).map(point));
-        counts.extend((0..2 * n).map(|k| point(k / 2)));
+        let mut counts = vec![true; 6 * n];
         counts.extend((0..n_cells).map(|c| share.counts_cell(c)));
         counts
     }

@@ -150,7 +150,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         let mut rows = Vec::new();
         let mut gaps = Vec::new();
         let mut tresca = false;
-        for i in (0..contact.len()).filter(|&i| share.counts_point(i)) {
+        for i in 0..contact.len() {
             let v = contact.node[i] as usize;
             if rigid.body_of[v] as usize != b {
                 continue;
@@ -672,7 +672,7 @@ impl Sliding {
             let k = basis.len();
             let mut gram = [[0.0; 6]; 6];
             let mut rhs = [0.0; 6];
-            for &(i, _) in s.points.iter().filter(|&&(i, _)| share.counts_point(i)) {
+            for &(i, _) in &s.points {
                 let v = contact.node[i] as usize;
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
@@ -797,7 +797,6 @@ fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
     let mut sum = [s
         .points
         .iter()
-        .filter(|&&(i, _)| share.counts_point(i))
         .map(|&(i, t)| system.contact.weight[i] * bound[i] * t)
         .sum()];
     share.sum(&mut sum);
@@ -820,7 +819,7 @@ fn limit(
     let (mut coulomb, mut tresca) = (false, false);
     let mut flat = !s.rotation;
     let share = system.share();
-    for &(i, t) in s.points.iter().filter(|&&(i, _)| share.counts_point(i)) {
+    for &(i, t) in &s.points {
         let w = system.contact.weight[i];
         let boundary = &problem.contact[system.contact.boundary[i] as usize];
         let is_coulomb = boundary
@@ -940,8 +939,7 @@ pub fn largest_bounds(
 ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let ca = system.contact_assembler(problem);
     let mut responses = Vec::new();
-    let share = system.share();
-    ca.normal_responses(u, false, &|i| share.counts_point(i), &mut responses)?;
+    ca.normal_responses(u, false, &mut responses)?;
     let ca = crate::assembly::contact::ContactAssembler {
         responses: &responses,
         ..ca

@@ -124,6 +124,16 @@ impl Bodies {
         }
     }
 
+    /// These bodies on a part of the mesh whose node `l` is the whole mesh's `nodes[l]`:
+    /// [`Bodies::of_node`] is the part's.
+    pub fn restricted(&self, nodes: &[u32]) -> Bodies {
+        Bodies {
+            of_node: nodes.iter().map(|&v| self.of_node[v as usize]).collect(),
+            count: self.count,
+            force_floor: self.force_floor.clone(),
+        }
+    }
+
     /// The Euclidean norm per body of the DOF vector whose entry `k` is `value(k)` (`n`
     /// entries, DOF order, dimension `d`; 0 for a DOF left out), into `out` (one per body),
     /// summed in DOF order over the DOFs `share` counts, then over the processes.

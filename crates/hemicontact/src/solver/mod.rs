@@ -19,7 +19,6 @@ pub mod mixing;
 pub mod multipliers;
 pub mod newton;
 pub mod outer;
-mod part;
 pub mod report;
 pub mod scaling;
 pub mod system;
@@ -38,6 +37,7 @@ pub use system::{Evaluation, System};
 
 use crate::error::Result;
 use crate::linalg::Ordering;
+use crate::parallel::share::Entries;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
 use std::sync::atomic::AtomicBool;
@@ -221,7 +221,7 @@ pub fn solve_observed(
     let scales = scaling::Scales::of(problem)?;
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
-    let solution = solve_dimensionless(&scaled, settings, u, &scales, stop, observe)?;
+    let solution = solve_dimensionless(scaled, settings, u, &scales, stop, observe)?;
     let mut solution = scales.dimensional(solution);
     solution.report.free_rigid_motions = problem.rigid_motions()?.describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
@@ -236,7 +236,7 @@ pub fn solve_observed(
 /// ([`held::rigid_drop`]); the outer loop then solves for the displacement relative to
 /// that placement, and the answer is the placement plus it.
 fn solve_dimensionless(
-    problem: &Problem,
+    problem: Problem,
     settings: &SolverSettings,
     u: Vec<f64>,
     scales: &scaling::Scales,
@@ -253,17 +253,23 @@ fn solve_dimensionless(
 
 /// The body of [`solve_dimensionless`].
 fn solve_scaled(
-    problem: &Problem,
+    problem: Problem,
     settings: &SolverSettings,
-    mut u: Vec<f64>,
+    u: Vec<f64>,
     scales: &scaling::Scales,
     stop: &AtomicBool,
     observe: &dyn Fn(&OuterProgress),
 ) -> Result<Solution> {
     let start = Instant::now();
-    let mut system = System::new(problem, settings)?;
+    // On several processes, this process's part of the system and of the problem: every
+    // array below is the part's, until the answer is put together.
+    let (mut system, part) = System::for_solve(&problem, settings)?;
     system.scales = Some(*scales);
-    let prescribed = problem.prescribed_displacement();
+    let (d, share) = (problem.mesh.dim(), system.share());
+    let prescribed = share.of_part(problem.prescribed_displacement(), d, Entries::Nodes);
+    let mut u = share.of_part(u, d, Entries::Nodes);
+    // On several processes the whole problem is not needed any more.
+    let problem = &part.unwrap_or(problem);
     for (k, x) in u.iter_mut().enumerate() {
         if system.dofs.is_fixed(k) {
             *x = prescribed[k];
@@ -306,7 +312,7 @@ fn solve_scaled(
     // User-defined compliance laws: their responses at the answer, from the evaluation.
     ca.responses = &eval.normal;
     // The friction coefficients at the answer, one evaluation per contact part.
-    let mu = ca.friction_coefficients(&u, &|i| system.share().counts_point(i))?;
+    let mu = ca.friction_coefficients(&u)?;
     // The multipliers consistent with the last convex problem (its forces).
     let updated = frozen.multipliers.updated(
         &ca,
@@ -314,7 +320,6 @@ fn solve_scaled(
         &system.continuation.penalties,
         problem,
         &u,
-        system.share(),
     );
     let (contact, mut certificate) = system.certificate(
         problem,
@@ -370,12 +375,6 @@ fn solve_scaled(
             .generalized_force(&problem.mesh, &eval.grad, system.share())
             / body_scale;
     report.rigid_shift = eval.rigid_shift;
-    // Each process knows the displacements of its part and the reactions of its own
-    // nodes: the whole of them on every process.
-    let (share, d) = (system.share(), problem.mesh.dim());
-    let mut reactions = reactions;
-    share.complete_entries(&mut u, d, |v| share.counts_node(v));
-    share.complete_entries(&mut reactions, d, |v| share.counts_node(v));
     // The answer is the rigid drop plus the displacement relative to it.
     let mut energy = energy;
     let mut contact = contact;
@@ -388,13 +387,18 @@ fn solve_scaled(
             c.u_nu += p;
         }
     }
-    // Each process computed the multipliers and frozen quantities of its own points and
-    // cells: the whole of them on every process.
-    let mut locking_multiplier = updated.locking;
+    // Each process knows the displacements, reactions, contact results and multipliers of
+    // its own nodes, points and cells: the whole of them on every process.
     let share = system.share();
-    share.complete_entries(&mut locking_multiplier, 1, |c| share.counts_cell(c));
-    let mut frozen = frozen;
-    frozen.complete(share);
+    let u = share.to_whole(u, d, Entries::Nodes);
+    let reactions = share.to_whole(reactions, d, Entries::Nodes);
+    let contact = certificate::whole_results(share, contact);
+    let ideal = problem.material.locking.ideal().is_some();
+    let locking_multiplier = match ideal {
+        true => share.to_whole(updated.locking, 1, Entries::Cells),
+        false => Vec::new(),
+    };
+    let frozen = frozen.to_whole(share, ideal);
     report.timings.total = start.elapsed().as_secs_f64();
     Ok(Solution {
         u,
@@ -474,7 +478,7 @@ pub fn certify(
         .force_scales(share, d, &eval.grad_bulk, f, &external, &mut body_scale);
     let mu = system
         .contact_assembler(&scaled)
-        .friction_coefficients(&u, &|i| share.counts_point(i))?;
+        .friction_coefficients(&u)?;
     let (contact, certificate) = system.certificate(
         &scaled,
         &u,

@@ -48,8 +48,7 @@ impl Multipliers {
     ///   of `data` (so that τ_i is the friction traction of the problem just solved),
     /// - `λ_T ← (λ_T + r_T Q(ε_T(u)))_+` per cell with ideal locking,
     ///
-    /// with the penalties of `penalties` at their current stage; the cells' for the cells of
-    /// this process's part (`share`, NaN for the others).
+    /// with the penalties of `penalties` at their current stage.
     pub fn updated(
         &self,
         ca: &ContactAssembler<'_>,
@@ -57,7 +56,6 @@ impl Multipliers {
         penalties: &AugmentedLagrangian,
         problem: &Problem,
         u: &[f64],
-        share: &Share,
     ) -> Multipliers {
         let n = ca.nodes.len();
         let m = ca.dim - 1;
@@ -81,14 +79,7 @@ impl Multipliers {
             }
         }
         next.locking = match problem.material.locking.ideal() {
-            Some(set) => update_locking(
-                &problem.mesh,
-                &set,
-                penalties.locking(),
-                u,
-                &self.locking,
-                share,
-            ),
+            Some(set) => update_locking(&problem.mesh, &set, penalties.locking(), u, &self.locking),
             None => self.locking.clone(),
         };
         next
@@ -114,7 +105,7 @@ impl Multipliers {
         share: &Share,
     ) -> f64 {
         let mut fp = 0.0f64;
-        for i in (0..self.pressure.len()).filter(|&i| share.counts_point(i)) {
+        for i in 0..self.pressure.len() {
             let slip_scale = scale[i] / (weight[i] * stiffness[i]);
             let r = penalties.contact()[i] * slip_scale;
             let dt = ((next.traction[i][0] - self.traction[i][0]).powi(2)
@@ -158,8 +149,7 @@ impl Multipliers {
         };
         let (mut max_pressure, mut min_pressure) = (0.0f64, f64::INFINITY);
         let mut n_points = 0;
-        let counted = (0..ca.nodes.len()).filter(|&i| share.counts_point(i));
-        for i in counted.filter(|&i| exact(i)) {
+        for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
             let gap = ca.nodes.gap[i];
             let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
             let p = self.pressure[i];
@@ -192,20 +182,17 @@ impl Multipliers {
 }
 
 /// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+` of the locking set `set`
-/// with penalty `r`, for the cells of this process's part (`share`; NaN for the others).
+/// with penalty `r`, for every cell of `mesh` (on several processes, of this process's
+/// part: a ghost cell's update is computed alike by each process that holds it).
 pub fn update_locking(
     mesh: &Mesh,
     set: &LockingSet,
     r: f64,
     u: &[f64],
     current: &[f64],
-    share: &Share,
 ) -> Vec<f64> {
     (0..mesh.n_cells())
         .map(|c| {
-            if !share.holds_cell(c) {
-                return f64::NAN;
-            }
             let (_, eps) = element::cell_strain(mesh, u, c);
             (current[c] + r * set.q(&eps)).max(0.0)
         })

@@ -384,10 +384,9 @@ pub fn run(
         if k == 0 && relieved_first {
             // A Coulomb bound at a Signorini point takes its pressure from the multiplier,
             // zero in this first iteration: take the updated one.
-            next.friction =
-                system
-                    .contact_assembler(problem)
-                    .convexify(u, &next.contact(), &|i| system.share().counts_point(i))?;
+            next.friction = system
+                .contact_assembler(problem)
+                .convexify(u, &next.contact())?;
         }
         let g = next.flatten();
         // Each contact point on its own scale (see `local_scales`).

@@ -8,7 +8,6 @@ use super::certificate::{Certificate, ContactResult};
 use super::continuation::Continuation;
 use super::frozen::Frozen;
 use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
-use super::part::Part;
 use super::scaling::Scales;
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
@@ -36,6 +35,8 @@ pub struct System {
     /// Stored entries of the upper triangle of the whole reduced system (over all
     /// processes; [`SystemPattern::nnz`] on one).
     pub nnz: usize,
+    /// The sizes of the whole problem (those of `dofs` and `contact` on one process).
+    pub whole: WholeCounts,
     /// The linear solver of the Newton systems, prepared on `pattern` (direct: symbolic
     /// analysis done; iterative: multigrid grids built).
     pub linear_solver: Box<dyn SpdSolver>,
@@ -68,10 +69,9 @@ pub struct System {
     /// Diagonal slots of the free equations of the bodies with free rigid motions, in this
     /// process's rows (all of them on one process).
     rigid_slots: Vec<usize>,
-    /// In a distributed run, this process's part of the system: the mesh, DOF map and
-    /// contact points it assembles, and the work arrays of completing an evaluation; `None`
-    /// on one process.
-    part: Option<Part>,
+    /// In a distributed run, this process's subdomain: the partition of the nodes and the
+    /// cells of its part (whole numbering, owned first); `None` on one process.
+    subdomain: Option<Subdomain>,
     /// What this process counts in the global sums and maxima of the outer loop, Newton
     /// and the certificate, and the reductions that complete them.
     share: Share,
@@ -88,6 +88,17 @@ pub struct System {
     /// displacement relative to it, and the contact points' gaps and tangential
     /// displacements account for it ([`ContactNodes::place`]). `None`: no placement.
     pub placement: Option<Vec<f64>>,
+}
+
+/// The sizes of the whole problem, whatever part of it a process holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct WholeCounts {
+    /// Number of DOFs (d per node).
+    pub dofs: usize,
+    /// Number of equations (free DOFs).
+    pub equations: usize,
+    /// Number of contact points.
+    pub contact_points: usize,
 }
 
 /// The user's units of the solver's variables ([`System::user_units`]).
@@ -115,12 +126,12 @@ pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
 /// ([`System::evaluate`]): the work arrays of the Newton iteration, allocated once per solve.
 #[derive(Debug)]
 pub struct Evaluation {
-    /// Gradient of the total energy, DOF order (N); in a distributed run known at this
-    /// process's own nodes only (NaN elsewhere).
+    /// Gradient of the total energy, DOF order (N); in a distributed run, of this process's
+    /// part, known at its own nodes only (NaN at its ghost nodes).
     pub grad: Vec<f64>,
     /// Gradient of the bulk energy minus the external forces (the negative of the interface
-    /// forces plus residual), DOF order (N); in a distributed run known at this process's
-    /// own nodes only (NaN elsewhere).
+    /// forces plus residual), DOF order (N); in a distributed run, of this process's part,
+    /// known at its own nodes only (NaN at its ghost nodes).
     pub grad_bulk: Vec<f64>,
     /// Hessian values at the last evaluation with a Hessian (upper triangle, on
     /// [`System::pattern`]: in a distributed run, of this process's part; N/m).
@@ -184,7 +195,8 @@ impl System {
 
     /// As [`System::new`] with the linear solver `kind` instead of the problem's: for the
     /// direct solver the symbolic Cholesky analysis, for the iterative one the multigrid
-    /// grids and prolongations (no factorization of the fine system).
+    /// grids and prolongations (no factorization of the fine system). The whole system, on
+    /// this process alone, however many processes run.
     ///
     /// # Errors
     /// As [`System::new`].
@@ -193,97 +205,172 @@ impl System {
         settings: &super::SolverSettings,
         kind: super::LinearSolver,
     ) -> Result<Self> {
+        Ok(Self::build(problem, settings, kind, false)?.0)
+    }
+
+    /// The system of a solve of `problem`: on several processes with the distributed
+    /// solver (PETSc), this process's part of it, with the part's problem (its
+    /// mesh, [`crate::parallel::Subdomain::local_mesh`], under the same conditions) that
+    /// the solve then runs on; on one process (or with
+    /// another linear solver, every process holding the whole system alone), the whole
+    /// system and `None`.
+    ///
+    /// # Errors
+    /// As [`System::new`], and the partition's.
+    pub fn for_solve(
+        problem: &Problem,
+        settings: &super::SolverSettings,
+    ) -> Result<(Self, Option<Problem>)> {
+        Self::build(problem, settings, settings.linear_solver, true)
+    }
+
+    /// [`System::with_linear_solver`], or with `split` [`System::for_solve`].
+    fn build(
+        problem: &Problem,
+        settings: &super::SolverSettings,
+        kind: super::LinearSolver,
+        split: bool,
+    ) -> Result<(Self, Option<Problem>)> {
         let t0 = Instant::now();
         let dofs = problem.dof_map();
+        let d = problem.mesh.dim();
         // Several processes with the distributed solver: the nodes split among them
-        // (PETSc's rows and the cells each assembles follow the split), each assembling the
-        // cells around its own nodes (only that solver can take partial matrices) on a
-        // pattern of those cells alone. Otherwise every process holds the whole system and
-        // the split is the trivial one.
+        // (PETSc's rows and the cells each assembles follow the split), each holding the
+        // cells around its own nodes (only that solver can take partial matrices), their
+        // nodes, its own contact points and every array of the solve on that part alone.
+        // Otherwise every process holds the whole system.
         let processes = Processes::current();
-        let distributed = processes.size() > 1
-            && kind.resolve(problem.mesh.dim(), dofs.n_free()) == super::LinearSolver::Petsc;
+        let distributed = split
+            && processes.size() > 1
+            && kind.resolve(d, dofs.n_free()) == super::LinearSolver::Petsc;
         let contact = problem.contact_nodes()?;
-        let mut part = if distributed {
-            let partition = Partition::of(&problem.mesh, &processes)?;
-            let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
-            Some(Part::new(&problem.mesh, sub, &dofs, &contact)?)
-        } else {
-            None
-        };
-        // The mesh and DOF map this process assembles: the whole, or its part.
-        let (mesh, part_dofs) = match &part {
-            None => (&problem.mesh, &dofs),
-            Some(p) => (&p.mesh, &p.dofs),
-        };
-        let pattern = SystemPattern::new(mesh, part_dofs)?;
-        let nnz = match &part {
-            None => pattern.nnz(),
-            Some(p) => p.whole_nnz(&pattern, &dofs)?,
-        };
         let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
-        let point_cells = cells_around(&problem.mesh, &contact.node);
-        let t1 = Instant::now();
-        let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
-        let options = PrepareOptions {
-            ordering: settings.ordering,
-            par: super::parallelism(settings.factorization_threads),
-            petsc_options: &settings.petsc.options,
-            placement: Placement {
-                partition: part.as_ref().map_or(&whole, |p| &p.sub.partition),
-                nodes: part.as_ref().map(|p| p.nodes.as_slice()),
-                equations: dofs.equations(),
-            },
-        };
-        let linear_solver = kind.prepare(mesh, part_dofs.equations(), &pattern, &options)?;
-        let t2 = Instant::now();
-        let contact_slots = match &mut part {
-            None => contact_slots(&contact, problem.mesh.dim(), dofs.equations(), &pattern),
-            Some(p) => {
-                p.set_point_slots(&contact, &pattern);
-                Vec::new()
-            }
-        };
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
         let bodies = Bodies::new(problem, &rigid, &contact);
-        let d = problem.mesh.dim();
-        let shifted: Vec<usize> = rigid
-            .shifted_dofs()
-            .into_iter()
-            .filter(|&k| !dofs.is_fixed(k))
-            .collect();
-        // The diagonal slots of the shifted DOFs in this process's rows (all on one).
-        let rigid_slots: Vec<usize> = match &part {
-            None => shifted
-                .iter()
-                .map(|&k| pattern.diagonal_slot(dofs.equation(k) as usize))
-                .collect(),
-            Some(p) => shifted
-                .iter()
-                .filter(|&&k| p.sub.owns_dof(k, d))
-                .map(|&k| {
-                    let local = d * p.own_node((k / d) as u32) + k % d;
-                    pattern.diagonal_slot(p.dofs.equation(local) as usize)
-                })
-                .collect(),
+        let whole_counts = WholeCounts {
+            dofs: dofs.n_dofs(),
+            equations: dofs.n_free(),
+            contact_points: contact.len(),
         };
         let mut workspace = Workspace::new(match settings.threads {
             0 => rayon::current_num_threads(),
             t => t,
         });
-        workspace.owned_cells = part.as_ref().map(|p| p.sub.owned);
-        let share = match &part {
-            None => Share::whole(),
-            Some(p) => Share::of(&problem.mesh, &dofs, &contact, &p.sub, processes),
+        if !distributed {
+            let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
+            let point_cells = cells_around(&problem.mesh, &contact.node);
+            let t1 = Instant::now();
+            let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
+            let options = PrepareOptions {
+                ordering: settings.ordering,
+                par: super::parallelism(settings.factorization_threads),
+                petsc_options: &settings.petsc.options,
+                placement: Placement {
+                    partition: &whole,
+                    nodes: None,
+                },
+            };
+            let linear_solver =
+                kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
+            let t2 = Instant::now();
+            let contact_slots = contact_slots(&contact, d, dofs.equations(), &pattern);
+            let rigid_slots = rigid_slots(&rigid, &dofs, &pattern, usize::MAX);
+            let system = System {
+                nnz: pattern.nnz(),
+                dofs,
+                pattern,
+                whole: whole_counts,
+                linear_solver,
+                contact,
+                contact_slots,
+                contact_stiffness,
+                point_cells,
+                continuation,
+                f_ext,
+                bodies,
+                setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
+                workspace,
+                rigid,
+                rigid_slots,
+                subdomain: None,
+                share: Share::whole(),
+                processes: Processes::alone(),
+                scales: None,
+                placement: None,
+            };
+            return Ok((system, None));
+        }
+        let partition = Partition::of(&problem.mesh, &processes)?;
+        let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
+        let (mesh, nodes) = sub.local_mesh(&problem.mesh)?;
+        let part_dofs = dofs.restricted(&nodes);
+        let own = sub.nodes().len();
+        let mut local_of = vec![u32::MAX; problem.mesh.n_nodes()];
+        for (l, &v) in nodes.iter().enumerate() {
+            local_of[v as usize] = l as u32;
+        }
+        // Its own contact points, in the whole problem's order.
+        let points: Vec<u32> = (0..contact.len() as u32)
+            .filter(|&i| (local_of[contact.node[i as usize] as usize] as usize) < own)
+            .collect();
+        let contact_part = contact.restricted(&points, |v| local_of[v as usize]);
+        let pick = |all: &[f64]| -> Vec<f64> { points.iter().map(|&i| all[i as usize]).collect() };
+        let contact_stiffness = pick(&contact_stiffness);
+        let continuation = continuation.restricted(&points);
+        let f_ext: Vec<f64> = nodes
+            .iter()
+            .flat_map(|&v| f_ext[d * v as usize..d * v as usize + d].iter().copied())
+            .collect();
+        let rigid = rigid.restricted(&nodes);
+        let bodies = bodies.restricted(&nodes);
+        drop(local_of);
+        let pattern = SystemPattern::new(&mesh, &part_dofs)?;
+        let nnz = whole_nnz(&pattern, &part_dofs, d * own, dofs.n_free(), &processes)?;
+        // The cells around each point, in the whole mesh's order as on one process.
+        let mut point_cells = cells_around(&mesh, &contact_part.node);
+        for i in 0..contact_part.len() {
+            let (a, b) = (point_cells.0[i], point_cells.0[i + 1]);
+            point_cells.1[a..b].sort_unstable_by_key(|&c| sub.cells[c as usize]);
+        }
+        let t1 = Instant::now();
+        let options = PrepareOptions {
+            ordering: settings.ordering,
+            par: super::parallelism(settings.factorization_threads),
+            petsc_options: &settings.petsc.options,
+            placement: Placement {
+                partition: &sub.partition,
+                nodes: Some(&nodes),
+            },
         };
-        Ok(System {
-            dofs,
+        let linear_solver = kind.prepare(&mesh, part_dofs.equations(), &pattern, &options)?;
+        let t2 = Instant::now();
+        let contact_slots = contact_slots(&contact_part, d, part_dofs.equations(), &pattern);
+        let rigid_slots = rigid_slots(&rigid, &part_dofs, &pattern, d * own);
+        workspace.owned_cells = Some(sub.owned);
+        let whole = [
+            problem.mesh.n_nodes(),
+            contact.len(),
+            problem.mesh.n_cells(),
+        ];
+        let share = Share::of(d, &sub, nodes, &part_dofs, points, whole, processes);
+        let part_problem = Problem {
+            mesh,
+            material: problem.material.clone(),
+            plane: problem.plane,
+            dirichlet: problem.dirichlet.clone(),
+            tractions: problem.tractions.clone(),
+            body_force: problem.body_force,
+            contact: problem.contact.clone(),
+        };
+        let system = System {
+            dofs: part_dofs,
             pattern,
             nnz,
+            whole: whole_counts,
             linear_solver,
-            contact,
+            contact: contact_part,
             contact_slots,
             contact_stiffness,
             point_cells,
@@ -294,18 +381,19 @@ impl System {
             workspace,
             rigid,
             rigid_slots,
-            part,
+            subdomain: Some(sub),
             share,
             processes,
             scales: None,
             placement: None,
-        })
+        };
+        Ok((system, Some(part_problem)))
     }
 
     /// How the nodes are split among the processes when this system is distributed (see
     /// [`crate::parallel::Subdomain`]); `None` on one process.
     pub fn partition(&self) -> Option<&crate::parallel::Partition> {
-        self.part.as_ref().map(|p| &p.sub.partition)
+        self.subdomain.as_ref().map(|s| &s.partition)
     }
 
     /// What this process counts in global sums and maxima, and their completion over the
@@ -362,8 +450,7 @@ impl System {
     /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
     /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
     /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
-    /// force scale of its body, from `body_scale`) into `floor`; NaN for the points another
-    /// process counts ([`Share::counts_point`]).
+    /// force scale of its body, from `body_scale`) into `floor`.
     pub fn point_scales(
         &self,
         problem: &Problem,
@@ -387,12 +474,6 @@ impl System {
         floor.clear();
         let (offsets, cells) = &self.point_cells;
         for i in 0..n {
-            // Another process's point: computed there, read as NaN here.
-            if !self.share.counts_point(i) {
-                force.push(f64::NAN);
-                floor.push(f64::NAN);
-                continue;
-            }
             let p = ca.state(u, i, &data).pressure;
             force.push(self.contact.weight[i] * data.bound[i].max(p));
             let around = &cells[offsets[i]..offsets[i + 1]];
@@ -462,6 +543,13 @@ impl System {
     /// frozen quantities `frozen`; the gradient goes to `out.grad` (and the bulk part minus
     /// `f` to `out.grad_bulk`), and with `hessian` the Hessian to `out.hess`. A user-defined
     /// compliance law that fails leaves its error in `out.law_error` and returns NaN.
+    ///
+    /// On several processes, `problem` and `u` are this process's part
+    /// ([`System::for_solve`]): it assembles the cells of its part (counting the energy of
+    /// those it owns) and its contact points, so the gradients are complete at its own
+    /// nodes; their entries at its ghost nodes are set to NaN (partial there, never read).
+    /// The energies and the work of the loads are summed over the processes
+    /// ([`Processes::sum`] of three numbers, the one exchange of an evaluation).
     pub fn evaluate(
         &mut self,
         problem: &Problem,
@@ -469,23 +557,6 @@ impl System {
         frozen: &Frozen,
         out: &mut Evaluation,
         hessian: bool,
-    ) -> f64 {
-        let mut part = self.part.take();
-        let energy = self.evaluate_on(problem, u, frozen, out, hessian, part.as_mut());
-        self.part = part;
-        energy
-    }
-
-    /// [`System::evaluate`] on one process (`part` `None`), or on this process's part of
-    /// the system, completed with the others'.
-    fn evaluate_on(
-        &mut self,
-        problem: &Problem,
-        u: &[f64],
-        frozen: &Frozen,
-        out: &mut Evaluation,
-        hessian: bool,
-        part: Option<&mut Part>,
     ) -> f64 {
         let want = if hessian {
             Want::Hessian
@@ -497,79 +568,45 @@ impl System {
         } else {
             None
         };
-        let (e_bulk, part) = match part {
-            None => {
-                let bulk = BulkAssembler {
-                    mesh: &problem.mesh,
-                    material: &problem.material,
-                    ideal: self.ideal_locking(problem, frozen),
-                };
-                let e = bulk.assemble_parallel(
-                    u,
-                    &mut out.grad_bulk,
-                    want,
-                    &self.pattern,
-                    hess,
-                    &mut self.workspace,
-                );
-                (e, None)
-            }
-            Some(p) => {
-                let ideal = self.ideal_locking(problem, frozen);
-                let e = p.assemble_bulk(
-                    &problem.material,
-                    ideal,
-                    u,
-                    want,
-                    &self.pattern,
-                    hess,
-                    &mut self.workspace,
-                );
-                (e, Some(p))
-            }
+        let bulk = BulkAssembler {
+            mesh: &problem.mesh,
+            material: &problem.material,
+            ideal: self.ideal_locking(problem, frozen),
         };
+        let e_bulk = bulk.assemble_parallel(
+            u,
+            &mut out.grad_bulk,
+            want,
+            &self.pattern,
+            hess,
+            &mut self.workspace,
+        );
         let mut contact = self.contact_assembler(problem);
         let share = &self.share;
-        let counted = |i: usize| share.counts_point(i);
-        if let Err(e) = contact.normal_responses(u, hessian, &counted, &mut out.normal) {
+        if let Err(e) = contact.normal_responses(u, hessian, &mut out.normal) {
             out.law_error.get_or_insert(e);
             return f64::NAN;
         }
         contact.responses = &out.normal;
-        let (e_bulk, e_contact, work) = match part {
-            Some(p) => {
-                let hess = hessian.then_some(out.hess.as_mut_slice());
-                let completed = p.complete(
-                    &self.processes,
-                    &contact,
-                    &frozen.contact(),
-                    u,
-                    e_bulk,
-                    hess,
-                    &self.f_ext,
-                    &mut out.grad_bulk,
-                    &mut out.grad,
-                );
-                match completed {
-                    Ok([e_bulk, e_contact, work]) => (e_bulk, e_contact, work),
-                    Err(e) => {
-                        out.law_error.get_or_insert(e);
-                        return f64::NAN;
-                    }
+        let hc = if hessian {
+            Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
+        } else {
+            None
+        };
+        let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u, |k| share.counts_dof(k));
+        if share.is_split() {
+            // A ghost node's bulk gradient is partial here: unknown.
+            for (k, g) in out.grad_bulk.iter_mut().enumerate() {
+                if !share.counts_dof(k) {
+                    *g = f64::NAN;
                 }
             }
-            None => {
-                let hc = if hessian {
-                    Some((out.hess.as_mut_slice(), self.contact_slots.as_slice()))
-                } else {
-                    None
-                };
-                let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u);
-                out.grad.copy_from_slice(&out.grad_bulk);
-                let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
-                (e_bulk, e_contact, work)
-            }
-        };
+        }
+        out.grad.copy_from_slice(&out.grad_bulk);
+        let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
+        let mut e = [e_bulk, e_contact, work];
+        share.sum(&mut e);
+        let [e_bulk, e_contact, work] = e;
         if hessian && !self.rigid_slots.is_empty() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
             // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
@@ -649,14 +686,70 @@ impl System {
 }
 
 /// `grad ← grad − f_ext`; returns the work of the external forces `f_ext · u` (J, J/m in
-/// 2D).
-fn subtract_external(grad: &mut [f64], f_ext: &[f64], u: &[f64]) -> f64 {
+/// 2D) over the DOFs `counted`, in order.
+fn subtract_external(
+    grad: &mut [f64],
+    f_ext: &[f64],
+    u: &[f64],
+    counted: impl Fn(usize) -> bool,
+) -> f64 {
     let mut work = 0.0;
-    for ((g, f), x) in grad.iter_mut().zip(f_ext).zip(u) {
+    for (k, ((g, f), x)) in grad.iter_mut().zip(f_ext).zip(u).enumerate() {
         *g -= f;
-        work += f * x;
+        if counted(k) {
+            work += f * x;
+        }
     }
     work
+}
+
+/// The diagonal slots in `pattern` of the free DOFs (of `dofs`, below `rows`) on which
+/// `rigid` shifts the Newton matrix: this process's rows of them.
+fn rigid_slots(
+    rigid: &RigidMotions,
+    dofs: &DofMap,
+    pattern: &SystemPattern,
+    rows: usize,
+) -> Vec<usize> {
+    rigid
+        .shifted_dofs()
+        .into_iter()
+        .filter(|&k| k < rows && !dofs.is_fixed(k))
+        .map(|k| pattern.diagonal_slot(dofs.equation(k) as usize))
+        .collect()
+}
+
+/// The entries of the upper triangle of the whole reduced system, from this process's
+/// `pattern` (its part's, DOF map `dofs`, its own DOFs the first `own_dofs`): every free
+/// own row's entries in both triangles, summed over the processes, give twice the upper
+/// triangle less the diagonal (`n_free` equations in all).
+///
+/// # Errors
+/// MPI's.
+fn whole_nnz(
+    pattern: &SystemPattern,
+    dofs: &DofMap,
+    own_dofs: usize,
+    n_free: usize,
+    processes: &Processes,
+) -> Result<usize> {
+    let own_eqs = dofs.equations()[..own_dofs]
+        .iter()
+        .filter(|&&eq| eq != FIXED)
+        .count();
+    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+    // Own equations are the first ones of the part's numbering.
+    let mut full = 0usize;
+    for j in 0..pattern.n() {
+        for &i in &row_idx[col_ptr[j]..col_ptr[j + 1]] {
+            full += usize::from(j < own_eqs);
+            full += usize::from(i != j && i < own_eqs);
+        }
+    }
+    // Counts below 2^53 add exactly in floating point.
+    let mut total = [full as f64];
+    processes.sum(&mut total)?;
+    Ok((total[0] as usize + n_free) / 2)
 }
 
 /// The cells around each of the nodes `nodes`, in compressed rows (see

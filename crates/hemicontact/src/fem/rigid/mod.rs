@@ -551,6 +551,38 @@ fn reduced(d: usize, basis: &[[f64; 6]]) -> Vec<[f64; 6]> {
 pub const NEWTON_SHIFT: f64 = 1e-8;
 
 impl RigidMotions {
+    /// These motions on a part of the mesh whose node `l` is the whole mesh's `nodes[l]`
+    /// ([`crate::parallel::Subdomain::local_mesh`]): each body lists the part's nodes in it
+    /// (increasing), and [`RigidMotions::body_of`] is the part's; the bodies' motions,
+    /// centroids, sizes and boxes are the whole bodies'.
+    pub(crate) fn restricted(&self, nodes: &[u32]) -> RigidMotions {
+        let body_of: Vec<u32> = nodes.iter().map(|&v| self.body_of[v as usize]).collect();
+        let mut bodies: Vec<Body> = self
+            .bodies
+            .iter()
+            .map(|b| Body {
+                nodes: Vec::new(),
+                centroid: b.centroid,
+                size: b.size,
+                bounding_box: b.bounding_box,
+            })
+            .collect();
+        for (l, &b) in body_of.iter().enumerate() {
+            if b != u32::MAX {
+                bodies[b as usize].nodes.push(l as u32);
+            }
+        }
+        RigidMotions {
+            dim: self.dim,
+            bodies,
+            free: self.free.clone(),
+            uncarried: self.uncarried.clone(),
+            sliding: self.sliding.clone(),
+            pressed: self.pressed.clone(),
+            body_of,
+        }
+    }
+
     /// The DOFs (`d·node + i`) of the bodies that have a free rigid motion: where the
     /// Newton matrix is shifted (see [`NEWTON_SHIFT`]).
     pub fn shifted_dofs(&self) -> Vec<usize> {
