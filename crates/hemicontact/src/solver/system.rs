@@ -254,123 +254,128 @@ impl System {
             equations: dofs.n_free(),
             contact_points: contact.len(),
         };
-        let mut workspace = Workspace::new(match settings.threads {
-            0 => rayon::current_num_threads(),
-            t => t,
-        });
-        if !distributed {
-            let pattern = SystemPattern::new(&problem.mesh, &dofs)?;
-            let point_cells = cells_around(&problem.mesh, &contact.node);
-            let t1 = Instant::now();
-            let whole = Partition::ranges(problem.mesh.n_nodes(), 1);
-            let options = PrepareOptions {
-                ordering: settings.ordering,
-                par: super::parallelism(settings.factorization_threads),
-                petsc_options: &settings.petsc.options,
-                placement: Placement {
-                    partition: &whole,
-                    nodes: None,
-                },
-            };
-            let linear_solver =
-                kind.prepare(&problem.mesh, dofs.equations(), &pattern, &options)?;
-            let t2 = Instant::now();
-            let contact_slots = contact_slots(&contact, d, dofs.equations(), &pattern);
-            let rigid_slots = rigid_slots(&rigid, &dofs, &pattern, usize::MAX);
-            let system = System {
-                nnz: pattern.nnz(),
+        // On several processes, this process's part of all that: its subdomain, the part's
+        // mesh and the whole numbers of its nodes, and its own contact points.
+        let mut part = None;
+        let (dofs, contact, contact_stiffness, continuation, f_ext, rigid, bodies) = if distributed
+        {
+            let partition = Partition::of(&problem.mesh, &processes)?;
+            let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
+            let (mesh, nodes) = sub.local_mesh(&problem.mesh)?;
+            let own = sub.nodes().len();
+            let mut local_of = vec![u32::MAX; problem.mesh.n_nodes()];
+            for (l, &v) in nodes.iter().enumerate() {
+                local_of[v as usize] = l as u32;
+            }
+            // Its own contact points, in the whole problem's order.
+            let points: Vec<u32> = (0..contact.len() as u32)
+                .filter(|&i| (local_of[contact.node[i as usize] as usize] as usize) < own)
+                .collect();
+            let pick = |all: &[f64]| points.iter().map(|&i| all[i as usize]).collect();
+            let restricted = (
+                dofs.restricted(&nodes),
+                contact.restricted(&points, |v| local_of[v as usize]),
+                pick(&contact_stiffness),
+                continuation.restricted(&points),
+                nodes
+                    .iter()
+                    .flat_map(|&v| f_ext[d * v as usize..d * v as usize + d].iter().copied())
+                    .collect(),
+                rigid.restricted(&nodes),
+                bodies.restricted(&nodes),
+            );
+            part = Some((sub, mesh, nodes, points));
+            restricted
+        } else {
+            (
                 dofs,
-                pattern,
-                whole: whole_counts,
-                linear_solver,
                 contact,
-                contact_slots,
                 contact_stiffness,
-                point_cells,
                 continuation,
                 f_ext,
-                bodies,
-                setup_time: ((t1 - t0).as_secs_f64(), (t2 - t1).as_secs_f64()),
-                workspace,
                 rigid,
-                rigid_slots,
-                subdomain: None,
-                share: Share::whole(),
-                processes: Processes::alone(),
-                scales: None,
-                placement: None,
-            };
-            return Ok((system, None));
-        }
-        let partition = Partition::of(&problem.mesh, &processes)?;
-        let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
-        let (mesh, nodes) = sub.local_mesh(&problem.mesh)?;
-        let part_dofs = dofs.restricted(&nodes);
-        let own = sub.nodes().len();
-        let mut local_of = vec![u32::MAX; problem.mesh.n_nodes()];
-        for (l, &v) in nodes.iter().enumerate() {
-            local_of[v as usize] = l as u32;
-        }
-        // Its own contact points, in the whole problem's order.
-        let points: Vec<u32> = (0..contact.len() as u32)
-            .filter(|&i| (local_of[contact.node[i as usize] as usize] as usize) < own)
-            .collect();
-        let contact_part = contact.restricted(&points, |v| local_of[v as usize]);
-        let pick = |all: &[f64]| -> Vec<f64> { points.iter().map(|&i| all[i as usize]).collect() };
-        let contact_stiffness = pick(&contact_stiffness);
-        let continuation = continuation.restricted(&points);
-        let f_ext: Vec<f64> = nodes
-            .iter()
-            .flat_map(|&v| f_ext[d * v as usize..d * v as usize + d].iter().copied())
-            .collect();
-        let rigid = rigid.restricted(&nodes);
-        let bodies = bodies.restricted(&nodes);
-        drop(local_of);
-        let pattern = SystemPattern::new(&mesh, &part_dofs)?;
-        let nnz = whole_nnz(&pattern, &part_dofs, d * own, dofs.n_free(), &processes)?;
-        // The cells around each point, in the whole mesh's order as on one process.
-        let mut point_cells = cells_around(&mesh, &contact_part.node);
-        for i in 0..contact_part.len() {
-            let (a, b) = (point_cells.0[i], point_cells.0[i + 1]);
-            point_cells.1[a..b].sort_unstable_by_key(|&c| sub.cells[c as usize]);
+                bodies,
+            )
+        };
+        let mesh = part.as_ref().map_or(&problem.mesh, |p| &p.1);
+        // This process's rows: the DOFs of its own nodes (all of them on one process).
+        let own_dofs = part
+            .as_ref()
+            .map_or(dofs.n_dofs(), |p| d * p.0.nodes().len());
+        let pattern = SystemPattern::new(mesh, &dofs)?;
+        let nnz = match &part {
+            None => pattern.nnz(),
+            Some(_) => whole_nnz(
+                &pattern,
+                &dofs,
+                own_dofs,
+                whole_counts.equations,
+                &processes,
+            )?,
+        };
+        let mut point_cells = cells_around(mesh, &contact.node);
+        if let Some((sub, ..)) = &part {
+            // The cells around each point in the whole mesh's order, as on one process.
+            for i in 0..contact.len() {
+                let (a, b) = (point_cells.0[i], point_cells.0[i + 1]);
+                point_cells.1[a..b].sort_unstable_by_key(|&c| sub.cells[c as usize]);
+            }
         }
         let t1 = Instant::now();
+        let one;
+        let partition = match &part {
+            Some(p) => &p.0.partition,
+            None => {
+                one = Partition::ranges(problem.mesh.n_nodes(), 1);
+                &one
+            }
+        };
         let options = PrepareOptions {
             ordering: settings.ordering,
             par: super::parallelism(settings.factorization_threads),
             petsc_options: &settings.petsc.options,
             placement: Placement {
-                partition: &sub.partition,
-                nodes: Some(&nodes),
+                partition,
+                nodes: part.as_ref().map(|p| p.2.as_slice()),
             },
         };
-        let linear_solver = kind.prepare(&mesh, part_dofs.equations(), &pattern, &options)?;
+        let linear_solver = kind.prepare(mesh, dofs.equations(), &pattern, &options)?;
         let t2 = Instant::now();
-        let contact_slots = contact_slots(&contact_part, d, part_dofs.equations(), &pattern);
-        let rigid_slots = rigid_slots(&rigid, &part_dofs, &pattern, d * own);
-        workspace.owned_cells = Some(sub.owned);
-        let whole = [
-            problem.mesh.n_nodes(),
-            contact.len(),
-            problem.mesh.n_cells(),
-        ];
-        let share = Share::of(d, &sub, nodes, &part_dofs, points, whole, processes);
-        let part_problem = Problem {
-            mesh,
-            material: problem.material.clone(),
-            plane: problem.plane,
-            dirichlet: problem.dirichlet.clone(),
-            tractions: problem.tractions.clone(),
-            body_force: problem.body_force,
-            contact: problem.contact.clone(),
+        let contact_slots = contact_slots(&contact, d, dofs.equations(), &pattern);
+        let rigid_slots = rigid_slots(&rigid, &dofs, &pattern, own_dofs);
+        let mut workspace = Workspace::new(match settings.threads {
+            0 => rayon::current_num_threads(),
+            t => t,
+        });
+        let (subdomain, share, processes, part_problem) = match part {
+            None => (None, Share::whole(), Processes::alone(), None),
+            Some((sub, mesh, nodes, points)) => {
+                workspace.owned_cells = Some(sub.owned);
+                let whole = [
+                    problem.mesh.n_nodes(),
+                    whole_counts.contact_points,
+                    problem.mesh.n_cells(),
+                ];
+                let share = Share::of(d, &sub, nodes, &dofs, points, whole, processes);
+                let part_problem = Problem {
+                    mesh,
+                    material: problem.material.clone(),
+                    plane: problem.plane,
+                    dirichlet: problem.dirichlet.clone(),
+                    tractions: problem.tractions.clone(),
+                    body_force: problem.body_force,
+                    contact: problem.contact.clone(),
+                };
+                (Some(sub), share, processes, Some(part_problem))
+            }
         };
         let system = System {
-            dofs: part_dofs,
+            dofs,
             pattern,
             nnz,
             whole: whole_counts,
             linear_solver,
-            contact: contact_part,
+            contact,
             contact_slots,
             contact_stiffness,
             point_cells,
@@ -381,13 +386,13 @@ impl System {
             workspace,
             rigid,
             rigid_slots,
-            subdomain: Some(sub),
+            subdomain,
             share,
             processes,
             scales: None,
             placement: None,
         };
-        Ok((system, Some(part_problem)))
+        Ok((system, part_problem))
     }
 
     /// How the nodes are split among the processes when this system is distributed (see
