@@ -42,7 +42,7 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
         let t = Instant::now();
         let pattern = SystemPattern::new(mesh, &dofs)?;
         let t_pattern = t.elapsed().as_secs_f64();
-        let bulk = BulkAssembler::new(mesh, problem.material());
+        let bulk = BulkAssembler::new(mesh, &problem.materials()[0]);
         let u = problem.prescribed_displacement();
         let mut grad = vec![0.0; u.len()];
         let mut hess = vec![0.0; pattern.nnz()];
@@ -182,7 +182,7 @@ pub fn run_paper(
             .to_builder()
             .without_contact()
             .material(hemicontact::material::Material::elastic(
-                paper.material().elasticity,
+                paper.materials()[0].elasticity,
             ))
             .build()?;
         let mut t_lin = Vec::new();

@@ -60,8 +60,40 @@ fn print_problem(c: &Console, problem: &Problem, settings: &SolverSettings, sour
         dofs.n_free(),
         dofs.n_dofs() - dofs.n_free()
     );
-    let h = problem.material().elasticity.small_strain_hooke(mesh.dim());
-    say!(c, "Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+    let names = mesh.region_names();
+    for (k, material) in problem.materials().iter().enumerate() {
+        // The cell regions each material fills, for a body of several.
+        let parts: Vec<&str> = problem
+            .region_material()
+            .iter()
+            .enumerate()
+            .filter(|&(_, &m)| m as usize == k)
+            .map(|(r, _)| names.get(r).map_or("", String::as_str))
+            .collect();
+        if !parts.is_empty() {
+            say!(c, "material {k} in {}", parts.join(", "));
+        }
+        let h = material.elasticity.small_strain_hooke(mesh.dim());
+        say!(c, "Lamé       λ = {:.6e} Pa, G = {:.6e} Pa", h.lambda, h.mu);
+        use hemicontact::material::Locking;
+        match material.locking {
+            Locking::Ideal(set) => {
+                say!(
+                    c,
+                    "locking    {set}, ideal (exact constraint, augmented Lagrangian)"
+                )
+            }
+            Locking::Penalty(p) if p.c_kappa > 0.0 => {
+                say!(
+                    c,
+                    "locking    {}, penalty C_κ = {} Pa",
+                    p.set,
+                    significant(p.c_kappa)
+                )
+            }
+            _ => say!(c, "locking    none"),
+        }
+    }
     match hemicontact::solver::scaling::Scales::of(problem) {
         Ok(scales) => say!(
             c,
@@ -77,24 +109,6 @@ fn print_problem(c: &Console, problem: &Problem, settings: &SolverSettings, sour
         "certificate tolerance {:e} (relative residuals of every law)",
         settings.certificate_tolerance
     );
-    use hemicontact::material::Locking;
-    match problem.material().locking {
-        Locking::Ideal(set) => {
-            say!(
-                c,
-                "locking    {set}, ideal (exact constraint, augmented Lagrangian)"
-            )
-        }
-        Locking::Penalty(p) if p.c_kappa > 0.0 => {
-            say!(
-                c,
-                "locking    {}, penalty C_κ = {} Pa",
-                p.set,
-                significant(p.c_kappa)
-            )
-        }
-        _ => say!(c, "locking    none"),
-    }
     for (k, contact) in problem.contact().iter().enumerate() {
         match &contact.obstacle {
             None => say!(

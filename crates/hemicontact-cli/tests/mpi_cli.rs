@@ -305,6 +305,13 @@ fn gmsh_half_disc_across_processes() {
     agrees_across_processes("half-disc.toml");
 }
 
+/// A body of two materials (cell regions of the generated mesh), one of them nearly
+/// locking, with exact Coulomb friction: each process's part keeps its cells' materials.
+#[test]
+fn two_materials_across_processes() {
+    agrees_across_processes("layered-block.toml");
+}
+
 /// A load path with a moving obstacle: the sliding indenter's five steps, each warm-started
 /// from the last one's answer put together from every process's part. Every step's
 /// contact forces, counts and largest displacement, and the last step's displacements,

@@ -68,16 +68,19 @@ pub struct NativeMesh {
 #[pymethods]
 impl NativeMesh {
     /// The mesh of dimension `dim` from the node coordinates `points` (float64, m), the
-    /// cells `cells` (int64, `dim + 1` node indices each, positively oriented) and the
-    /// boundary parts `parts` (name, int64 facets of `dim` node indices); boundary facets in
-    /// no part form the part `untagged`.
+    /// cells `cells` (int64, `dim + 1` node indices each, positively oriented), the
+    /// boundary parts `parts` (name, int64 facets of `dim` node indices; boundary facets in
+    /// no part form the part `untagged`) and the cell regions `regions` (name, int64 cell
+    /// indices; every cell in exactly one, or no regions at all).
     #[staticmethod]
+    #[pyo3(signature = (dim, points, cells, parts, regions=Vec::new()))]
     fn from_buffers(
         py: Python<'_>,
         dim: usize,
         points: &[u8],
         cells: &[u8],
         parts: Vec<(String, Vec<u8>)>,
+        regions: Vec<(String, Vec<u8>)>,
     ) -> PyResult<Self> {
         let coords = f64s(points, "points")?;
         let cells = indices(cells, "cells")?;
@@ -88,10 +91,56 @@ impl NativeMesh {
                 Ok((name, list))
             })
             .collect::<PyResult<Vec<_>>>()?;
-        let mesh = py
+        let n_cells = cells.len() / (dim + 1).max(1);
+        let mut mesh = py
             .detach(|| Mesh::from_parts(dim, coords, cells, &parts))
             .map_err(to_py)?;
+        if !regions.is_empty() {
+            let mut region = vec![u16::MAX; n_cells];
+            let mut names = Vec::with_capacity(regions.len());
+            for (k, (name, list)) in regions.into_iter().enumerate() {
+                for c in indices(&list, &format!("cells of region {name:?}"))? {
+                    match region.get_mut(c as usize) {
+                        Some(r) if *r == u16::MAX => *r = k as u16,
+                        Some(r) => {
+                            let other: &String = &names[*r as usize];
+                            return Err(to_py(Error::Mesh(format!(
+                                "cell {c} is in the regions {other:?} and {name:?}: each \
+                                 cell belongs to one region"
+                            ))));
+                        }
+                        None => {
+                            return Err(to_py(Error::Mesh(format!(
+                                "region {name:?}: cell {c} is out of range (there are \
+                                 {n_cells} cells)"
+                            ))))
+                        }
+                    }
+                }
+                names.push(name);
+            }
+            if let Some(c) = region.iter().position(|&r| r == u16::MAX) {
+                return Err(to_py(Error::Mesh(format!(
+                    "cell {c} is in no region: with regions, every cell belongs to one"
+                ))));
+            }
+            mesh = mesh.with_regions(region, names).map_err(to_py)?;
+        }
         Ok(NativeMesh { mesh })
+    }
+
+    /// The cell regions: (name, int64 bytes of its cell indices); empty for a mesh without
+    /// regions.
+    fn regions<'py>(&self, py: Python<'py>) -> Vec<(String, Bound<'py, PyBytes>)> {
+        let m = &self.mesh;
+        m.region_names()
+            .iter()
+            .enumerate()
+            .map(|(r, name)| {
+                let cells = (0..m.n_cells()).filter(|&c| m.cell_region(c) == r);
+                (name.clone(), i64_bytes(py, cells.map(|c| c as i64)))
+            })
+            .collect()
     }
 
     /// Spatial dimension (2 or 3).

@@ -228,10 +228,12 @@ impl NativeSolution {
 
     /// The cell fields: (name, components, float64 bytes) for `strain` (9, row-major 3 × 3),
     /// `stress` (9, Pa), `von_mises` (1, Pa), `trace_strain` (1), `locking_active` (1, 0 or
-    /// 1), `locking_q` (1), `locking_multiplier` (1, Pa).
+    /// 1), `locking_q` (1), `locking_multiplier` (1, Pa), `material` (1, the index of the
+    /// cell's material).
     fn cell_fields<'py>(&self, py: Python<'py>) -> Vec<(&'static str, usize, Bound<'py, PyBytes>)> {
         let c = cell_fields(&self.problem, &self.solution);
         let active: Vec<f64> = c.locking_active.iter().map(|&a| f64::from(a)).collect();
+        let material: Vec<f64> = c.material.iter().map(|&k| f64::from(k)).collect();
         vec![
             ("strain", 9, f64_bytes(py, &c.strain)),
             ("stress", 9, f64_bytes(py, &c.stress)),
@@ -244,6 +246,7 @@ impl NativeSolution {
                 1,
                 f64_bytes(py, &c.locking_multiplier),
             ),
+            ("material", 1, f64_bytes(py, &material)),
         ]
     }
 

@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mesh = problem.mesh();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(mesh, &dofs)?;
-        let bulk = BulkAssembler::new(mesh, problem.material());
+        let bulk = BulkAssembler::new(mesh, &problem.materials()[0]);
         let d = mesh.dim();
         // A displacement that strains every cell differently.
         let u: Vec<f64> = (0..d * mesh.n_nodes())

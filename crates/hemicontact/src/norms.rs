@@ -14,6 +14,12 @@ use crate::mesh::Mesh;
 /// nor underflows for displacements and moduli anywhere in the range of double precision
 /// (the square of a displacement of 1e-200 m, or of 1e200 m, would).
 pub fn energy_norm(mesh: &Mesh, hooke: &Hooke, v: &[f64]) -> f64 {
+    energy_norm_by_cell(mesh, &|_| *hooke, v)
+}
+
+/// [`energy_norm`] with the Hooke operator `hooke(c)` in cell `c` (a body of several
+/// materials): `(Σ_T |T| W_T(ε_T(v)))^{1/2}`.
+pub fn energy_norm_by_cell(mesh: &Mesh, hooke: &dyn Fn(usize) -> Hooke, v: &[f64]) -> f64 {
     let s = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if s == 0.0 || !s.is_finite() {
         return if s == 0.0 { 0.0 } else { f64::INFINITY };
@@ -23,7 +29,7 @@ pub fn energy_norm(mesh: &Mesh, hooke: &Hooke, v: &[f64]) -> f64 {
     let sum: f64 = (0..mesh.n_cells())
         .map(|c| {
             let (measure, eps) = element::cell_strain(mesh, v, c);
-            measure * hooke.energy(&eps.scaled(1.0 / s))
+            measure * hooke(c).energy(&eps.scaled(1.0 / s))
         })
         .sum();
     s * sum.max(0.0).sqrt()

@@ -39,8 +39,11 @@ pub struct Traction {
 pub struct Problem {
     /// The mesh.
     pub(crate) mesh: Mesh,
-    /// The bulk material.
-    pub(crate) material: Material,
+    /// The bulk materials: cell `c` has `materials[region_material[mesh.cell_region(c)]]`,
+    /// or `materials[0]` when `region_material` is empty (one material everywhere).
+    pub(crate) materials: Vec<Material>,
+    /// The material of each cell region of the mesh (empty with one material).
+    pub(crate) region_material: Vec<u16>,
     /// The plane idealization of a 2D problem: plane strain (`ε_zz = 0`, the out-of-plane
     /// stress follows from the law) or plane stress (`σ_zz = 0`); `Strain` in 3D. The
     /// material's constants already reflect it; the stress output uses it for σ_zz.
@@ -92,9 +95,19 @@ impl ProblemBuilder {
         self
     }
 
-    /// Replaces the material.
+    /// Replaces the materials by one `material` for the whole mesh.
     pub fn material(mut self, material: Material) -> Self {
-        self.problem.material = material;
+        self.problem.materials = vec![material];
+        self.problem.region_material.clear();
+        self
+    }
+
+    /// Replaces the materials: the cells of the mesh's region `r` get
+    /// `materials[region_material[r]]` (one entry per region of the mesh,
+    /// [`Mesh::region_names`]; every material used).
+    pub fn materials(mut self, materials: Vec<Material>, region_material: Vec<u16>) -> Self {
+        self.problem.materials = materials;
+        self.problem.region_material = region_material;
         self
     }
 
@@ -121,13 +134,14 @@ impl ProblemBuilder {
 }
 
 impl Problem {
-    /// Starts a problem on `mesh` with `material`: plane strain, no boundary conditions,
-    /// no loads, no contact.
+    /// Starts a problem on `mesh` with `material` everywhere: plane strain, no boundary
+    /// conditions, no loads, no contact.
     pub fn builder(mesh: Mesh, material: Material) -> ProblemBuilder {
         ProblemBuilder {
             problem: Problem {
                 mesh,
-                material,
+                materials: vec![material],
+                region_material: Vec::new(),
                 plane: crate::material::Plane::Strain,
                 dirichlet: Vec::new(),
                 tractions: Vec::new(),
@@ -142,9 +156,44 @@ impl Problem {
         &self.mesh
     }
 
-    /// The bulk material.
-    pub fn material(&self) -> &Material {
-        &self.material
+    /// The bulk materials (one, or one per group of cell regions; see
+    /// [`Problem::cell_material`]).
+    pub fn materials(&self) -> &[Material] {
+        &self.materials
+    }
+
+    /// The index into [`Problem::materials`] of the material of each cell region of the
+    /// mesh (empty when there is one material).
+    pub fn region_material(&self) -> &[u16] {
+        &self.region_material
+    }
+
+    /// The index into [`Problem::materials`] of the material of cell `c`.
+    #[inline]
+    pub fn cell_material(&self, c: usize) -> usize {
+        self.region_material
+            .get(self.mesh.cell_region(c))
+            .map_or(0, |&k| k as usize)
+    }
+
+    /// The set of ideal locking (the exact constraint `ε_T ∈ B`), if the material locks
+    /// ideally. (A problem with ideal locking has one material; see [`Problem::validate`].)
+    pub fn ideal_locking(&self) -> Option<crate::material::LockingSet> {
+        self.materials.iter().find_map(|m| m.locking.ideal())
+    }
+
+    /// The stiffness of the body (Pa): the largest P-wave modulus `λ + 2G` of the
+    /// small-strain Hooke laws of its materials (at least G), which sets the stress scale
+    /// of the solve and the stiffness of the contact points.
+    pub fn stiffness(&self) -> f64 {
+        let d = self.mesh.dim();
+        self.materials
+            .iter()
+            .map(|m| {
+                let h = m.elasticity.small_strain_hooke(d);
+                (h.lambda + 2.0 * h.mu).max(h.mu)
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The plane idealization of a 2D problem (`Strain` in 3D).
@@ -200,9 +249,7 @@ impl Problem {
     /// [`Error::RigidMotion`] for a free rigid motion.
     pub fn validate(&self) -> Result<()> {
         let dim = self.mesh.dim();
-        self.material
-            .validate(dim)
-            .map_err(|e| e.within("material"))?;
+        self.check_materials()?;
         require(
             dim == 2 || self.plane == crate::material::Plane::Strain,
             "plane",
@@ -259,6 +306,71 @@ impl Problem {
     }
 
     /// A part index in range, naming a part with facets.
+    /// Checks every material's law (`material.…` for one, `materials[k].…` for several) and
+    /// the map from cell regions to materials: one entry per region of the mesh, each
+    /// naming a material, every material used; ideal locking with one material only.
+    fn check_materials(&self) -> Result<()> {
+        let dim = self.mesh.dim();
+        let several = self.materials.len() > 1;
+        let field = |k: usize| {
+            if several {
+                format!("materials[{k}]")
+            } else {
+                "material".to_string()
+            }
+        };
+        require(
+            !self.materials.is_empty(),
+            "materials",
+            "[]",
+            "at least one material",
+        )?;
+        for (k, m) in self.materials.iter().enumerate() {
+            m.validate(dim).map_err(|e| e.within(&field(k)))?;
+            require(
+                !(several && m.locking.ideal().is_some()),
+                &format!("{}.locking", field(k)),
+                "ideal locking",
+                "ideal locking (the exact constraint) in a problem with one material; with \
+                 several materials the locking is nearly ideal (the penalty C_κ)",
+            )?;
+        }
+        if self.region_material.is_empty() {
+            return require(
+                !several,
+                "region_material",
+                "[]",
+                "the material of each cell region when there are several materials",
+            );
+        }
+        let regions = self.mesh.n_regions();
+        require(
+            self.region_material.len() == regions,
+            "region_material",
+            format!("{} entries", self.region_material.len()),
+            &format!("one material per cell region of the mesh ({regions})"),
+        )?;
+        let mut used = vec![false; self.materials.len()];
+        for (r, &k) in self.region_material.iter().enumerate() {
+            require(
+                (k as usize) < self.materials.len(),
+                &format!("region_material[{r}]"),
+                k,
+                &format!("an index below {} (the materials)", self.materials.len()),
+            )?;
+            used[k as usize] = true;
+        }
+        match used.iter().position(|&u| !u) {
+            Some(k) => require(
+                false,
+                &field(k),
+                "applies to no cell",
+                "every material applied to a cell region",
+            ),
+            None => Ok(()),
+        }
+    }
+
     fn check_part(&self, field: &str, part: usize) -> Result<()> {
         let names = self.mesh.part_names();
         require(

@@ -15,7 +15,7 @@
 
 use crate::error::{Error, Result};
 use crate::fem::transfer::interpolate;
-use crate::norms::energy_norm;
+use crate::norms::energy_norm_by_cell;
 use crate::problem::Problem;
 use crate::scenario::Scenario;
 use crate::solver::{solve_observed, OuterProgress, Solution};
@@ -201,11 +201,13 @@ pub fn run_observed(
     progress(Progress::Solved {
         seconds: reference_seconds,
     });
-    let hooke = reference
-        .material
-        .elasticity
-        .small_strain_hooke(reference.mesh.dim());
-    let reference_norm = energy_norm(&reference.mesh, &hooke, &ref_sol.u);
+    let hookes: Vec<_> = reference
+        .materials
+        .iter()
+        .map(|m| m.elasticity.small_strain_hooke(reference.mesh.dim()))
+        .collect();
+    let hooke = |c: usize| hookes[reference.cell_material(c)];
+    let reference_norm = energy_norm_by_cell(&reference.mesh, &hooke, &ref_sol.u);
     if !(reference_norm > 0.0 && reference_norm.is_finite()) {
         return Err(Error::Scenario {
             file: scenario.source.clone(),
@@ -237,8 +239,8 @@ pub fn run_observed(
         progress(Progress::Solved { seconds });
         let on_ref = interpolate(&problem.mesh, &sol.u, &reference.mesh);
         let diff: Vec<f64> = ref_sol.u.iter().zip(&on_ref).map(|(a, b)| a - b).collect();
-        let error =
-            energy_norm(&reference.mesh, &hooke, &diff) / reference_norm.max(f64::MIN_POSITIVE);
+        let error = energy_norm_by_cell(&reference.mesh, &hooke, &diff)
+            / reference_norm.max(f64::MIN_POSITIVE);
         let (lo, hi) = problem.mesh.bounding_box();
         let h_edge = (hi[0] - lo[0]) / n as f64;
         // Element measure (area in 2D, volume in 3D): all cells of a uniform generated mesh

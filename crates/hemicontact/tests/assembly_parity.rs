@@ -63,7 +63,7 @@ fn parallel_assembly_is_bitwise_the_serial_one() {
     let dofs = problem.dof_map();
     let pattern = SystemPattern::new(mesh, &dofs).unwrap();
     let u = displacement(mesh);
-    let bulk = BulkAssembler::new(mesh, problem.material());
+    let bulk = BulkAssembler::new(mesh, &problem.materials()[0]);
     assert_bitwise_parity(&bulk, &pattern, &u);
     // Ideal locking: two energy terms per cell, the multiplier of every other cell active.
     let multipliers: Vec<f64> = (0..mesh.n_cells()).map(|c| (c % 2) as f64 * 0.3).collect();
@@ -99,7 +99,7 @@ fn parallel_assembly_is_bitwise_the_serial_one() {
     let dofs = DofMap::new(2, nn, &fixed);
     let pattern = SystemPattern::new(&scrambled, &dofs).unwrap();
     let u = displacement(&scrambled);
-    let bulk = BulkAssembler::new(&scrambled, problem.material());
+    let bulk = BulkAssembler::new(&scrambled, &problem.materials()[0]);
     assert_bitwise_parity(&bulk, &pattern, &u);
 }
 
@@ -139,7 +139,7 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
         let d = mesh.dim();
         let dofs = problem.dof_map();
         let pattern = SystemPattern::new(mesh, &dofs).unwrap();
-        let bulk = BulkAssembler::new(mesh, problem.material());
+        let bulk = BulkAssembler::new(mesh, &problem.materials()[0]);
         let displacement = |m: &hemicontact::mesh::Mesh| -> Vec<f64> {
             (0..d * m.n_nodes())
                 .map(|k| {
@@ -247,7 +247,7 @@ fn subdomains_give_their_rows_of_the_whole_assembly() {
                 ws.owned_cells = Some(sub.owned);
                 let mut gp = vec![0.0; u_local.len()];
                 let mut hp = vec![0.0; local.nnz()];
-                let part_bulk = BulkAssembler::new(&local_mesh, problem.material());
+                let part_bulk = BulkAssembler::new(&local_mesh, &problem.materials()[0]);
                 let ep = part_bulk.assemble_parallel(
                     &u_local,
                     &mut gp,
@@ -322,7 +322,7 @@ fn each_entry_is_counted_by_one_process() {
         let contact = problem.contact_nodes().unwrap();
         assert!(contact.len() > 10);
         let bodies = Bodies::new(&problem, &problem.rigid_motions().unwrap(), &contact);
-        let hooke = problem.material().elasticity.small_strain_hooke(d);
+        let hooke = problem.materials()[0].elasticity.small_strain_hooke(d);
         let v: Vec<f64> = (0..d * mesh.n_nodes())
             .map(|k| {
                 let x = mesh.node(k / d);
@@ -333,7 +333,7 @@ fn each_entry_is_counted_by_one_process() {
         let whole = Share::whole();
         let (mut norm, mut energy) = (Vec::new(), Vec::new());
         bodies.norms(&whole, d, v.len(), |k| v[k], &mut norm);
-        bodies.energy_norms(&whole, mesh, &hooke, &v, &mut energy);
+        bodies.energy_norms(&whole, mesh, &|_| hooke, &v, &mut energy);
         let dot = whole.dot_equations(&x, &x);
         let sizes = [mesh.n_nodes(), contact.len(), mesh.n_cells()];
         let parts = 3;
@@ -406,7 +406,7 @@ fn each_entry_is_counted_by_one_process() {
                 let part_bodies = bodies.restricted(&ids);
                 let (mut part_norm, mut part_energy) = (Vec::new(), Vec::new());
                 part_bodies.norms(&share, d, v_part.len(), |k| v_part[k], &mut part_norm);
-                part_bodies.energy_norms(&share, &part, &hooke, &v_part, &mut part_energy);
+                part_bodies.energy_norms(&share, &part, &|_| hooke, &v_part, &mut part_energy);
                 for b in 0..bodies.count {
                     norm2[b] += part_norm[b].powi(2);
                     energy2[b] += part_energy[b].powi(2);

@@ -147,7 +147,7 @@ body_force = [{:?}, {:?}]
 
 /// Per-cell constant strains `[e_xx, e_yy, e_xy]` of a P1 field.
 fn p1_strains(problem: &Problem, v: &[f64]) -> Vec<[f64; 3]> {
-    BulkAssembler::new(problem.mesh(), problem.material())
+    BulkAssembler::new(problem.mesh(), &problem.materials()[0])
         .cell_strains(v)
         .into_iter()
         .map(|e| [e.c[0], e.c[1], e.c[2] / SQRT2])

@@ -93,7 +93,7 @@ body_force = [{:?}, {:?}, {:?}]
 /// `‖u − v_h‖_E²` for a P1 field `v` (exact 4-point rule per tetrahedron).
 fn error_energy_sq(problem: &Problem, v: &[f64], lambda: f64, g: f64) -> f64 {
     let mesh = problem.mesh();
-    let strains = BulkAssembler::new(mesh, problem.material()).cell_strains(v);
+    let strains = BulkAssembler::new(mesh, &problem.materials()[0]).cell_strains(v);
     let (qa, qb) = (0.585_410_196_624_968_5, 0.138_196_601_125_010_5);
     let mut sum = 0.0;
     for (c, e) in strains.iter().enumerate() {

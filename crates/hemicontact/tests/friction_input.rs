@@ -86,7 +86,7 @@ fn table_and_deprecated_forms_give_identical_problems() {
         let (p_new, notes_new) = problem(&square(new, ""));
         let (p_old, notes_old) = problem(&square(old, ""));
         assert_eq!(p_new.contact(), p_old.contact(), "{new} vs {old}");
-        assert_eq!(p_new.material(), p_old.material());
+        assert_eq!(p_new.materials(), p_old.materials());
         assert!(
             !notes_new.iter().any(|n| n.contains("deprecated")),
             "{notes_new:?}"

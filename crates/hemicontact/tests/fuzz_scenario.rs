@@ -1414,7 +1414,7 @@ fn check_problem(
             ));
         }
     };
-    match p.material().elasticity {
+    match p.materials()[0].elasticity {
         Elasticity::Hooke(h) => {
             bad("Hooke lambda", h.lambda, false);
             bad("Hooke mu", h.mu, true);
@@ -1428,7 +1428,10 @@ fn check_problem(
     }
     bad(
         "locking c_kappa",
-        p.material().locking.penalty().map_or(0.0, |l| l.c_kappa),
+        p.materials()[0]
+            .locking
+            .penalty()
+            .map_or(0.0, |l| l.c_kappa),
         false,
     );
     bad("mesh diameter", p.diameter(), true);

@@ -250,10 +250,32 @@ fn unnamed_groups_are_named_by_tag_and_regions_are_recorded() {
     assert_eq!(g.region_names, ["5", "7"]);
     assert_eq!(g.cell_region, [0, 1]);
     assert!(
-        g.notes.iter().any(|n| n.contains("one material applies")),
+        g.notes
+            .iter()
+            .any(|n| n.contains("one `[material]` applies")),
         "{:?}",
         g.notes
     );
+    // The mesh carries the regions, to which a scenario gives one material each.
+    assert_eq!(g.mesh.region_names(), ["5", "7"]);
+    assert_eq!((g.mesh.cell_region(0), g.mesh.cell_region(1)), (0, 1));
+    let toml = r#"
+[[material]]
+part = "7"
+young = 100.0
+poisson = 0.3
+[[material]]
+part = "5"
+young = 300.0
+poisson = 0.3
+[[dirichlet]]
+part = "1"
+"#;
+    let mut s = hemicontact::scenario::Scenario::from_str(toml, "tiny.toml").unwrap();
+    s.given_mesh = Some(g.mesh.clone());
+    let p = s.into_problem().unwrap();
+    assert_eq!(p.region_material(), [1, 0]);
+    assert_eq!((p.cell_material(0), p.cell_material(1)), (1, 0));
 }
 
 #[test]

@@ -284,7 +284,7 @@ fn affine_displacement_is_reproduced_on_graded_meshes() {
             }
         }
         let strain = |i: usize, j: usize| 0.5 * (b[i][j] + b[j][i]);
-        let bulk = BulkAssembler::new(mesh, p.material());
+        let bulk = BulkAssembler::new(mesh, &p.materials()[0]);
         for (c, e) in bulk.cell_strains(&u).iter().enumerate() {
             // Mandel components: the diagonal, then √2 ε_ij (2D: xy; 3D: yz, xz, xy).
             let mut want = vec![strain(0, 0), strain(1, 1)];

@@ -110,7 +110,7 @@ fn on_two_blocks(laws: &Problem, pull: f64) -> Problem {
     let part = |name: &str| mesh.part_index(name).unwrap();
     let mut contact = laws.contact()[0].clone();
     contact.part = part("bottom");
-    Problem::builder(mesh.clone(), laws.material().clone())
+    Problem::builder(mesh.clone(), laws.materials()[0].clone())
         .plane(laws.plane())
         .dirichlet(Dirichlet {
             part: part("a_top"),
@@ -267,7 +267,7 @@ fn flagpole_problem(friction: &str) -> Problem {
     let part = |name: &str| mesh.part_index(name).unwrap();
     let mut contact = laws.contact()[0].clone();
     contact.part = part("bottom");
-    Problem::builder(mesh.clone(), laws.material().clone())
+    Problem::builder(mesh.clone(), laws.materials()[0].clone())
         .plane(laws.plane())
         .dirichlet(Dirichlet {
             part: part("left"),

@@ -40,10 +40,10 @@ const POISSON: f64 = 0.3;
 
 /// Cell strains and stresses of the displacement `u`.
 fn cell_fields(problem: &Problem, u: &[f64]) -> Vec<(Sym, Sym)> {
-    let bulk = BulkAssembler::new(problem.mesh(), problem.material());
+    let bulk = BulkAssembler::new(problem.mesh(), &problem.materials()[0]);
     bulk.cell_strains(u)
         .into_iter()
-        .map(|e| (e, problem.material().stress(&e)))
+        .map(|e| (e, problem.materials()[0].stress(&e)))
         .collect()
 }
 

@@ -186,7 +186,7 @@ part = "bottom"
     ));
     // A problem is built only validated: the builder refuses it (the solver could never
     // see it).
-    let refused = Problem::builder(two_bodies(), pr.material().clone())
+    let refused = Problem::builder(two_bodies(), pr.materials()[0].clone())
         .plane(pr.plane())
         .dirichlet(Dirichlet {
             part: 0,

@@ -16,7 +16,11 @@ class ScenarioError(ValueError):
 class Mesh:
     @staticmethod
     def from_buffers(
-        dim: int, points: bytes, cells: bytes, parts: Sequence[Tuple[str, bytes]]
+        dim: int,
+        points: bytes,
+        cells: bytes,
+        parts: Sequence[Tuple[str, bytes]],
+        regions: Sequence[Tuple[str, bytes]] = ...,
     ) -> "Mesh": ...
     @property
     def dim(self) -> int: ...
@@ -27,6 +31,7 @@ class Mesh:
     def points(self) -> bytes: ...
     def cells(self) -> bytes: ...
     def parts(self) -> List[Tuple[str, bytes]]: ...
+    def regions(self) -> List[Tuple[str, bytes]]: ...
 
 @final
 class Scenario:

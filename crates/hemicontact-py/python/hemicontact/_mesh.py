@@ -143,9 +143,12 @@ class Mesh:
         points: Any,
         cells: Any,
         facets: Optional[Mapping[str, Any]] = None,
+        regions: Optional[Mapping[str, Any]] = None,
     ) -> "Mesh":
         """The mesh of node coordinates ``points`` (N × d, m), cells ``cells`` (M × (d + 1)
-        node indices, 0-based) and boundary parts ``facets`` (name → K × d node indices).
+        node indices, 0-based), boundary parts ``facets`` (name → K × d node indices) and
+        cell regions ``regions`` (name → indices of its cells; every cell in exactly one),
+        to which a scenario's ``"material"`` list assigns materials by ``"part"``.
 
         A 2D mesh may be given with 3 coordinate columns if the third is zero everywhere
         (as meshio stores planar meshes); it is then dropped.
@@ -194,6 +197,16 @@ class Mesh:
             if not isinstance(name, str):
                 raise _error("facets", f"a part named {name!r}", "part names as str")
             given[name] = _index_array(f, f"facets[{name!r}]", dim)
+        cell_regions = []
+        for name, r in (regions or {}).items():
+            if not isinstance(name, str):
+                raise _error("regions", f"a region named {name!r}", "region names as str")
+            idx = np.asarray(r).reshape(-1)
+            if idx.size and not np.issubdtype(idx.dtype, np.integer):
+                raise _error(f"regions[{name!r}]", f"an array of {idx.dtype}", "cell indices (integers)")
+            if np.any((idx < 0) | (idx >= len(c))):
+                raise _error(f"regions[{name!r}]", "an index out of range", f"cell indices from 0 to {len(c) - 1}")
+            cell_regions.append((name, np.ascontiguousarray(idx, dtype="<i8").tobytes()))
         all_points = p
         p, c, given, node_map = _drop_unused(p, c, given)
         parts = [(name, np.ascontiguousarray(f, dtype="<i8").tobytes()) for name, f in given.items()]
@@ -202,6 +215,7 @@ class Mesh:
             np.ascontiguousarray(p, dtype="<f8").tobytes(),
             np.ascontiguousarray(c, dtype="<i8").tobytes(),
             parts,
+            cell_regions,
         )
         if node_map is None:
             return cls(native)
@@ -231,9 +245,13 @@ class Mesh:
         points = np.asarray(m.points, dtype=float)
         entities = (getattr(m, "cell_data", None) or {}).get("gmsh:geometrical")
         cell_blocks = []
+        offset: Dict[int, int] = {}  # block index -> index of its first cell
+        n_cells = 0
         for i, b in enumerate(blocks):
             if b.type != _CELL_TYPE[dim]:
                 continue
+            offset[i] = n_cells
+            n_cells += len(b.data)
             data = np.array(b.data, dtype=np.int64)
             tags = np.asarray(entities[i]) if entities is not None else np.zeros(len(data), int)
             _orient_entities(points[:, :dim], data, tags, dim)
@@ -243,11 +261,14 @@ class Mesh:
         parts: Dict[str, list] = {}
         sets = getattr(m, "cell_sets", None) or {}
         named = {k: v for k, v in sets.items() if not k.startswith("gmsh:")}
+        regions: Dict[str, list] = {}
         if named:
             for name, per_block in named.items():
-                for block, idx in zip(blocks, per_block):
+                for i, (block, idx) in enumerate(zip(blocks, per_block)):
                     if block.type == facet_type and idx is not None and len(idx) > 0:
                         parts.setdefault(name, []).append(block.data[np.asarray(idx)])
+                    if i in offset and idx is not None and len(idx) > 0:
+                        regions.setdefault(name, []).append(offset[i] + np.asarray(idx, dtype=np.int64))
         else:
             tags = (getattr(m, "cell_data", None) or {}).get("gmsh:physical")
             names = {
@@ -255,15 +276,37 @@ class Mesh:
                 for k, v in (getattr(m, "field_data", None) or {}).items()
                 if len(v) > 1 and int(v[1]) == dim - 1
             }
+            region_names = {
+                int(v[0]): k
+                for k, v in (getattr(m, "field_data", None) or {}).items()
+                if len(v) > 1 and int(v[1]) == dim
+            }
             if tags is not None:
-                for block, t in zip(blocks, tags):
+                for i, (block, t) in enumerate(zip(blocks, tags)):
+                    if i in offset:
+                        for tag in np.unique(t):
+                            name = region_names.get(int(tag), str(int(tag)))
+                            cells_of = offset[i] + np.flatnonzero(np.asarray(t) == tag)
+                            regions.setdefault(name, []).append(cells_of)
                     if block.type != facet_type:
                         continue
                     for tag in np.unique(t):
                         name = names.get(int(tag), str(int(tag)))
                         parts.setdefault(name, []).append(block.data[np.asarray(t) == tag])
         facets = {k: np.concatenate(v, axis=0) for k, v in parts.items()}
-        return cls.from_arrays(points, cells, facets)
+        # Cell regions (physical groups of dimension d), cells in none forming `untagged`
+        # as the command line's reader does; none at all when the file names no group.
+        cell_regions = {k: np.concatenate(v) for k, v in regions.items()}
+        if cell_regions:
+            covered = np.zeros(n_cells, dtype=bool)
+            for idx in cell_regions.values():
+                covered[idx] = True
+            if not covered.all():
+                cell_regions.setdefault("untagged", np.array([], dtype=np.int64))
+                cell_regions["untagged"] = np.concatenate(
+                    [cell_regions["untagged"], np.flatnonzero(~covered)]
+                )
+        return cls.from_arrays(points, cells, facets, cell_regions or None)
 
     @property
     def dim(self) -> int:
@@ -284,6 +327,11 @@ class Mesh:
         return self._to_given(c)
 
     @property
+    def regions(self) -> Dict[str, np.ndarray]:
+        """Cell regions: name → indices of its cells (empty for a mesh without regions)."""
+        return {name: np.frombuffer(b, dtype="<i8") for name, b in self._native.regions()}
+
+    @property
     def facets(self) -> Dict[str, np.ndarray]:
         """Boundary parts: name → facets (K × d node indices)."""
         return {
@@ -293,7 +341,7 @@ class Mesh:
 
     def to_meshio(self) -> Any:
         """The mesh as a meshio mesh (needs meshio): cells, then one facet block per
-        boundary part, with ``cell_sets`` naming the parts."""
+        boundary part, with ``cell_sets`` naming the parts and the cell regions."""
         import meshio
 
         blocks = [(_CELL_TYPE[self.dim], self.cells)]
@@ -306,6 +354,9 @@ class Mesh:
                 np.arange(len(b[1])) if j == i + 1 else np.array([], dtype=int)
                 for j, b in enumerate(blocks)
             ]
+        for name, idx in self.regions.items():
+            own = sets.setdefault(name, [np.array([], dtype=int) for _ in blocks])
+            own[0] = idx
         return meshio.Mesh(self.points, blocks, cell_sets=sets)
 
     def __repr__(self) -> str:

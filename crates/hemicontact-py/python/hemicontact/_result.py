@@ -32,7 +32,8 @@ class Result:
       ``reactions`` (N × d, N; N/m in 2D: the force of each prescribed DOF);
     - per cell: ``strain`` (M × 3 × 3), ``stress`` (M × 3 × 3, Pa, locking stress
       included), ``von_mises`` (M, Pa), ``trace_strain`` (M), ``locking_active`` (M, 0/1),
-      ``locking_multiplier`` (M, Pa);
+      ``locking_multiplier`` (M, Pa), ``material`` (M, the index of each cell's material:
+      its position in the scenario's ``"material"`` list, 0 for one material);
     - ``contact``: a dict of arrays, one entry per contact point, one key per column of
       ``contact.csv`` (``node``, ``boundary``, ``x``, ``y``, ``z``, ``weight``, ``u_nu``,
       ``gap``, ``u_tau_1``, ``u_tau_2``, ``slip``, ``pressure``, ``bound``,
@@ -103,6 +104,7 @@ class Result:
         self.trace_strain = _f64(fields["trace_strain"][1], -1)
         self.locking_active = _f64(fields["locking_active"][1], -1).astype(np.int64)
         self.locking_multiplier = _f64(fields["locking_multiplier"][1], -1)
+        self.material = _f64(fields["material"][1], -1).astype(np.int64)
         numeric, text = native.contact_columns()
         contact: Dict[str, np.ndarray] = {}
         for name, k, b in numeric:
@@ -141,7 +143,7 @@ class Result:
     def to_meshio(self) -> Any:
         """The solution as a meshio mesh (needs meshio): point data ``displacement`` and
         ``reaction``, cell data ``strain``, ``stress`` (flattened 3 × 3), ``von_mises``,
-        ``trace_strain``, ``locking_active`` and ``locking_multiplier``."""
+        ``trace_strain``, ``locking_active``, ``locking_multiplier`` and ``material``."""
         import meshio
 
         cell_type = "triangle" if self.dim == 2 else "tetra"
@@ -157,6 +159,7 @@ class Result:
                 "trace_strain": [self.trace_strain],
                 "locking_active": [self.locking_active],
                 "locking_multiplier": [self.locking_multiplier],
+                "material": [self.material],
             },
         )
 

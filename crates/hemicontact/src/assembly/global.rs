@@ -216,23 +216,51 @@ impl IdealLocking<'_> {
     }
 }
 
-/// Assembles the bulk energy of a mesh and a material.
+/// Assembles the bulk energy of a mesh and its materials.
 #[derive(Clone, Copy, Debug)]
 pub struct BulkAssembler<'a, M: StrainEnergy> {
     /// The mesh.
     pub mesh: &'a Mesh,
-    /// The material law.
-    pub material: &'a M,
+    /// The material laws: cell `c` has `materials[of_region[mesh.cell_region(c)]]`, or
+    /// `materials[0]` when `of_region` is empty.
+    pub materials: &'a [M],
+    /// The material of each cell region of the mesh (empty: one material everywhere).
+    pub of_region: &'a [u16],
     /// Ideal locking (exact constraint), if any.
     pub ideal: Option<IdealLocking<'a>>,
 }
 
 impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
-    /// The assembler of `material` on `mesh` without ideal locking.
+    /// The assembler of one `material` on all of `mesh`, without ideal locking.
     pub fn new(mesh: &'a Mesh, material: &'a M) -> Self {
         BulkAssembler {
             mesh,
-            material,
+            materials: std::slice::from_ref(material),
+            of_region: &[],
+            ideal: None,
+        }
+    }
+
+    /// The material law of cell `c`.
+    #[inline]
+    pub fn material(&self, c: usize) -> &'a M {
+        let k = if self.of_region.is_empty() {
+            0
+        } else {
+            self.of_region[self.mesh.cell_region(c)] as usize
+        };
+        &self.materials[k]
+    }
+}
+
+impl<'a> BulkAssembler<'a, crate::material::Material> {
+    /// The assembler of the materials of `problem` on the mesh `mesh` (the problem's, or a
+    /// mesh of the same cell regions), without ideal locking.
+    pub fn of(problem: &'a crate::problem::Problem, mesh: &'a Mesh) -> Self {
+        BulkAssembler {
+            mesh,
+            materials: &problem.materials,
+            of_region: &problem.region_material,
             ideal: None,
         }
     }
@@ -429,16 +457,17 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             // Ghost cells (of another process's subdomain) add no energy, nor in parallel
             // the cells of another task's lowest node.
             let counted = p < counted;
-            let mut sigma = self.material.stress(&eps);
+            let material = self.material(c);
+            let mut sigma = material.stress(&eps);
             match &mut sink {
                 None if counted => {
-                    energy += geo.measure * self.material.energy(&eps);
+                    energy += geo.measure * material.energy(&eps);
                     if let Some(al) = &al {
                         energy += geo.measure * al.energy(&eps);
                     }
                 }
                 Some((task, owner, terms)) if counted && owner[p] == *task => {
-                    terms.push(geo.measure * self.material.energy(&eps));
+                    terms.push(geo.measure * material.energy(&eps));
                     if let Some(al) = &al {
                         terms.push(geo.measure * al.energy(&eps));
                     }
@@ -458,7 +487,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
                 }
             }
             if let Some(h) = hess.as_deref_mut() {
-                let mut tangent = self.material.tangent(&eps);
+                let mut tangent = material.tangent(&eps);
                 if let Some(al) = al.filter(|al| al.multiplier(&eps) > 0.0) {
                     let t = al.tangent(&eps);
                     for (row, trow) in tangent.iter_mut().zip(t.iter()) {
@@ -507,7 +536,7 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
-            let mut sigma = self.material.stress(&eps);
+            let mut sigma = self.material(c).stress(&eps);
             if let Some(al) = self.ideal.map(|l| l.cell(c)) {
                 sigma = sigma.add_scaled(1.0, &al.stress(&eps));
             }

@@ -2,7 +2,8 @@
 //! counts, the uniqueness condition, the solver report and the files of its result folder.
 
 use crate::assembly::BulkAssembler;
-use crate::norms::energy_norm;
+use crate::material::StrainEnergy;
+use crate::norms::energy_norm_by_cell;
 use crate::problem::Problem;
 use crate::solver::{Solution, SolveReport};
 use serde::Serialize;
@@ -22,6 +23,62 @@ pub struct Sizes {
     pub equations: usize,
 }
 
+/// One material of a body of several materials in `summary.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct MaterialSummary {
+    /// The cell regions it fills (their names in the mesh).
+    pub parts: Vec<String>,
+    /// Lamé constants (λ, G) of its elasticity law (Pa; of its small-strain Hooke law for
+    /// Hencky's).
+    pub lame: [f64; 2],
+    /// Number of its cells.
+    pub cells: usize,
+    /// Its volume (m³; area in m² in 2D).
+    pub volume: f64,
+    /// Stored energy of its cells `Σ_T |T| (W + Ψ)(ε_T)` at the solution (J; J/m in 2D),
+    /// without the ideal-locking term.
+    pub strain_energy: f64,
+}
+
+impl MaterialSummary {
+    /// The materials of `problem` with the cell strains `strains` of the solution; empty
+    /// for a problem of one material.
+    fn of(problem: &Problem, strains: &[crate::tensor::Sym]) -> Vec<MaterialSummary> {
+        if problem.region_material.is_empty() {
+            return Vec::new();
+        }
+        let mesh = &problem.mesh;
+        let d = mesh.dim();
+        let mut out: Vec<MaterialSummary> = problem
+            .materials
+            .iter()
+            .map(|m| {
+                let h = m.elasticity.small_strain_hooke(d);
+                MaterialSummary {
+                    parts: Vec::new(),
+                    lame: [h.lambda, h.mu],
+                    cells: 0,
+                    volume: 0.0,
+                    strain_energy: 0.0,
+                }
+            })
+            .collect();
+        for (r, &k) in problem.region_material.iter().enumerate() {
+            let name = mesh.region_names().get(r).cloned().unwrap_or_default();
+            out[k as usize].parts.push(name);
+        }
+        for (c, eps) in strains.iter().enumerate() {
+            let k = problem.cell_material(c);
+            let measure = crate::fem::simplex::geometry(d, &mesh.cell_coords(c)).measure;
+            let m = &mut out[k];
+            m.cells += 1;
+            m.volume += measure;
+            m.strain_energy += measure * problem.materials[k].energy(eps);
+        }
+        out
+    }
+}
+
 /// The summary written to `summary.json`.
 #[derive(Clone, Debug, Serialize)]
 pub struct Summary {
@@ -35,8 +92,13 @@ pub struct Summary {
     pub converged: bool,
     /// Problem sizes.
     pub sizes: Sizes,
-    /// Lamé constants (λ, G) of the elasticity law (Pa).
-    pub lame: [f64; 2],
+    /// Lamé constants (λ, G) of the elasticity law (Pa; of its small-strain Hooke law for
+    /// Hencky's); `null` for a body of several materials (see `materials`).
+    pub lame: Option<[f64; 2]>,
+    /// Each material of a body of several materials, with the cells it fills and their
+    /// share of the energy (absent for one material).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub materials: Vec<MaterialSummary>,
     /// Energy of the last convex problem at the solution (J; J/m in 2D): the total
     /// potential energy when the problem is a single convex problem (no slip-dependent or
     /// Coulomb friction, no exact constraints), else its convexified energy with the frozen
@@ -105,9 +167,14 @@ impl Summary {
         for (k, r) in solution.reactions.iter().enumerate() {
             total_reaction[k % d] += r;
         }
-        let h = &problem.material.elasticity.small_strain_hooke(d);
-        let strains = BulkAssembler::new(mesh, &problem.material).cell_strains(&solution.u);
-        let locked_cells = if problem.material.locking.ideal().is_some() {
+        let hooke: Vec<_> = problem
+            .materials
+            .iter()
+            .map(|m| m.elasticity.small_strain_hooke(d))
+            .collect();
+        let bulk = BulkAssembler::of(problem, mesh);
+        let strains = bulk.cell_strains(&solution.u);
+        let locked_cells = if problem.ideal_locking().is_some() {
             solution
                 .locking_multiplier
                 .iter()
@@ -116,7 +183,8 @@ impl Summary {
         } else {
             strains
                 .iter()
-                .filter(|e| problem.material.locking.is_penalty_active(e))
+                .enumerate()
+                .filter(|(c, e)| bulk.material(*c).locking.is_penalty_active(e))
                 .count()
         };
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
@@ -135,9 +203,14 @@ impl Summary {
                 dofs: solution.report.n_dofs,
                 equations: solution.report.n_equations,
             },
-            lame: [h.lambda, h.mu],
+            lame: (hooke.len() == 1).then(|| [hooke[0].lambda, hooke[0].mu]),
+            materials: MaterialSummary::of(problem, &strains),
             energy: solution.energy,
-            energy_norm: energy_norm(mesh, h, &solution.u),
+            energy_norm: energy_norm_by_cell(
+                mesh,
+                &|c| hooke[problem.cell_material(c)],
+                &solution.u,
+            ),
             max_displacement,
             total_reaction,
             contact_points: solution.contact.len(),

@@ -463,12 +463,15 @@ pub struct CellFields {
     pub locking_q: Vec<f64>,
     /// Magnitude λ_T of the locking stress per cell (Pa).
     pub locking_multiplier: Vec<f64>,
+    /// The index of each cell's material in [`Problem::materials`] (all 0 for one
+    /// material).
+    pub material: Vec<i32>,
 }
 
 /// The cell data of `solution`; see [`CellFields`] and [`solution_vtu`].
 pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
     let mesh = &problem.mesh;
-    let bulk = BulkAssembler::new(mesh, &problem.material);
+    let bulk = BulkAssembler::of(problem, mesh);
     let strains = bulk.cell_strains(&solution.u);
     let n_cells = strains.len();
     let mut eps9 = Vec::with_capacity(9 * n_cells);
@@ -478,9 +481,11 @@ pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
     let mut active = Vec::with_capacity(n_cells);
     let mut q = Vec::with_capacity(n_cells);
     let mut multiplier = Vec::with_capacity(n_cells);
-    let locking = &problem.material.locking;
-    let set = locking.set();
+    let mut material = Vec::with_capacity(n_cells);
     for (c, e) in strains.iter().enumerate() {
+        let law = bulk.material(c);
+        let locking = &law.locking;
+        let set = locking.set();
         let (act, lambda) = match locking {
             Locking::Ideal(_) => {
                 let l = solution.locking_multiplier.get(c).copied().unwrap_or(0.0);
@@ -494,9 +499,8 @@ pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
         } else {
             0.0
         };
-        let s = problem
-            .material
-            .stress_3x3(e, problem.plane, ideal_multiplier);
+        let s = law.stress_3x3(e, problem.plane, ideal_multiplier);
+        material.push(problem.cell_material(c) as i32);
         eps9.extend(e.to_matrix().iter().flatten());
         sig9.extend(s.iter().flatten());
         vm.push(von_mises(&s));
@@ -514,6 +518,7 @@ pub fn cell_fields(problem: &Problem, solution: &Solution) -> CellFields {
         locking_active: active,
         locking_q: q,
         locking_multiplier: multiplier,
+        material,
     }
 }
 
@@ -540,6 +545,10 @@ pub fn field_units(dim: usize) -> Vec<(&'static str, &'static str)> {
         ("locking_multiplier", "Pa"),
     ]
 }
+
+/// The unit of the `material` cell field, written for a body of several materials.
+pub const MATERIAL_UNIT: &str = "index (0, 1, …) of the material, in the order of the \
+     scenario's [[material]] tables and of summary.json's materials";
 
 /// The integer codes of the state fields of `solution.vtu`; the text of the `codes` entry
 /// of its `FieldData`, one line per field.
@@ -618,10 +627,14 @@ pub fn solution_vtu<'a>(
             traction[3 * v + k] = c.friction_traction[k];
         }
     }
-    let units: String = field_units(d)
+    let mut units: String = field_units(d)
         .iter()
         .map(|(name, unit)| format!("{name}: {unit}\n"))
         .collect();
+    let with_material = !problem.region_material.is_empty();
+    if with_material {
+        units.push_str(&format!("material: {MATERIAL_UNIT}\n"));
+    }
     let mut w = VtuWriter::new(mesh);
     w.field_text("TITLE", title)
         .field_f64("TimeValue", vec![load_factor])
@@ -644,6 +657,9 @@ pub fn solution_vtu<'a>(
         .cell_i32("locking_active", cells.locking_active)
         .cell_f64("locking_q", 1, cells.locking_q)
         .cell_f64("locking_multiplier", 1, cells.locking_multiplier);
+    if with_material {
+        w.cell_i32("material", cells.material);
+    }
     Ok(w)
 }
 

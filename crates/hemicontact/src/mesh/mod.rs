@@ -10,11 +10,17 @@
 //! | `facet_part` | `n_facets` | index into `part_names` |
 //! | `facet_cell` | `n_facets` | the cell a boundary facet belongs to (for outward normals) |
 //!
+//! | `cell_region` | `n_cells` (or empty) | index into `region_names` |
+//!
 //! Boundary parts carry names (`bottom`, `top`, `left`, `right` for generated rectangles,
 //! Gmsh physical-group names for read meshes) which a scenario maps to Γ_D, Γ_N and Γ_C.
 //! A mesh is validated on construction ([`Mesh::try_new`]) and immutable afterwards: every
 //! cell is positively oriented and non-degenerate, every boundary facet carries a part, and
 //! the cells cover the domain once.
+//!
+//! Cells may carry named regions too ([`Mesh::with_regions`]: Gmsh physical groups of
+//! cells, boxes of a generated mesh, a tag array from a script), to which a scenario
+//! assigns materials. A mesh without regions has one unnamed region, index 0.
 //!
 //! # The cells cover the domain once
 //!
@@ -50,6 +56,7 @@ mod arrays;
 pub(crate) mod facets;
 pub mod generate;
 pub mod gmsh;
+mod regions;
 mod submesh;
 
 use crate::error::{Error, Result};
@@ -66,6 +73,8 @@ pub struct Mesh {
     facet_part: Vec<u16>,
     facet_cell: Vec<u32>,
     part_names: Vec<String>,
+    cell_region: Vec<u16>,
+    region_names: Vec<String>,
 }
 
 /// Relative tolerance below which a cell counts as degenerate: `|T| ≤ tol · h_T^d`.
@@ -230,6 +239,8 @@ impl Mesh {
             facet_part,
             facet_cell: Vec::new(),
             part_names,
+            cell_region: Vec::new(),
+            region_names: Vec::new(),
         };
         mesh.check_cells(name)?;
         mesh.facet_cell = mesh.match_boundary_facets(name)?;

@@ -73,6 +73,15 @@ impl Mesh {
             facet_part,
             facet_cell,
             part_names: self.part_names.clone(),
+            cell_region: if self.cell_region.is_empty() {
+                Vec::new()
+            } else {
+                cells
+                    .iter()
+                    .map(|&c| self.cell_region[c as usize])
+                    .collect()
+            },
+            region_names: self.region_names.clone(),
         })
     }
 }

@@ -1,7 +1,7 @@
 //! The mesh of a scenario: `[mesh]` generated (rectangle, box) or read from a Gmsh file,
 //! refined for convergence studies, and checked against the memory available.
 
-use super::schema::{MeshKind, MeshSpec};
+use super::schema::{MeshKind, MeshSpec, RegionSpec};
 use super::Scenario;
 use crate::error::{Error, Result};
 use crate::mesh::generate::{self, Rectangle};
@@ -138,13 +138,15 @@ impl Scenario {
             ("mesh.n", m.n.is_some()),
             ("mesh.pattern", m.pattern.is_some()),
             ("mesh.progression", m.progression.is_some()),
+            ("mesh.region", !m.region.is_empty()),
         ];
         if let Some((field, _)) = given.iter().find(|(_, g)| *g) {
             return Err(self.err(
                 field,
                 "given",
                 "nothing with kind = \"gmsh\": the mesh comes from mesh.file (origin, size, n, \
-                 pattern and progression are for generated meshes)",
+                 pattern, progression and region are for generated meshes; a Gmsh file's \
+                 cell regions are its physical groups)",
             ));
         }
         let Some(file) = &m.file else {
@@ -321,14 +323,76 @@ impl Scenario {
             })
         };
         // A generated mesh can only be invalid through the numbers of [mesh]: name them.
-        generated.map_err(|e| match e {
+        let mesh = generated.map_err(|e| match e {
             Error::Mesh(msg) => self.err(
                 "mesh.size / mesh.origin / mesh.n",
                 format!("size {size:?}, origin {:?}, n {counts:?}", m.origin),
                 &format!("sizes and an origin for which the cells are representable ({msg})"),
             ),
             other => other,
-        })
+        })?;
+        self.with_regions(mesh, &m.region)
+    }
+
+    /// The generated `mesh` with the cell regions `regions` (`[[mesh.region]]`): each cell in
+    /// the first box holding its centroid.
+    fn with_regions(&self, mesh: Mesh, regions: &[RegionSpec]) -> Result<Mesh> {
+        if regions.is_empty() {
+            return Ok(mesh);
+        }
+        let d = mesh.dim();
+        let mut region = vec![u16::MAX; mesh.n_cells()];
+        let mut names = Vec::with_capacity(regions.len());
+        for (k, r) in regions.iter().enumerate() {
+            let at = format!("mesh.region[{k}]");
+            if r.name.is_empty() || names.contains(&r.name) {
+                return Err(self.err(
+                    &format!("{at}.name"),
+                    format!("{:?}", r.name),
+                    "a non-empty name given to no other region",
+                ));
+            }
+            let lo = self.finite(&format!("{at}.min"), &r.min, d)?;
+            let hi = self.finite(&format!("{at}.max"), &r.max, d)?;
+            if let Some(i) = (0..d).find(|&i| lo[i] > hi[i]) {
+                return Err(self.err(
+                    &format!("{at}.max"),
+                    format!("{:?}", r.max),
+                    &format!(
+                        "a corner with max ≥ min on every axis (axis {i}: {} < {})",
+                        hi[i], lo[i]
+                    ),
+                ));
+            }
+            let cells = mesh.cells_in_box(lo, hi);
+            let mut taken = 0;
+            for c in cells {
+                if region[c] == u16::MAX {
+                    region[c] = k as u16;
+                    taken += 1;
+                }
+            }
+            if taken == 0 {
+                return Err(self.err(
+                    &at,
+                    format!("min {:?}, max {:?}", r.min, r.max),
+                    "a box holding the centroid of some cell not in an earlier region",
+                ));
+            }
+            names.push(r.name.clone());
+        }
+        if let Some(c) = region.iter().position(|&r| r == u16::MAX) {
+            let x = mesh.cell_coords(c);
+            let centroid: Vec<f64> = (0..d)
+                .map(|i| x[..=d].iter().map(|p| p[i]).sum::<f64>() / (d + 1) as f64)
+                .collect();
+            return Err(self.err(
+                "mesh.region",
+                format!("cell {c} (centroid {centroid:?}) is in no box"),
+                "boxes that together hold every cell's centroid",
+            ));
+        }
+        mesh.with_regions(region, names)
     }
 
     /// The progression ratios of a generated `[mesh]` with `counts` cells per axis (all 1 if

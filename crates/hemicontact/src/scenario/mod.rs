@@ -271,7 +271,7 @@ impl Scenario {
     pub fn into_problem_with_notes(&self) -> Result<(Problem, Vec<String>)> {
         let (mesh, mut notes) = self.build_mesh()?;
         let dim = mesh.dim();
-        let material = self.build_material(dim)?;
+        let (materials, region_material) = self.build_materials(&mesh)?;
         let axes = ["x", "y", "z"];
         let mut dirichlet = Vec::new();
         for (k, bc) in self.file.dirichlet.iter().enumerate() {
@@ -324,8 +324,9 @@ impl Scenario {
         self.settings()?;
         self.load_factors()?;
         let contact = self.build_contact(&mesh)?;
-        let mut builder = Problem::builder(mesh, material)
-            .plane(self.file.material.plane)
+        let mut builder = Problem::builder(mesh, materials[0].clone())
+            .materials(materials, region_material)
+            .plane(self.plane())
             .body_force(body_force);
         for d in dirichlet {
             builder = builder.dirichlet(d);

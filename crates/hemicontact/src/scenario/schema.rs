@@ -104,9 +104,11 @@ pub struct ScenarioFile {
     /// ([`super::Scenario::given_mesh`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mesh: Option<MeshSpec>,
-    /// Bulk material.
-    pub material: MaterialSpec,
-    /// Locking.
+    /// Bulk material: one table `[material]` for the whole mesh, or one `[[material]]`
+    /// table per cell region (each naming its region in `part`).
+    #[serde(deserialize_with = "one_or_many", serialize_with = "table_if_one")]
+    pub material: Vec<MaterialSpec>,
+    /// Locking of a `[material]` table (each `[[material]]` table has its own `locking`).
     #[serde(default)]
     pub locking: LockingSpec,
     /// Dirichlet parts (Γ_D).
@@ -173,6 +175,59 @@ pub struct MeshSpec {
     /// [`crate::mesh::generate::axis_nodes`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub progression: Option<Vec<f64>>,
+    /// Generators: named cell regions (`[[mesh.region]]`), each the cells whose centroid
+    /// lies in a box; a cell goes to the first box that holds it, and every cell must be in
+    /// one. A Gmsh file's regions are its physical groups of dimension d.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub region: Vec<RegionSpec>,
+}
+
+/// `[[mesh.region]]`: the cells of a generated mesh whose centroid lies in a box.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    /// The region's name, which a `[[material]]` table names in `part`.
+    pub name: String,
+    /// The box's corner with the smallest coordinates (m), d values.
+    pub min: Vec<f64>,
+    /// The box's corner with the largest coordinates (m), d values.
+    pub max: Vec<f64>,
+}
+
+/// Reads `material`: a table is the one material of the whole mesh, an array of tables one
+/// material per cell region.
+fn one_or_many<'de, D: serde::Deserializer<'de>>(
+    deserializer: D,
+) -> Result<Vec<MaterialSpec>, D::Error> {
+    use serde::de;
+    struct Visit;
+    impl<'de> de::Visitor<'de> for Visit {
+        type Value = Vec<MaterialSpec>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str(
+                "a table [material] (one material for the whole mesh) or tables [[material]] \
+                 (one per cell region, each naming it in `part`)",
+            )
+        }
+        fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<Vec<MaterialSpec>, A::Error> {
+            MaterialSpec::deserialize(de::value::MapAccessDeserializer::new(map)).map(|m| vec![m])
+        }
+        fn visit_seq<A: de::SeqAccess<'de>>(self, seq: A) -> Result<Vec<MaterialSpec>, A::Error> {
+            Vec::<MaterialSpec>::deserialize(de::value::SeqAccessDeserializer::new(seq))
+        }
+    }
+    deserializer.deserialize_any(Visit)
+}
+
+/// Writes `material` as it is read: one table for a material without `part`, else an array.
+fn table_if_one<S: serde::Serializer>(
+    m: &[MaterialSpec],
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    match m {
+        [one] if one.part.is_none() => one.serialize(serializer),
+        many => many.serialize(serializer),
+    }
 }
 
 impl MeshSpec {
@@ -197,10 +252,14 @@ fn default_plane() -> Plane {
     Plane::Strain
 }
 
-/// `[material]`.
+/// `[material]`, or one of the `[[material]]` tables.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
+    /// `[[material]]`: the cell region of the mesh it fills (a Gmsh physical group of
+    /// dimension d, or a `[[mesh.region]]` of a generated mesh).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub part: Option<String>,
     /// Elasticity model.
     #[serde(default)]
     pub model: ElasticityModel,
@@ -217,6 +276,10 @@ pub struct MaterialSpec {
     /// Hencky only: deviatoric strain magnitude e₀ > 0 of the transition (s₀ = e₀²).
     #[serde(default)]
     pub reference_strain: Option<f64>,
+    /// `[[material]]`: its locking (`[material.locking]`, the fields of `[locking]`); none
+    /// if absent.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub locking: Option<LockingSpec>,
 }
 
 /// Locking set name.
@@ -247,7 +310,7 @@ pub enum LockingTreatment {
 }
 
 /// `[locking]`.
-#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LockingSpec {
     /// The locking set.

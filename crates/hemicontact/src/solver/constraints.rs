@@ -51,6 +51,7 @@
 //! displacement, signs of the multipliers, complementarity, and (in
 //! [`super::certificate`]) equilibrium and the friction law with the multipliers as forces.
 
+use crate::contact::ContactNodes;
 use crate::material::LockingSet;
 use crate::problem::Problem;
 use serde::{Deserialize, Serialize};
@@ -145,9 +146,9 @@ impl AugmentedLagrangian {
     /// The penalties of `problem` for the settings `settings` and the contact points of
     /// weights `weight` (see [`contact_penalties`], [`locking_penalty`]), at their full
     /// values until [`AugmentedLagrangian::set_stage`] is called.
-    pub fn new(problem: &Problem, settings: &ConstraintSettings, weight: &[f64]) -> Self {
-        let contact = contact_penalties(problem, settings.contact_penalty, weight);
-        let locking = problem.material.locking.ideal().map_or(0.0, |set| {
+    pub fn new(problem: &Problem, settings: &ConstraintSettings, points: &ContactNodes) -> Self {
+        let contact = contact_penalties(problem, settings.contact_penalty, points);
+        let locking = problem.ideal_locking().map_or(0.0, |set| {
             locking_penalty(problem, settings.locking_penalty, &set)
         });
         AugmentedLagrangian {
@@ -203,7 +204,7 @@ impl AugmentedLagrangian {
 /// Whether the problem has exact constraints (ideal locking, Signorini contact, exact
 /// stick/slip), whose KKT conditions the certificate checks.
 pub fn has_exact_constraints(problem: &Problem) -> bool {
-    problem.material.locking.ideal().is_some()
+    problem.ideal_locking().is_some()
         || problem
             .contact
             .iter()
@@ -221,32 +222,55 @@ pub fn has_multipliers(problem: &Problem) -> bool {
             .any(|c| c.friction.as_ref().is_some_and(|f| f.has_multiplier()))
 }
 
-/// P-wave modulus `S = λ + 2G` of the small-strain Hooke law of the problem (Pa).
-fn stiffness_scale(problem: &Problem) -> f64 {
-    let h = problem
-        .material
-        .elasticity
-        .small_strain_hooke(problem.mesh.dim());
-    (h.lambda + 2.0 * h.mu).max(h.mu)
+/// The stiffness `S_i` (Pa) of every contact point of `points`: the largest P-wave modulus
+/// `λ + 2G` (at least G) of the small-strain Hooke laws of the cells around its node, the
+/// material its surface deforms; [`Problem::stiffness`] for a body of one material.
+pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
+    if problem.materials.len() == 1 {
+        return vec![problem.stiffness(); points.len()];
+    }
+    let mesh = &problem.mesh;
+    let d = mesh.dim();
+    let modulus: Vec<f64> = problem
+        .materials
+        .iter()
+        .map(|m| {
+            let h = m.elasticity.small_strain_hooke(d);
+            (h.lambda + 2.0 * h.mu).max(h.mu)
+        })
+        .collect();
+    let mut at_node = vec![0.0f64; mesh.n_nodes()];
+    for c in 0..mesh.n_cells() {
+        let s = modulus[problem.cell_material(c)];
+        for &v in mesh.cell(c) {
+            at_node[v as usize] = at_node[v as usize].max(s);
+        }
+    }
+    points.node.iter().map(|&v| at_node[v as usize]).collect()
 }
 
 /// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` for the penalty factor
 /// `gamma` ([`ConstraintSettings::locking_penalty`]; Pa per unit of Q², see
 /// [`LockingSet::gradient_norm_sq_at_boundary`]).
 pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
-    gamma * stiffness_scale(problem) / set.gradient_norm_sq_at_boundary()
+    gamma * problem.stiffness() / set.gradient_norm_sq_at_boundary()
 }
 
-/// The elastic stiffness per unit area `k_i = S / h_i` (Pa/m) of every contact point of
-/// weight `weight[i]`, with S the P-wave modulus and `h_i = w_i^{1/(d−1)}` the local mesh
-/// size: the contact traction that deforms the body around the point by a unit
+/// The elastic stiffness per unit area `k_i = S_i / h_i` (Pa/m) of every contact point of
+/// `points`, with `S_i` the P-wave modulus of the material around it ([`point_stiffness`])
+/// and `h_i = w_i^{1/(d−1)}` the local mesh size (`w_i` its weight): the contact traction that deforms the body around the point by a unit
 /// displacement. `F_i / k_i` is the slip scale of a point of friction bound `F_i`: the
 /// numerical regularization of its friction law and the thresholds of its certificate are
 /// relative to it (see [`crate::contact::friction`], [`super::certificate`]).
-pub fn contact_stiffness(problem: &Problem, weight: &[f64]) -> Vec<f64> {
-    let s = stiffness_scale(problem);
+pub fn contact_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
+    let s = point_stiffness(problem, points);
     let d = problem.mesh.dim();
-    weight.iter().map(|&w| s / local_size(d, w)).collect()
+    points
+        .weight
+        .iter()
+        .zip(&s)
+        .map(|(&w, &s)| s / local_size(d, w))
+        .collect()
 }
 
 /// The local mesh size `h = w^{1/(d−1)}` (m) of a contact point of weight `w` in dimension
@@ -256,14 +280,17 @@ fn local_size(d: usize, w: f64) -> f64 {
     h.max(f64::MIN_POSITIVE)
 }
 
-/// Penalty r_i (Pa/m) of every contact point of weight `weight[i]` for the penalty factor
-/// `gamma` ([`ConstraintSettings::contact_penalty`]).
-pub fn contact_penalties(problem: &Problem, gamma: f64, weight: &[f64]) -> Vec<f64> {
-    let s = stiffness_scale(problem);
+/// Penalty `r_i = γ S_i / h_i` (Pa/m) of every contact point of `points` for the penalty
+/// factor `gamma` ([`ConstraintSettings::contact_penalty`]; `S_i`, `h_i` as in
+/// [`contact_stiffness`]).
+pub fn contact_penalties(problem: &Problem, gamma: f64, points: &ContactNodes) -> Vec<f64> {
+    let s = point_stiffness(problem, points);
     let d = problem.mesh.dim();
-    weight
+    points
+        .weight
         .iter()
-        .map(|&w| gamma * s / local_size(d, w))
+        .zip(&s)
+        .map(|(&w, &s)| gamma * s / local_size(d, w))
         .collect()
 }
 
@@ -271,9 +298,7 @@ pub fn contact_penalties(problem: &Problem, gamma: f64, weight: &[f64]) -> Vec<f
 /// every exact constraint has its full penalty (0 without exact constraints).
 pub fn stages(problem: &Problem, c: &ConstraintSettings) -> usize {
     let locking = problem
-        .material
-        .locking
-        .ideal()
+        .ideal_locking()
         .map_or(0, |_| c.stages(c.locking_penalty));
     let contact = if problem
         .contact

@@ -8,6 +8,7 @@
 //! the unloaded state costs tens of damped Newton steps.
 
 use super::constraints::{AugmentedLagrangian, ConstraintSettings};
+use crate::contact::ContactNodes;
 use crate::problem::Problem;
 
 /// The continuation state of the outer loop.
@@ -20,11 +21,10 @@ pub struct Continuation {
 }
 
 impl Continuation {
-    /// The continuation of `problem` with the penalty settings `settings` for contact
-    /// points of weights `weight`: full penalties until [`Continuation::set_stage`] is
-    /// called.
-    pub fn new(problem: &Problem, settings: &ConstraintSettings, weight: &[f64]) -> Self {
-        let penalties = AugmentedLagrangian::new(problem, settings, weight);
+    /// The continuation of `problem` with the penalty settings `settings` for its contact
+    /// points `points`: full penalties until [`Continuation::set_stage`] is called.
+    pub fn new(problem: &Problem, settings: &ConstraintSettings, points: &ContactNodes) -> Self {
+        let penalties = AugmentedLagrangian::new(problem, settings, points);
         let stages = penalties.stages(problem);
         Continuation { penalties, stages }
     }

@@ -40,8 +40,7 @@ impl Frozen {
     /// ([`crate::assembly::contact::ContactAssembler::friction_coefficients`]).
     pub fn initial(system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let n = system.contact.len();
-        let n_cells =
-            problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
+        let n_cells = problem.mesh.n_cells() * usize::from(problem.ideal_locking().is_some());
         let zero = Frozen {
             friction: FrictionData::zero(n),
             multipliers: Multipliers::zero(n, n_cells),

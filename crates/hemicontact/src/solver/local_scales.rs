@@ -106,7 +106,7 @@ impl Bodies {
                     .fold(motion[b as usize], |m, x| m.max(x.abs()));
             }
         }
-        let h = problem.material.elasticity.small_strain_hooke(d);
+        let stiffness = problem.stiffness();
         let force_floor = rigid
             .bodies
             .iter()
@@ -114,7 +114,7 @@ impl Bodies {
             .map(|(body, m)| {
                 let (lo, hi) = body.bounding_box;
                 let diam = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-                (h.lambda + 2.0 * h.mu) * m * diam.powi(d as i32 - 2)
+                stiffness * m * diam.powi(d as i32 - 2)
             })
             .collect();
         Bodies {
@@ -215,14 +215,14 @@ impl Bodies {
     }
 
     /// The energy norm `‖v|_b‖_E = (Σ_{T ∈ b} |T| A ε_T(v):ε_T(v))^{1/2}` of `v` on each body
-    /// (Hooke law `hooke`; the same sum as [`crate::norms::energy_norm`], cell by cell,
+    /// (Hooke law `hooke(c)` in cell `c`; the same sum as [`crate::norms::energy_norm`], cell by cell,
     /// scaled by a power of two against overflow), into `out`; the cells `share` counts,
     /// then over the processes.
     pub fn energy_norms(
         &self,
         share: &Share,
         mesh: &Mesh,
-        hooke: &Hooke,
+        hooke: &dyn Fn(usize) -> Hooke,
         v: &[f64],
         out: &mut Vec<f64>,
     ) {
@@ -249,7 +249,7 @@ impl Bodies {
                 continue;
             }
             let (measure, eps) = element::cell_strain(mesh, v, c);
-            out[b] += measure * hooke.energy(&eps.scaled(1.0 / s));
+            out[b] += measure * hooke(c).energy(&eps.scaled(1.0 / s));
         }
         share.sum(out);
         for (n, s) in out.iter_mut().zip(&scale) {

@@ -393,7 +393,7 @@ fn solve_scaled(
     let u = share.to_whole(u, d, Entries::Nodes);
     let reactions = share.to_whole(reactions, d, Entries::Nodes);
     let contact = certificate::whole_results(share, contact);
-    let ideal = problem.material.locking.ideal().is_some();
+    let ideal = problem.ideal_locking().is_some();
     let locking_multiplier = match ideal {
         true => share.to_whole(updated.locking, 1, Entries::Cells),
         false => Vec::new(),

@@ -78,7 +78,7 @@ impl Multipliers {
                 next.traction[i] = tau;
             }
         }
-        next.locking = match problem.material.locking.ideal() {
+        next.locking = match problem.ideal_locking() {
             Some(set) => update_locking(&problem.mesh, &set, penalties.locking(), u, &self.locking),
             None => self.locking.clone(),
         };
@@ -115,7 +115,7 @@ impl Multipliers {
                 .max((next.pressure[i] - self.pressure[i]).abs() / r)
                 .max(dt / r);
         }
-        if let Some(set) = problem.material.locking.ideal() {
+        if let Some(set) = problem.ideal_locking() {
             let r = penalties.locking() * set.size();
             let counted = next.locking.iter().zip(&self.locking).enumerate();
             for (_, (a, b)) in counted.filter(|&(c, _)| share.counts_cell(c)) {
@@ -175,7 +175,7 @@ impl Multipliers {
         if max_pressure > 0.0 {
             kkt.contact_min_multiplier = min_pressure / max_pressure;
         }
-        if let Some(set) = problem.material.locking.ideal() {
+        if let Some(set) = problem.ideal_locking() {
             locking_kkt(&problem.mesh, &set, u, &self.locking, share, kkt);
         }
     }

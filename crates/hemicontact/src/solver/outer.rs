@@ -252,10 +252,14 @@ pub fn run(
     observe: &dyn Fn(&OuterProgress),
 ) -> Result<OuterOutcome> {
     let dim = problem.mesh.dim();
-    let hooke = problem.material.elasticity.small_strain_hooke(dim);
+    let hookes: Vec<_> = problem
+        .materials
+        .iter()
+        .map(|m| m.elasticity.small_strain_hooke(dim))
+        .collect();
+    let hooke = |c: usize| hookes[problem.cell_material(c)];
     let n_points = system.contact.len();
-    let n_locking =
-        problem.mesh.n_cells() * usize::from(problem.material.locking.ideal().is_some());
+    let n_locking = problem.mesh.n_cells() * usize::from(problem.ideal_locking().is_some());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = Frozen::initial(system, problem, u)?;

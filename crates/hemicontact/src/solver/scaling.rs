@@ -3,7 +3,8 @@
 //! Every solve is carried out on the problem written in three scales taken from its data:
 //!
 //! - length `L`: the diameter of the mesh's bounding box (m);
-//! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa);
+//! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa), the
+//!   largest of the materials' for a body of several ([`Problem::stiffness`]);
 //! - displacement `U`: the largest displacement the data can cause — the largest prescribed
 //!   displacement, the largest translation of an obstacle with friction (which drags the
 //!   body, [`Problem::largest_prescribed_motion`]), `|f_N| L / S` for the largest traction
@@ -66,8 +67,7 @@ impl Scales {
     pub fn of(problem: &Problem) -> Result<Scales> {
         let dim = problem.mesh.dim();
         let length = problem.diameter();
-        let hooke = problem.material.elasticity.small_strain_hooke(dim);
-        let stress = hooke.lambda + 2.0 * hooke.mu;
+        let stress = problem.stiffness();
         let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let mut displacement = problem.largest_prescribed_motion();
         for t in &problem.tractions {
@@ -101,7 +101,8 @@ impl Scales {
             power_of_two(displacement),
         );
         let e = displacement / length;
-        let (_, locking_multiplier) = problem.material.nondimensional(stress, e);
+        // Ideal locking has one material (`Problem::validate`): the unit of its multiplier.
+        let (_, locking_multiplier) = problem.materials[0].nondimensional(stress, e);
         Ok(Scales {
             dim,
             length,
@@ -134,11 +135,16 @@ impl Scales {
     /// The problem in dimensionless variables; see the module documentation.
     pub fn nondimensional(&self, problem: &Problem) -> Problem {
         let (u, t) = (self.displacement, self.traction());
-        let (material, _) = problem.material.nondimensional(self.stress, self.strain());
+        let materials = problem
+            .materials
+            .iter()
+            .map(|m| m.nondimensional(self.stress, self.strain()).0)
+            .collect();
         let scaled = |v: [f64; 3], unit: f64| v.map(|x| x / unit);
         Problem {
             mesh: problem.mesh.in_units_of(self.length),
-            material,
+            materials,
+            region_material: problem.region_material.clone(),
             dirichlet: problem
                 .dirichlet
                 .iter()

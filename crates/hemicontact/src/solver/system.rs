@@ -244,8 +244,8 @@ impl System {
             && processes.size() > 1
             && kind.resolve(d, dofs.n_free()) == super::LinearSolver::Petsc;
         let contact = problem.contact_nodes()?;
-        let continuation = Continuation::new(problem, &settings.constraints, &contact.weight);
-        let contact_stiffness = super::constraints::contact_stiffness(problem, &contact.weight);
+        let continuation = Continuation::new(problem, &settings.constraints, &contact);
+        let contact_stiffness = super::constraints::contact_stiffness(problem, &contact);
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
         let bodies = Bodies::new(problem, &rigid, &contact);
@@ -359,7 +359,8 @@ impl System {
                 let share = Share::of(d, &sub, nodes, &dofs, points, whole, processes);
                 let part_problem = Problem {
                     mesh,
-                    material: problem.material.clone(),
+                    materials: problem.materials.clone(),
+                    region_material: problem.region_material.clone(),
                     plane: problem.plane,
                     dirichlet: problem.dirichlet.clone(),
                     tractions: problem.tractions.clone(),
@@ -468,9 +469,8 @@ impl System {
     ) {
         let n = self.contact.len();
         let bulk = BulkAssembler {
-            mesh: &problem.mesh,
-            material: &problem.material,
             ideal: self.ideal_locking(problem, frozen),
+            ..BulkAssembler::of(problem, &problem.mesh)
         };
         let mut ca = self.contact_assembler(problem);
         ca.responses = responses;
@@ -537,7 +537,7 @@ impl System {
 
     /// The ideal-locking term of `problem` with the cell multipliers of `frozen`.
     fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
-        problem.material.locking.ideal().map(|set| IdealLocking {
+        problem.ideal_locking().map(|set| IdealLocking {
             set,
             r: self.continuation.penalties.locking(),
             multipliers: &frozen.multipliers.locking,
@@ -574,9 +574,8 @@ impl System {
             None
         };
         let bulk = BulkAssembler {
-            mesh: &problem.mesh,
-            material: &problem.material,
             ideal: self.ideal_locking(problem, frozen),
+            ..BulkAssembler::of(problem, &problem.mesh)
         };
         let e_bulk = bulk.assemble_parallel(
             u,

@@ -165,7 +165,12 @@ pub fn check(problem: &Problem, settings: &super::SolverSettings) -> Result<Uniq
 /// bound, and `lhs`, `margin` NaN, `holds` false (nothing evaluated yet).
 fn constants(problem: &Problem) -> Uniqueness {
     let d = problem.mesh.dim();
-    let m_a = problem.material.elasticity.monotonicity(d);
+    // The smallest constant of the materials: the bound must hold in every cell.
+    let m_a = problem
+        .materials
+        .iter()
+        .map(|m| m.elasticity.monotonicity(d))
+        .fold(f64::INFINITY, f64::min);
     let frictions: Vec<_> = problem
         .contact
         .iter()

@@ -201,14 +201,15 @@ pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
             u16::MAX
         )));
     }
-    let cell_region = cells
+    let cell_region: Vec<u16> = cells
         .region_of
         .iter()
         .map(|&r| region_rank[r as usize] as u16)
         .collect();
     if region_names.len() > 1 {
         notes.push(format!(
-            "{} cell regions ({}): one material applies to all of them",
+            "{} cell regions ({}): one `[material]` applies to all of them, or each region \
+             gets its own by a `[[material]]` table naming it in `part`",
             region_names.len(),
             region_names
                 .iter()
@@ -236,6 +237,7 @@ pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
         parts.part_names,
         &element,
     )
+    .and_then(|m| m.with_regions(cell_region.clone(), region_names.clone()))
     .map_err(|e| match e {
         Error::Mesh(m) => src.whole(format!("invalid mesh: {m}")),
         other => other,

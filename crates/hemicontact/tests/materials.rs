@@ -1,0 +1,524 @@
+//! # Verification: bodies of several materials
+//!
+//! A body made of parts of different materials (`[[material]]` tables, one per cell region
+//! of the mesh) is assembled cell by cell with each cell's own law. P1 elements on a mesh
+//! whose cells do not cross the interfaces contain every displacement that is affine in each
+//! part and continuous across the interfaces, so such exact solutions are reproduced to
+//! round-off:
+//!
+//! 1. **Bimaterial bar in tension** (2D, ν = 0, plane strain): two halves of moduli E₁ and
+//!    E₂ in series, pulled by a traction σ: uniform stress σ, and the end moves by
+//!    `σ (L₁/E₁ + L₂/E₂)`. The summary's per-material strain energies are `σ² A_i / (2E_i)`.
+//! 2. **Layered block under pressure** (3D, confined compression): two layers of P-wave
+//!    moduli `M_i = λ_i + 2G_i` stacked along z, on rollers, pressed by p on top:
+//!    `σ_zz = −p` in every cell, `σ_xx = σ_yy = λ_i ε_zz,i` with `ε_zz,i = −p/M_i`, and the
+//!    top settles by `p (h₁/M₁ + h₂/M₂)`.
+//! 3. **Interface patch test** (2D and 3D): the piecewise-affine field whose strain jumps by
+//!    `sym(a ⊗ n)` across a plane interface of normal n, with `a` chosen so that the
+//!    traction `σ n` is continuous, is in equilibrium: the assembled internal forces vanish
+//!    at every node not on the outer boundary, interface nodes included. The same field with
+//!    the wrong jump (a = 0) leaves forces at the interface nodes, so the test can fail.
+//! 4. **A layered block on a rigid foundation** (Signorini, frictionless): the contact
+//!    pressure under the soft layer is the applied pressure at every point, so the contact
+//!    points take their stiffness from their own material.
+//! 5. **What the solve takes from all materials:** the stress scale is the stiffest
+//!    material's P-wave modulus, the uniqueness constant m_A the smallest of the materials'.
+//! 6. **Refusals:** a region without a material, a material naming no region, a `[locking]`
+//!    table beside `[[material]]` tables, ideal locking with several materials, boxes that
+//!    leave a cell out.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use hemicontact::assembly::global::Want;
+use hemicontact::assembly::{BulkAssembler, SystemPattern};
+use hemicontact::io::vtu::cell_fields;
+use hemicontact::material::{Hooke, Material, Plane};
+use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
+use hemicontact::mesh::Mesh;
+use hemicontact::problem::Problem;
+use hemicontact::scenario::Scenario;
+use hemicontact::solver::{solve, SolverSettings};
+
+fn problem_of(toml: &str) -> Problem {
+    Scenario::from_str(toml, "materials.toml")
+        .unwrap()
+        .into_problem()
+        .unwrap()
+}
+
+fn refusal(toml: &str) -> String {
+    match Scenario::from_str(toml, "materials.toml").and_then(|s| s.into_problem()) {
+        Ok(_) => panic!("accepted:\n{toml}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const BAR: &str = r#"
+[mesh]
+kind = "rectangle"
+size = [2.0, 0.5]
+n = [8, 2]
+[[mesh.region]]
+name = "soft"
+min = [0.0, 0.0]
+max = [1.0, 0.5]
+[[mesh.region]]
+name = "stiff"
+min = [1.0, 0.0]
+max = [2.0, 0.5]
+[[material]]
+part = "soft"
+young = 1000.0
+poisson = 0.0
+[[material]]
+part = "stiff"
+young = 7000.0
+poisson = 0.0
+[[dirichlet]]
+part = "left"
+components = ["x"]
+[[dirichlet]]
+part = "bottom"
+components = ["y"]
+[[loads.traction]]
+part = "right"
+value = [35.0, 0.0]
+"#;
+
+#[test]
+fn a_bimaterial_bar_stretches_by_the_sum_of_its_halves() {
+    let problem = problem_of(BAR);
+    assert_eq!(problem.materials().len(), 2);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged);
+    let sigma = 35.0;
+    let end = sigma * (1.0 / 1000.0 + 1.0 / 7000.0);
+    let mesh = problem.mesh();
+    for v in 0..mesh.n_nodes() {
+        let x = mesh.node(v)[0];
+        let exact = if x <= 1.0 {
+            sigma * x / 1000.0
+        } else {
+            sigma / 1000.0 + sigma * (x - 1.0) / 7000.0
+        };
+        assert!(
+            (s.u[2 * v] - exact).abs() <= 1e-10 * end,
+            "node {v} at x = {x}: u_x = {:e}, exact {exact:e}",
+            s.u[2 * v]
+        );
+        assert!(s.u[2 * v + 1].abs() <= 1e-10 * end, "u_y at node {v}");
+    }
+    let cells = cell_fields(&problem, &s);
+    for c in 0..mesh.n_cells() {
+        let sxx = cells.stress[9 * c];
+        assert!(
+            (sxx - sigma).abs() <= 1e-9 * sigma,
+            "cell {c}: σ_xx = {sxx}"
+        );
+        let x0 = mesh.cell_coords(c)[..3].iter().map(|p| p[0]).sum::<f64>() / 3.0;
+        assert_eq!(
+            cells.material[c],
+            i32::from(x0 > 1.0),
+            "material of cell {c}"
+        );
+    }
+    // Per material: the strain energy σ² A / (2E) of a unit-thickness half of area 0.5.
+    let summary = hemicontact::io::summary::Summary::new(
+        &problem,
+        &SolverSettings::default(),
+        &s,
+        None,
+        "bar",
+    );
+    assert!(summary.lame.is_none());
+    let m = &summary.materials;
+    assert_eq!(m.len(), 2);
+    for (k, e) in [(0, 1000.0), (1, 7000.0)] {
+        assert_eq!(m[k].cells, 16);
+        assert!((m[k].volume - 0.5).abs() < 1e-14);
+        let exact = sigma * sigma * 0.5 / (2.0 * e);
+        assert!(
+            (m[k].strain_energy - exact).abs() <= 1e-9 * exact,
+            "material {k}: {} against {exact}",
+            m[k].strain_energy
+        );
+    }
+    assert_eq!(m[1].parts, ["stiff"]);
+}
+
+/// The layered block: two layers of different laws along z, on rollers, pressed by p.
+fn layered_block(contact: bool) -> String {
+    let bottom = if contact {
+        "[[contact]]\npart = \"bottom\"\nlaw = \"signorini\"\n"
+    } else {
+        "[[dirichlet]]\npart = \"bottom\"\ncomponents = [\"z\"]\n"
+    };
+    format!(
+        r#"
+[mesh]
+kind = "box"
+size = [1.0, 1.0, 1.0]
+n = [2, 2, 4]
+[[mesh.region]]
+name = "rubber"
+min = [0.0, 0.0, 0.0]
+max = [1.0, 1.0, 0.5]
+[[mesh.region]]
+name = "steel"
+min = [0.0, 0.0, 0.5]
+max = [1.0, 1.0, 1.0]
+[[material]]
+part = "rubber"
+young = 10.0
+poisson = 0.45
+[[material]]
+part = "steel"
+young = 2000.0
+poisson = 0.3
+[[dirichlet]]
+part = "left"
+components = ["x"]
+[[dirichlet]]
+part = "right"
+components = ["x"]
+[[dirichlet]]
+part = "front"
+components = ["y"]
+[[dirichlet]]
+part = "back"
+components = ["y"]
+{bottom}
+[[loads.traction]]
+part = "top"
+value = [0.0, 0.0, -0.25]
+"#
+    )
+}
+
+fn lame_3d(e: f64, nu: f64) -> Hooke {
+    Hooke::from_young_poisson(e, nu, 3, Plane::Strain)
+}
+
+#[test]
+fn a_layered_block_under_pressure_settles_by_the_sum_of_its_layers() {
+    let problem = problem_of(&layered_block(false));
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged);
+    let p = 0.25;
+    let layers = [lame_3d(10.0, 0.45), lame_3d(2000.0, 0.3)];
+    let m = layers.map(|h| h.lambda + 2.0 * h.mu);
+    let settlement = p * (0.5 / m[0] + 0.5 / m[1]);
+    let mesh = problem.mesh();
+    for v in 0..mesh.n_nodes() {
+        let z = mesh.node(v)[2];
+        let exact = -p * (z.min(0.5) / m[0] + (z - 0.5).max(0.0) / m[1]);
+        assert!(
+            (s.u[3 * v + 2] - exact).abs() <= 1e-10 * settlement,
+            "node {v} at z = {z}: u_z = {:e}, exact {exact:e}",
+            s.u[3 * v + 2]
+        );
+    }
+    let cells = cell_fields(&problem, &s);
+    for c in 0..mesh.n_cells() {
+        let k = cells.material[c] as usize;
+        let eps_zz = -p / m[k];
+        let st = &cells.stress[9 * c..9 * c + 9];
+        assert!((st[8] + p).abs() <= 1e-9 * p, "cell {c}: σ_zz = {}", st[8]);
+        let lateral = layers[k].lambda * eps_zz;
+        assert!(
+            (st[0] - lateral).abs() <= 1e-9 * p && (st[4] - lateral).abs() <= 1e-9 * p,
+            "cell {c} (material {k}): σ_xx = {}, σ_yy = {}, exact {lateral}",
+            st[0],
+            st[4]
+        );
+    }
+}
+
+#[test]
+fn a_layered_block_on_a_rigid_foundation_is_pressed_by_the_load_at_every_point() {
+    let problem = problem_of(&layered_block(true));
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{:?}", s.report.certificate);
+    assert!(!s.contact.is_empty());
+    for c in &s.contact {
+        assert!(
+            (c.pressure - 0.25).abs() <= 1e-7 * 0.25,
+            "node {}: pressure {}",
+            c.node,
+            c.pressure
+        );
+    }
+}
+
+/// A mesh of `n` cells per side of the unit square or cube, with the regions `lower`
+/// (centroid below the plane x_{d−1} = 1/2) and `upper`.
+fn two_layer_mesh(d: usize, n: usize) -> Mesh {
+    let mesh = if d == 2 {
+        rectangle(&Rectangle {
+            origin: [0.0, 0.0],
+            size: [1.0, 1.0],
+            n: [n, n],
+            pattern: CutPattern::Symmetric,
+            progression: [1.0, 1.0],
+        })
+    } else {
+        cuboid(&BoxSpec {
+            origin: [0.0; 3],
+            size: [1.0; 3],
+            n: [n; 3],
+            pattern: CutPattern::Symmetric,
+            progression: [1.0; 3],
+        })
+    }
+    .unwrap();
+    let mut hi = [1.0; 3];
+    hi[d - 1] = 0.5;
+    let lower = mesh.cells_in_box([0.0; 3], hi);
+    let mut region = vec![1u16; mesh.n_cells()];
+    for c in lower {
+        region[c] = 0;
+    }
+    mesh.with_regions(region, vec!["lower".into(), "upper".into()])
+        .unwrap()
+}
+
+/// The stress `C ε` of Hooke's law as a d × d matrix.
+fn hooke_stress(h: &Hooke, e: &[[f64; 3]; 3], d: usize) -> [[f64; 3]; 3] {
+    let tr: f64 = (0..d).map(|i| e[i][i]).sum();
+    let mut s = [[0.0; 3]; 3];
+    for i in 0..d {
+        for j in 0..d {
+            s[i][j] = 2.0 * h.mu * e[i][j] + if i == j { h.lambda * tr } else { 0.0 };
+        }
+    }
+    s
+}
+
+/// The jump `a` of the displacement gradient across the plane x_{d−1} = const for which
+/// `C₂ (ε₁ + sym(a ⊗ n)) n = C₁ ε₁ n`, n = e_{d−1}: a d × d linear system, solved by
+/// Gaussian elimination.
+fn traction_continuous_jump(h: [&Hooke; 2], e1: &[[f64; 3]; 3], d: usize) -> [f64; 3] {
+    let n = d - 1;
+    let strain_of = |a: &[f64; 3]| {
+        let mut e = *e1;
+        for i in 0..d {
+            e[i][n] += 0.5 * a[i];
+            e[n][i] += 0.5 * a[i];
+        }
+        e
+    };
+    let target = hooke_stress(h[0], e1, d);
+    let residual = |a: &[f64; 3]| {
+        let s = hooke_stress(h[1], &strain_of(a), d);
+        let mut r = [0.0; 3];
+        for i in 0..d {
+            r[i] = s[i][n] - target[i][n];
+        }
+        r
+    };
+    // The residual is affine in a: its matrix column by column.
+    let r0 = residual(&[0.0; 3]);
+    let mut m = [[0.0; 4]; 3];
+    for j in 0..d {
+        let mut a = [0.0; 3];
+        a[j] = 1.0;
+        let r = residual(&a);
+        for i in 0..d {
+            m[i][j] = r[i] - r0[i];
+        }
+    }
+    for i in 0..d {
+        m[i][3] = -r0[i];
+    }
+    for k in 0..d {
+        let p = (k..d)
+            .max_by(|&a, &b| m[a][k].abs().total_cmp(&m[b][k].abs()))
+            .unwrap();
+        m.swap(k, p);
+        for i in 0..d {
+            if i != k {
+                let f = m[i][k] / m[k][k];
+                for j in 0..4 {
+                    m[i][j] -= f * m[k][j];
+                }
+            }
+        }
+    }
+    let mut a = [0.0; 3];
+    for i in 0..d {
+        a[i] = m[i][3] / m[i][i];
+    }
+    a
+}
+
+/// The internal forces of the piecewise-affine field `u = ε₁ x` below the interface and
+/// `u = ε₁ x + a (x_n − 1/2)` above, largest at a node off the outer boundary, relative to
+/// the largest force at a boundary node.
+fn interface_forces(d: usize, jump: bool) -> f64 {
+    let mesh = two_layer_mesh(d, 4);
+    let h = [
+        Hooke::from_young_poisson(3.0, 0.2, d, Plane::Strain),
+        Hooke::from_young_poisson(40.0, 0.35, d, Plane::Strain),
+    ];
+    let materials = [
+        Material::elastic(hemicontact::material::Elasticity::Hooke(h[0])),
+        Material::elastic(hemicontact::material::Elasticity::Hooke(h[1])),
+    ];
+    let e1 = [
+        [0.01, 0.003, -0.002],
+        [0.003, -0.004, 0.005],
+        [-0.002, 0.005, 0.007],
+    ];
+    let a = if jump {
+        traction_continuous_jump([&h[0], &h[1]], &e1, d)
+    } else {
+        [0.0; 3]
+    };
+    let mut u = vec![0.0; d * mesh.n_nodes()];
+    for v in 0..mesh.n_nodes() {
+        let x = mesh.node(v);
+        let above = (x[d - 1] - 0.5).max(0.0);
+        for i in 0..d {
+            u[d * v + i] = (0..d).map(|j| e1[i][j] * x[j]).sum::<f64>() + a[i] * above;
+        }
+    }
+    // Held on its whole boundary (the assembled forces are those at all DOFs anyway).
+    let mut builder = Problem::builder(mesh.clone(), materials[0].clone())
+        .materials(materials.to_vec(), vec![0, 1]);
+    for part in 0..mesh.part_names().len() {
+        builder = builder.dirichlet(hemicontact::problem::Dirichlet {
+            part,
+            components: [true; 3],
+            value: [0.0; 3],
+        });
+    }
+    let problem = builder.build().unwrap();
+    let bulk = BulkAssembler::of(&problem, &mesh);
+    let dofs = problem.dof_map();
+    let pattern = SystemPattern::new(&mesh, &dofs).unwrap();
+    let mut grad = vec![0.0; u.len()];
+    bulk.assemble(&u, &mut grad, Want::Gradient, &pattern, None);
+    let on_boundary = |x: &[f64]| {
+        x.iter()
+            .any(|&c| c.abs() < 1e-12 || (c - 1.0).abs() < 1e-12)
+    };
+    let (mut inner, mut outer) = (0.0f64, 0.0f64);
+    for v in 0..mesh.n_nodes() {
+        let f = grad[d * v..d * v + d]
+            .iter()
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
+        if on_boundary(mesh.node(v)) {
+            outer = outer.max(f);
+        } else {
+            inner = inner.max(f);
+        }
+    }
+    inner / outer
+}
+
+#[test]
+fn the_interface_patch_test_holds_in_2d_and_3d() {
+    for d in [2, 3] {
+        let balanced = interface_forces(d, true);
+        let wrong = interface_forces(d, false);
+        assert!(
+            balanced < 1e-13,
+            "{d}D: interior forces {balanced:e} of the boundary's"
+        );
+        assert!(wrong > 1e-2, "{d}D: the wrong jump leaves only {wrong:e}");
+    }
+}
+
+#[test]
+fn the_scales_take_the_stiffest_material_and_uniqueness_the_smallest_m_a() {
+    let problem = problem_of(&layered_block(false));
+    let steel = lame_3d(2000.0, 0.3);
+    let stiffest = steel.lambda + 2.0 * steel.mu;
+    assert_eq!(problem.stiffness(), stiffest);
+    let scales = hemicontact::solver::scaling::Scales::of(&problem).unwrap();
+    assert_eq!(scales.stress, stiffest.log2().round().exp2());
+    let rubber = lame_3d(10.0, 0.45);
+    let u = hemicontact::solver::uniqueness::evaluate(&problem, &SolverSettings::default());
+    assert_eq!(u.m_a, rubber.monotonicity(3));
+    assert!(u.m_a < steel.monotonicity(3));
+}
+
+#[test]
+fn one_material_table_and_one_material_per_region_give_the_same_answer() {
+    // The bar with both halves of one material, given as [[material]] per region and as
+    // one [material] table: the same numbers, bit for bit.
+    let per_region = BAR.replace("young = 7000.0", "young = 1000.0");
+    let one = BAR.split("[[material]]").next().unwrap().to_string()
+        + "[material]\nyoung = 1000.0\npoisson = 0.0\n"
+        + &BAR[BAR.find("[[dirichlet]]").unwrap()..];
+    let a = solve(&problem_of(&per_region), &SolverSettings::default()).unwrap();
+    let b = solve(&problem_of(&one), &SolverSettings::default()).unwrap();
+    assert_eq!(a.u, b.u);
+}
+
+#[test]
+fn inconsistent_materials_are_refused_with_the_field_named() {
+    let missing = BAR.replace(
+        "[[material]]\npart = \"stiff\"\nyoung = 7000.0\npoisson = 0.0\n",
+        "",
+    );
+    let e = refusal(&missing);
+    assert!(
+        e.contains("no [[material]] table for the cell region \"stiff\""),
+        "{e}"
+    );
+    let unknown = BAR.replace("part = \"stiff\"", "part = \"steel\"");
+    let e = refusal(&unknown);
+    assert!(
+        e.contains("material[1].part") && e.contains("\"soft\", \"stiff\""),
+        "{e}"
+    );
+    let twice = BAR.replace("part = \"stiff\"", "part = \"soft\"");
+    assert!(refusal(&twice).contains("material[0] has it"));
+    let locking = format!("{BAR}\n[locking]\nset = \"ball\"\nradius = 0.1\nc_kappa = 1.0\n");
+    assert!(refusal(&locking).contains("its own `locking` table"));
+    let ideal = BAR.replace(
+        "young = 7000.0\npoisson = 0.0\n",
+        "young = 7000.0\npoisson = 0.0\n[material.locking]\nset = \"ball\"\nradius = 0.1\ntreatment = \"exact\"\n",
+    );
+    let e = refusal(&ideal);
+    assert!(e.contains("materials[1].locking"), "{e}");
+    let bad_young = BAR.replace("young = 7000.0", "young = -7000.0");
+    assert!(refusal(&bad_young).contains("material[1].young"));
+    let gap = BAR.replace("max = [1.0, 0.5]", "max = [0.5, 0.5]");
+    assert!(refusal(&gap).contains("is in no box"));
+    let no_regions = BAR
+        .replace(
+            "[[mesh.region]]\nname = \"soft\"\nmin = [0.0, 0.0]\nmax = [1.0, 0.5]\n",
+            "",
+        )
+        .replace(
+            "[[mesh.region]]\nname = \"stiff\"\nmin = [1.0, 0.0]\nmax = [2.0, 0.5]\n",
+            "",
+        );
+    assert!(refusal(&no_regions).contains("the mesh has no cell regions"));
+}
+
+#[test]
+fn a_penalty_locking_part_locks_and_the_other_does_not() {
+    // The bar pulled far: the soft half with a ball of radius 0.01 and a stiff penalty,
+    // the stiff half without locking. The locking acts in the soft half only.
+    let toml = BAR
+        .replace(
+            "young = 1000.0\npoisson = 0.0\n",
+            "young = 1000.0\npoisson = 0.0\n[material.locking]\nset = \"ball\"\nradius = 0.01\nc_kappa = 1e5\n",
+        );
+    let problem = problem_of(&toml);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged);
+    let cells = cell_fields(&problem, &s);
+    for c in 0..problem.mesh().n_cells() {
+        assert_eq!(
+            cells.locking_active[c],
+            i32::from(cells.material[c] == 0),
+            "cell {c} (material {})",
+            cells.material[c]
+        );
+    }
+}
