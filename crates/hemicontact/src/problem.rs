@@ -176,16 +176,28 @@ impl Problem {
             .map_or(0, |&k| k as usize)
     }
 
-    /// The set of ideal locking (the exact constraint `ε_T ∈ B`), if the material locks
-    /// ideally. (A problem with ideal locking has one material; see [`Problem::validate`].)
-    pub fn ideal_locking(&self) -> Option<crate::material::LockingSet> {
-        self.materials.iter().find_map(|m| m.locking.ideal())
+    /// Whether some material locks ideally (the exact constraint `ε_T ∈ B`, imposed with a
+    /// multiplier per cell).
+    pub fn has_ideal_locking(&self) -> bool {
+        self.materials.iter().any(|m| m.locking.ideal().is_some())
+    }
+
+    /// The set of ideal locking of each material (`None` for a material that does not lock
+    /// ideally), in the order of [`Problem::materials`].
+    pub fn ideal_sets(&self) -> Vec<Option<crate::material::LockingSet>> {
+        self.materials.iter().map(|m| m.locking.ideal()).collect()
     }
 
     /// The stiffness of the body (Pa): the largest P-wave modulus `λ + 2G` of the
     /// small-strain Hooke laws of its materials (at least G), which sets the stress scale
     /// of the solve and the stiffness of the contact points.
     pub fn stiffness(&self) -> f64 {
+        self.moduli().into_iter().fold(0.0, f64::max)
+    }
+
+    /// The P-wave modulus `λ + 2G` (at least G) of the small-strain Hooke law of each
+    /// material (Pa), in the order of [`Problem::materials`].
+    pub fn moduli(&self) -> Vec<f64> {
         let d = self.mesh.dim();
         self.materials
             .iter()
@@ -193,7 +205,7 @@ impl Problem {
                 let h = m.elasticity.small_strain_hooke(d);
                 (h.lambda + 2.0 * h.mu).max(h.mu)
             })
-            .fold(0.0, f64::max)
+            .collect()
     }
 
     /// The plane idealization of a 2D problem (`Strain` in 3D).
@@ -308,7 +320,7 @@ impl Problem {
     /// A part index in range, naming a part with facets.
     /// Checks every material's law (`material.…` for one, `materials[k].…` for several) and
     /// the map from cell regions to materials: one entry per region of the mesh, each
-    /// naming a material, every material used; ideal locking with one material only.
+    /// naming a material, every material used.
     fn check_materials(&self) -> Result<()> {
         let dim = self.mesh.dim();
         let several = self.materials.len() > 1;
@@ -327,13 +339,6 @@ impl Problem {
         )?;
         for (k, m) in self.materials.iter().enumerate() {
             m.validate(dim).map_err(|e| e.within(&field(k)))?;
-            require(
-                !(several && m.locking.ideal().is_some()),
-                &format!("{}.locking", field(k)),
-                "ideal locking",
-                "ideal locking (the exact constraint) in a problem with one material; with \
-                 several materials the locking is nearly ideal (the penalty C_κ)",
-            )?;
         }
         if self.region_material.is_empty() {
             return require(

@@ -69,8 +69,8 @@ fn parallel_assembly_is_bitwise_the_serial_one() {
     let multipliers: Vec<f64> = (0..mesh.n_cells()).map(|c| (c % 2) as f64 * 0.3).collect();
     let ideal = BulkAssembler {
         ideal: Some(IdealLocking {
-            set: LockingSet::LimitedCompressibility { theta: 0.01 },
-            r: 50.0,
+            sets: &[Some(LockingSet::LimitedCompressibility { theta: 0.01 })],
+            r: &[50.0],
             multipliers: &multipliers,
         }),
         ..bulk

@@ -23,9 +23,14 @@
 //!    points take their stiffness from their own material.
 //! 5. **What the solve takes from all materials:** the stress scale is the stiffest
 //!    material's P-wave modulus, the uniqueness constant m_A the smallest of the materials'.
-//! 6. **Refusals:** a region without a material, a material naming no region, a `[locking]`
-//!    table beside `[[material]]` tables, ideal locking with several materials, boxes that
-//!    leave a cell out.
+//! 6. **Ideal locking of two different sets** (2D, ν = 0, stretched by a prescribed end
+//!    displacement, layers stacked across the load): the lower layer with
+//!    `|tr ε| ≤ θ`, the upper with Prager's `½‖ε^D‖² ≤ κ²`, both active. With the axial
+//!    strain a fixed and the lateral strain b free, the lower layer has `b = θ − a`,
+//!    `λ_T = E₁ (a − θ)`, the upper `b = a − 2κ`, `λ_T = E₂ (a − 2κ)/κ`: multipliers of
+//!    different units (the set functions scale like a strain and like its square).
+//! 7. **Refusals:** a region without a material, a material naming no region, a `[locking]`
+//!    table beside `[[material]]` tables, boxes that leave a cell out.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::global::Want;
@@ -478,12 +483,6 @@ fn inconsistent_materials_are_refused_with_the_field_named() {
     assert!(refusal(&twice).contains("material[0] has it"));
     let locking = format!("{BAR}\n[locking]\nset = \"ball\"\nradius = 0.1\nc_kappa = 1.0\n");
     assert!(refusal(&locking).contains("its own `locking` table"));
-    let ideal = BAR.replace(
-        "young = 7000.0\npoisson = 0.0\n",
-        "young = 7000.0\npoisson = 0.0\n[material.locking]\nset = \"ball\"\nradius = 0.1\ntreatment = \"exact\"\n",
-    );
-    let e = refusal(&ideal);
-    assert!(e.contains("materials[1].locking"), "{e}");
     let bad_young = BAR.replace("young = 7000.0", "young = -7000.0");
     assert!(refusal(&bad_young).contains("material[1].young"));
     let gap = BAR.replace("max = [1.0, 0.5]", "max = [0.5, 0.5]");
@@ -520,5 +519,82 @@ fn a_penalty_locking_part_locks_and_the_other_does_not() {
             "cell {c} (material {})",
             cells.material[c]
         );
+    }
+}
+
+#[test]
+fn two_materials_lock_ideally_each_with_its_own_set() {
+    let toml = r#"
+[mesh]
+kind = "rectangle"
+size = [2.0, 0.5]
+n = [8, 4]
+[[mesh.region]]
+name = "lower"
+min = [0.0, 0.0]
+max = [2.0, 0.25]
+[[mesh.region]]
+name = "upper"
+min = [0.0, 0.25]
+max = [2.0, 0.5]
+[[material]]
+part = "lower"
+young = 1000.0
+poisson = 0.0
+[material.locking]
+set = "limited-compressibility"
+theta = 0.004
+treatment = "exact"
+[[material]]
+part = "upper"
+young = 7000.0
+poisson = 0.0
+[material.locking]
+set = "prager"
+kappa = 0.002
+treatment = "exact"
+[[dirichlet]]
+part = "left"
+components = ["x"]
+[[dirichlet]]
+part = "bottom"
+components = ["y"]
+[[dirichlet]]
+part = "right"
+components = ["x"]
+value = [0.02, 0.0]
+"#;
+    let problem = problem_of(toml);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{:?}", s.report.certificate);
+    let (a, theta, kappa) = (0.01, 0.004, 0.002);
+    let b = [theta - a, a - 2.0 * kappa];
+    let lambda = [1000.0 * (a - theta), 7000.0 * (a - 2.0 * kappa) / kappa];
+    let mesh = problem.mesh();
+    for v in 0..mesh.n_nodes() {
+        let x = mesh.node(v);
+        let uy = b[0] * x[1].min(0.25) + b[1] * (x[1] - 0.25).max(0.0);
+        assert!(
+            (s.u[2 * v] - a * x[0]).abs() <= 1e-8 * 0.02,
+            "u_x at node {v}"
+        );
+        assert!(
+            (s.u[2 * v + 1] - uy).abs() <= 1e-8 * 0.02,
+            "u_y at node {v}: {} vs {uy}",
+            s.u[2 * v + 1]
+        );
+    }
+    let cells = cell_fields(&problem, &s);
+    for c in 0..mesh.n_cells() {
+        let k = cells.material[c] as usize;
+        let l = s.locking_multiplier[c];
+        assert!(
+            (l - lambda[k]).abs() <= 1e-6 * lambda[k],
+            "cell {c} (material {k}): λ_T = {l}, exact {}",
+            lambda[k]
+        );
+        assert_eq!(cells.locking_active[c], 1);
+        // The stress across the layers (σ_yy) vanishes: the locking stress balances it.
+        assert!(cells.stress[9 * c + 4].abs() <= 1e-6 * lambda[1] * kappa);
     }
 }

@@ -196,23 +196,25 @@ impl<'w> Window<'w> {
 /// every cell, with its frozen multiplier.
 #[derive(Clone, Copy, Debug)]
 pub struct IdealLocking<'a> {
-    /// The locking set B.
-    pub set: LockingSet,
-    /// Penalty r > 0 (Pa per unit of Q²).
-    pub r: f64,
-    /// Multiplier λ_T ≥ 0 per cell (Pa).
+    /// The locking set B of each material (`None` for a material without ideal locking),
+    /// indexed like [`BulkAssembler::materials`].
+    pub sets: &'a [Option<LockingSet>],
+    /// Penalty r > 0 of each material (Pa per unit of Q²).
+    pub r: &'a [f64],
+    /// Multiplier λ_T ≥ 0 per cell (Pa; 0 in the cells of the other materials).
     pub multipliers: &'a [f64],
 }
 
 impl IdealLocking<'_> {
-    /// The augmented Lagrangian law of cell `c`.
+    /// The augmented Lagrangian law of cell `c` of material `k`, if that material locks
+    /// ideally.
     #[inline]
-    pub fn cell(&self, c: usize) -> AugmentedLocking {
-        AugmentedLocking {
-            set: self.set,
-            r: self.r,
+    pub fn cell(&self, c: usize, k: usize) -> Option<AugmentedLocking> {
+        self.sets[k].map(|set| AugmentedLocking {
+            set,
+            r: self.r[k],
             lambda: self.multipliers[c],
-        }
+        })
     }
 }
 
@@ -241,15 +243,20 @@ impl<'a, M: StrainEnergy> BulkAssembler<'a, M> {
         }
     }
 
-    /// The material law of cell `c`.
+    /// The index into [`BulkAssembler::materials`] of the law of cell `c`.
     #[inline]
-    pub fn material(&self, c: usize) -> &'a M {
-        let k = if self.of_region.is_empty() {
+    pub fn material_index(&self, c: usize) -> usize {
+        if self.of_region.is_empty() {
             0
         } else {
             self.of_region[self.mesh.cell_region(c)] as usize
-        };
-        &self.materials[k]
+        }
+    }
+
+    /// The material law of cell `c`.
+    #[inline]
+    pub fn material(&self, c: usize) -> &'a M {
+        &self.materials[self.material_index(c)]
     }
 }
 
@@ -453,11 +460,12 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
-            let al = self.ideal.map(|l| l.cell(c));
+            let k = self.material_index(c);
+            let al = self.ideal.and_then(|l| l.cell(c, k));
             // Ghost cells (of another process's subdomain) add no energy, nor in parallel
             // the cells of another task's lowest node.
             let counted = p < counted;
-            let material = self.material(c);
+            let material = &self.materials[k];
             let mut sigma = material.stress(&eps);
             match &mut sink {
                 None if counted => {
@@ -468,8 +476,10 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
                 }
                 Some((task, owner, terms)) if counted && owner[p] == *task => {
                     terms.push(geo.measure * material.energy(&eps));
-                    if let Some(al) = &al {
-                        terms.push(geo.measure * al.energy(&eps));
+                    // Two terms per cell with ideal locking, the second 0 in the cells of
+                    // a material without it (adding 0 leaves the serial sum's bits).
+                    if self.ideal.is_some() {
+                        terms.push(al.map_or(0.0, |al| geo.measure * al.energy(&eps)));
                     }
                 }
                 _ => {}
@@ -536,8 +546,9 @@ impl<'a, M: StrainEnergy + Sync> BulkAssembler<'a, M> {
             let geo = simplex::geometry(d, &mesh.cell_coords(c));
             let b = element::b_matrix::<LD>(&geo);
             let eps = element::strain(&b, &element::gather::<LD>(mesh, u, c));
-            let mut sigma = self.material(c).stress(&eps);
-            if let Some(al) = self.ideal.map(|l| l.cell(c)) {
+            let k = self.material_index(c);
+            let mut sigma = self.materials[k].stress(&eps);
+            if let Some(al) = self.ideal.and_then(|l| l.cell(c, k)) {
                 sigma = sigma.add_scaled(1.0, &al.stress(&eps));
             }
             let ge = element::gradient(&b, &sigma, geo.measure);

@@ -174,19 +174,15 @@ impl Summary {
             .collect();
         let bulk = BulkAssembler::of(problem, mesh);
         let strains = bulk.cell_strains(&solution.u);
-        let locked_cells = if problem.ideal_locking().is_some() {
-            solution
-                .locking_multiplier
-                .iter()
-                .filter(|&&l| l > 0.0)
-                .count()
-        } else {
-            strains
-                .iter()
-                .enumerate()
-                .filter(|(c, e)| bulk.material(*c).locking.is_penalty_active(e))
-                .count()
-        };
+        // Ideal locking acts where the multiplier is positive, nearly locking where Q > 0.
+        let locked_cells = strains
+            .iter()
+            .enumerate()
+            .filter(|&(c, e)| match bulk.material(c).locking.ideal() {
+                Some(_) => solution.locking_multiplier.get(c).is_some_and(|&l| l > 0.0),
+                None => bulk.material(c).locking.is_penalty_active(e),
+            })
+            .count();
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
         let small_deformation =
             crate::small_deformation::SmallDeformation::of(mesh, &solution.u, &strains);

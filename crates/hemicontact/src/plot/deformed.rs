@@ -86,6 +86,8 @@ struct Key {
     /// Whether the mesh edges are drawn (else only the deformed boundary: too fine).
     mesh_drawn: bool,
     cells: usize,
+    /// Whether interfaces between materials are drawn (2D, several materials).
+    interfaces: bool,
 }
 
 /// The legend entries of a panel.
@@ -128,6 +130,16 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
             "undeformed boundary",
         ),
     ];
+    if key.interfaces {
+        e.push(Entry::new(
+            Swatch::Line {
+                color: DARK,
+                width: 1.2,
+                dashed: false,
+            },
+            "boundaries and interfaces between materials",
+        ));
+    }
     if !key.contact {
         e.push(Entry::new(Swatch::None, "no contact boundary"));
         push_field(&mut e, key.field);
@@ -400,6 +412,7 @@ fn panel_layout(
         contact: !problem.contact.is_empty(),
         mesh_drawn: true,
         cells: if d == 2 { mesh.n_cells() } else { facing.len() },
+        interfaces: d == 2 && problem.materials.len() > 1,
     };
     // The arrows' scale depends on the width only, and its legend entry on the scale.
     let arrow_px = 0.08 * area_w;
@@ -549,6 +562,17 @@ fn panel_layout(
             color: DARK,
             width: 1.2,
         });
+        if key.interfaces {
+            let segments = material_interfaces(problem)
+                .into_iter()
+                .map(|(a, b)| (px(pos(a as usize, 1.0)), px(pos(b as usize, 1.0))))
+                .collect();
+            prims.push(Prim::Segments {
+                segments,
+                color: DARK,
+                width: 1.2,
+            });
+        }
     }
     if field == ColorField::ContactPressure {
         bar = Some(pressure_edges(problem, solution, &mut prims, &|n| {
@@ -629,6 +653,27 @@ fn panel_layout(
     );
     prims.extend(legend.prims);
     (prims, legend.bottom)
+}
+
+/// The edges of a 2D mesh between two cells of different materials (node pairs).
+fn material_interfaces(problem: &Problem) -> Vec<(u32, u32)> {
+    let mesh = &problem.mesh;
+    let mut first = std::collections::HashMap::new();
+    let mut out = Vec::new();
+    for c in 0..mesh.n_cells() {
+        let v = mesh.cell(c);
+        for k in 0..3 {
+            let (a, b) = (v[k], v[(k + 1) % 3]);
+            let edge = (a.min(b), a.max(b));
+            match first.insert(edge, c) {
+                Some(other) if problem.cell_material(other) != problem.cell_material(c) => {
+                    out.push(edge);
+                }
+                _ => {}
+            }
+        }
+    }
+    out
 }
 
 /// Colours the contact boundary edges by the mean contact pressure of their two end

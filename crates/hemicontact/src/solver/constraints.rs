@@ -134,12 +134,14 @@ pub struct AugmentedLagrangian {
     settings: ConstraintSettings,
     /// Full penalty r_i per contact point (Pa/m).
     full_contact: Vec<f64>,
-    /// Full penalty r_T of ideal locking (0 without).
-    full_locking: f64,
+    /// The set of ideal locking of each material (`None` without).
+    locking_sets: Vec<Option<LockingSet>>,
+    /// Full penalty r_T of ideal locking of each material (0 without).
+    full_locking: Vec<f64>,
     /// Penalty r_i per contact point at the current stage (Pa/m).
     contact: Vec<f64>,
-    /// Penalty r_T at the current stage (Pa per unit of Q²).
-    locking: f64,
+    /// Penalty r_T of each material at the current stage (Pa per unit of Q²).
+    locking: Vec<f64>,
 }
 
 impl AugmentedLagrangian {
@@ -148,13 +150,21 @@ impl AugmentedLagrangian {
     /// values until [`AugmentedLagrangian::set_stage`] is called.
     pub fn new(problem: &Problem, settings: &ConstraintSettings, points: &ContactNodes) -> Self {
         let contact = contact_penalties(problem, settings.contact_penalty, points);
-        let locking = problem.ideal_locking().map_or(0.0, |set| {
-            locking_penalty(problem, settings.locking_penalty, &set)
-        });
+        let locking_sets = problem.ideal_sets();
+        let locking: Vec<f64> = locking_sets
+            .iter()
+            .zip(problem.moduli())
+            .map(|(set, s)| {
+                set.map_or(0.0, |set| {
+                    locking_penalty(s, settings.locking_penalty, &set)
+                })
+            })
+            .collect();
         AugmentedLagrangian {
             settings: settings.clone(),
             full_contact: contact.clone(),
-            full_locking: locking,
+            locking_sets,
+            full_locking: locking.clone(),
             contact,
             locking,
         }
@@ -167,9 +177,10 @@ impl AugmentedLagrangian {
         AugmentedLagrangian {
             settings: self.settings.clone(),
             full_contact: pick(&self.full_contact),
-            full_locking: self.full_locking,
+            locking_sets: self.locking_sets.clone(),
+            full_locking: self.full_locking.clone(),
             contact: pick(&self.contact),
-            locking: self.locking,
+            locking: self.locking.clone(),
         }
     }
 
@@ -182,7 +193,9 @@ impl AugmentedLagrangian {
         for (r, full) in self.contact.iter_mut().zip(&self.full_contact) {
             *r = contact * full;
         }
-        self.locking = locking * self.full_locking;
+        for (r, full) in self.locking.iter_mut().zip(&self.full_locking) {
+            *r = locking * full;
+        }
     }
 
     /// The penalty r_i of every contact point at the current stage (Pa/m).
@@ -190,9 +203,15 @@ impl AugmentedLagrangian {
         &self.contact
     }
 
-    /// The penalty r_T of ideal locking at the current stage (0 without).
-    pub fn locking(&self) -> f64 {
-        self.locking
+    /// The penalty r_T of ideal locking of each material at the current stage (0 for a
+    /// material without).
+    pub fn locking(&self) -> &[f64] {
+        &self.locking
+    }
+
+    /// The set of ideal locking of each material (`None` for a material without).
+    pub fn locking_sets(&self) -> &[Option<LockingSet>] {
+        &self.locking_sets
     }
 
     /// The number of continuation stages of `problem` (see [`stages`]).
@@ -204,7 +223,7 @@ impl AugmentedLagrangian {
 /// Whether the problem has exact constraints (ideal locking, Signorini contact, exact
 /// stick/slip), whose KKT conditions the certificate checks.
 pub fn has_exact_constraints(problem: &Problem) -> bool {
-    problem.ideal_locking().is_some()
+    problem.has_ideal_locking()
         || problem
             .contact
             .iter()
@@ -230,15 +249,7 @@ pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
         return vec![problem.stiffness(); points.len()];
     }
     let mesh = &problem.mesh;
-    let d = mesh.dim();
-    let modulus: Vec<f64> = problem
-        .materials
-        .iter()
-        .map(|m| {
-            let h = m.elasticity.small_strain_hooke(d);
-            (h.lambda + 2.0 * h.mu).max(h.mu)
-        })
-        .collect();
+    let modulus = problem.moduli();
     let mut at_node = vec![0.0f64; mesh.n_nodes()];
     for c in 0..mesh.n_cells() {
         let s = modulus[problem.cell_material(c)];
@@ -249,11 +260,12 @@ pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
     points.node.iter().map(|&v| at_node[v as usize]).collect()
 }
 
-/// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` for the penalty factor
-/// `gamma` ([`ConstraintSettings::locking_penalty`]; Pa per unit of Q², see
+/// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` of a material of P-wave
+/// modulus `stiffness` (S, Pa; [`Problem::moduli`]) for the penalty factor `gamma`
+/// ([`ConstraintSettings::locking_penalty`]; Pa per unit of Q², see
 /// [`LockingSet::gradient_norm_sq_at_boundary`]).
-pub fn locking_penalty(problem: &Problem, gamma: f64, set: &LockingSet) -> f64 {
-    gamma * problem.stiffness() / set.gradient_norm_sq_at_boundary()
+pub fn locking_penalty(stiffness: f64, gamma: f64, set: &LockingSet) -> f64 {
+    gamma * stiffness / set.gradient_norm_sq_at_boundary()
 }
 
 /// The elastic stiffness per unit area `k_i = S_i / h_i` (Pa/m) of every contact point of
@@ -297,9 +309,11 @@ pub fn contact_penalties(problem: &Problem, gamma: f64, points: &ContactNodes) -
 /// The continuation of `problem` with the penalty settings `c`: the number of stages before
 /// every exact constraint has its full penalty (0 without exact constraints).
 pub fn stages(problem: &Problem, c: &ConstraintSettings) -> usize {
-    let locking = problem
-        .ideal_locking()
-        .map_or(0, |_| c.stages(c.locking_penalty));
+    let locking = if problem.has_ideal_locking() {
+        c.stages(c.locking_penalty)
+    } else {
+        0
+    };
     let contact = if problem
         .contact
         .iter()

@@ -40,7 +40,7 @@ impl Frozen {
     /// ([`crate::assembly::contact::ContactAssembler::friction_coefficients`]).
     pub fn initial(system: &System, problem: &Problem, u: &[f64]) -> Result<Frozen> {
         let n = system.contact.len();
-        let n_cells = problem.mesh.n_cells() * usize::from(problem.ideal_locking().is_some());
+        let n_cells = problem.mesh.n_cells() * usize::from(problem.has_ideal_locking());
         let zero = Frozen {
             friction: FrictionData::zero(n),
             multipliers: Multipliers::zero(n, n_cells),

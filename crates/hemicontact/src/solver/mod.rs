@@ -222,7 +222,7 @@ pub fn solve_observed(
     let scaled = scales.nondimensional(problem);
     let u = u.into_iter().map(|x| x / scales.displacement).collect();
     let solution = solve_dimensionless(scaled, settings, u, &scales, stop, observe)?;
-    let mut solution = scales.dimensional(solution);
+    let mut solution = scales.dimensional(problem, solution);
     solution.report.free_rigid_motions = problem.rigid_motions()?.describe_all();
     solution.report.timings.total = start.elapsed().as_secs_f64();
     Ok(solution)
@@ -393,7 +393,7 @@ fn solve_scaled(
     let u = share.to_whole(u, d, Entries::Nodes);
     let reactions = share.to_whole(reactions, d, Entries::Nodes);
     let contact = certificate::whole_results(share, contact);
-    let ideal = problem.ideal_locking().is_some();
+    let ideal = problem.has_ideal_locking();
     let locking_multiplier = match ideal {
         true => share.to_whole(updated.locking, 1, Entries::Cells),
         false => Vec::new(),

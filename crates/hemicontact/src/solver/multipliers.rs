@@ -10,7 +10,6 @@ use super::constraints::AugmentedLagrangian;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::assembly::element;
 use crate::material::LockingSet;
-use crate::mesh::Mesh;
 use crate::parallel::Share;
 use crate::problem::Problem;
 use serde::Serialize;
@@ -78,9 +77,16 @@ impl Multipliers {
                 next.traction[i] = tau;
             }
         }
-        next.locking = match problem.ideal_locking() {
-            Some(set) => update_locking(&problem.mesh, &set, penalties.locking(), u, &self.locking),
-            None => self.locking.clone(),
+        next.locking = if problem.has_ideal_locking() {
+            update_locking(
+                problem,
+                penalties.locking_sets(),
+                penalties.locking(),
+                u,
+                &self.locking,
+            )
+        } else {
+            self.locking.clone()
         };
         next
     }
@@ -115,11 +121,14 @@ impl Multipliers {
                 .max((next.pressure[i] - self.pressure[i]).abs() / r)
                 .max(dt / r);
         }
-        if let Some(set) = problem.ideal_locking() {
-            let r = penalties.locking() * set.size();
+        if problem.has_ideal_locking() {
+            let sets = penalties.locking_sets();
             let counted = next.locking.iter().zip(&self.locking).enumerate();
-            for (_, (a, b)) in counted.filter(|&(c, _)| share.counts_cell(c)) {
-                fp = fp.max((a - b).abs() / r);
+            for (c, (a, b)) in counted.filter(|&(c, _)| share.counts_cell(c)) {
+                let k = problem.cell_material(c);
+                if let Some(set) = sets[k] {
+                    fp = fp.max((a - b).abs() / (penalties.locking()[k] * set.size()));
+                }
             }
         }
         fp
@@ -175,26 +184,32 @@ impl Multipliers {
         if max_pressure > 0.0 {
             kkt.contact_min_multiplier = min_pressure / max_pressure;
         }
-        if let Some(set) = problem.ideal_locking() {
-            locking_kkt(&problem.mesh, &set, u, &self.locking, share, kkt);
+        if problem.has_ideal_locking() {
+            locking_kkt(problem, u, &self.locking, share, kkt);
         }
     }
 }
 
-/// The updated cell multipliers `λ_T ← (λ_T + r Q(ε_T(u)))_+` of the locking set `set`
-/// with penalty `r`, for every cell of `mesh` (on several processes, of this process's
-/// part: a ghost cell's update is computed alike by each process that holds it).
+/// The updated cell multipliers `λ_T ← (λ_T + r_k Q_k(ε_T(u)))_+` of every cell of
+/// `problem`'s mesh whose material k locks ideally, with the set `sets[k]` and penalty
+/// `r[k]` of its material (0 in the cells of the other materials). On several processes,
+/// of this process's part: a ghost cell's update is computed alike by each process that
+/// holds it.
 pub fn update_locking(
-    mesh: &Mesh,
-    set: &LockingSet,
-    r: f64,
+    problem: &Problem,
+    sets: &[Option<LockingSet>],
+    r: &[f64],
     u: &[f64],
     current: &[f64],
 ) -> Vec<f64> {
+    let mesh = &problem.mesh;
     (0..mesh.n_cells())
         .map(|c| {
-            let (_, eps) = element::cell_strain(mesh, u, c);
-            (current[c] + r * set.q(&eps)).max(0.0)
+            let k = problem.cell_material(c);
+            sets[k].map_or(0.0, |set| {
+                let (_, eps) = element::cell_strain(mesh, u, c);
+                (current[c] + r[k] * set.q(&eps)).max(0.0)
+            })
         })
         .collect()
 }
@@ -242,38 +257,55 @@ impl KktCertificate {
 }
 
 /// The locking part of the KKT certificate for the multipliers `lambda` (the updated
-/// ones) at `u`, over the cells `share` counts and then over the processes.
+/// ones) at `u`, over the cells `share` counts and then over the processes: in every cell
+/// of a material that locks ideally, the violation `Q_+/size(B)` and the complementarity
+/// `λ_T |Q| / (λ_max size(B))`, each relative to its material's set and largest multiplier
+/// (multipliers of different sets have different units).
 fn locking_kkt(
-    mesh: &Mesh,
-    set: &LockingSet,
+    problem: &Problem,
     u: &[f64],
     lambda: &[f64],
     share: &Share,
     kkt: &mut KktCertificate,
 ) {
-    let q_ref = set.size();
+    let mesh = &problem.mesh;
+    let sets = problem.ideal_sets();
+    let nm = sets.len();
     let counted = || {
         lambda
             .iter()
             .enumerate()
             .filter(|&(c, _)| share.counts_cell(c))
+            .filter_map(|(c, &l)| {
+                let k = problem.cell_material(c);
+                sets[k].map(|set| (c, k, set, l))
+            })
     };
-    let lmax = counted().fold(0.0f64, |m, (_, &l)| m.max(l.abs()));
-    let lmin = counted().fold(f64::INFINITY, |m, (_, &l)| m.min(l));
-    let mut extremes = [lmax, -lmin];
+    // Per material: the largest |λ_T| and minus the smallest λ_T.
+    let mut extremes = vec![0.0f64; 2 * nm];
+    extremes[nm..].fill(f64::NEG_INFINITY);
+    for (_, k, _, l) in counted() {
+        extremes[k] = extremes[k].max(l.abs());
+        extremes[nm + k] = extremes[nm + k].max(-l);
+    }
     share.max(&mut extremes);
-    let (lmax, lmin) = (extremes[0], -extremes[1]);
-    kkt.locking_min_multiplier = if lmax > 0.0 { lmin / lmax } else { 0.0 };
-    kkt.n_locked = share.count(counted().filter(|&(_, &l)| l > 0.0).count());
+    let lmax = &extremes[..nm];
+    kkt.locking_min_multiplier = (0..nm)
+        .filter(|&k| lmax[k] > 0.0)
+        .map(|k| -extremes[nm + k] / lmax[k])
+        .reduce(f64::min)
+        .unwrap_or(0.0);
+    kkt.n_locked = share.count(counted().filter(|&(.., l)| l > 0.0).count());
     kkt.n_constraints.0 = share.count(counted().count());
-    for (c, &l) in counted() {
+    for (c, k, set, l) in counted() {
+        let q_ref = set.size();
         let (_, eps) = element::cell_strain(mesh, u, c);
         let q = set.q(&eps);
         kkt.locking_violation = kkt.locking_violation.max(q.max(0.0) / q_ref);
-        if lmax > 0.0 {
+        if lmax[k] > 0.0 {
             kkt.locking_complementarity = kkt
                 .locking_complementarity
-                .max(l * q.abs() / (lmax * q_ref));
+                .max(l * q.abs() / (lmax[k] * q_ref));
         }
     }
     let mut worst = [kkt.locking_violation, kkt.locking_complementarity];

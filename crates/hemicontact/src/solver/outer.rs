@@ -259,7 +259,7 @@ pub fn run(
         .collect();
     let hooke = |c: usize| hookes[problem.cell_material(c)];
     let n_points = system.contact.len();
-    let n_locking = problem.mesh.n_cells() * usize::from(problem.ideal_locking().is_some());
+    let n_locking = problem.mesh.n_cells() * usize::from(problem.has_ideal_locking());
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = Frozen::initial(system, problem, u)?;

@@ -48,7 +48,8 @@ pub struct Scales {
     /// Displacement scale U (m).
     pub displacement: f64,
     /// Unit of the ideal-locking multiplier (Pa), see
-    /// [`crate::material::Material::nondimensional`].
+    /// [`crate::material::Material::nondimensional`]: that of the first material (each
+    /// material's multipliers are converted with their own, [`Scales::locking_units`]).
     pub locking_multiplier: f64,
 }
 
@@ -101,7 +102,6 @@ impl Scales {
             power_of_two(displacement),
         );
         let e = displacement / length;
-        // Ideal locking has one material (`Problem::validate`): the unit of its multiplier.
         let (_, locking_multiplier) = problem.materials[0].nondimensional(stress, e);
         Ok(Scales {
             dim,
@@ -219,15 +219,27 @@ impl Scales {
         }
     }
 
-    /// Converts a solution of the dimensionless problem back to the user's units.
-    pub fn dimensional(&self, mut s: Solution) -> Solution {
+    /// The unit (Pa) of the ideal-locking multiplier of each material of `problem`: it
+    /// depends on how its set's function scales ([`crate::material::LockingSet::nondimensional`]).
+    pub fn locking_units(&self, problem: &Problem) -> Vec<f64> {
+        problem
+            .materials
+            .iter()
+            .map(|m| m.nondimensional(self.stress, self.strain()).1)
+            .collect()
+    }
+
+    /// Converts a solution of the dimensionless form of `problem` back to the user's units.
+    pub fn dimensional(&self, problem: &Problem, mut s: Solution) -> Solution {
+        let units = self.locking_units(problem);
+        let unit = |c: usize| units[problem.cell_material(c)];
         let (u, t, f) = (self.displacement, self.traction(), self.force());
         s.u.iter_mut().for_each(|x| *x *= u);
         s.reactions.iter_mut().for_each(|x| *x *= f);
         s.energy *= self.energy();
-        s.locking_multiplier
-            .iter_mut()
-            .for_each(|x| *x *= self.locking_multiplier);
+        for (c, x) in s.locking_multiplier.iter_mut().enumerate() {
+            *x *= unit(c);
+        }
         for c in &mut s.contact {
             *c = self.dimensional_contact(c);
         }
@@ -236,9 +248,9 @@ impl Scales {
         z.pressure.iter_mut().for_each(|x| *x *= t);
         fr.linear.iter_mut().for_each(|x| *x = x.map(|y| y * t));
         z.traction.iter_mut().for_each(|x| *x = x.map(|y| y * t));
-        z.locking
-            .iter_mut()
-            .for_each(|x| *x *= self.locking_multiplier);
+        for (c, x) in z.locking.iter_mut().enumerate() {
+            *x *= unit(c);
+        }
         let r = &mut s.report;
         for step in &mut r.newton {
             step.residual *= f;

@@ -5,6 +5,7 @@
 //! arrays of an [`Evaluation`], which the outer loop owns.
 
 use super::certificate::{Certificate, ContactResult};
+use super::constraints::AugmentedLagrangian;
 use super::continuation::Continuation;
 use super::frozen::Frozen;
 use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
@@ -469,7 +470,7 @@ impl System {
     ) {
         let n = self.contact.len();
         let bulk = BulkAssembler {
-            ideal: self.ideal_locking(problem, frozen),
+            ideal: ideal_locking(&self.continuation.penalties, problem, frozen),
             ..BulkAssembler::of(problem, &problem.mesh)
         };
         let mut ca = self.contact_assembler(problem);
@@ -535,15 +536,6 @@ impl System {
         )
     }
 
-    /// The ideal-locking term of `problem` with the cell multipliers of `frozen`.
-    fn ideal_locking<'a>(&self, problem: &Problem, frozen: &'a Frozen) -> Option<IdealLocking<'a>> {
-        problem.ideal_locking().map(|set| IdealLocking {
-            set,
-            r: self.continuation.penalties.locking(),
-            multipliers: &frozen.multipliers.locking,
-        })
-    }
-
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
     /// frozen quantities `frozen`; the gradient goes to `out.grad` (and the bulk part minus
     /// `f` to `out.grad_bulk`), and with `hessian` the Hessian to `out.hess`. A user-defined
@@ -574,7 +566,7 @@ impl System {
             None
         };
         let bulk = BulkAssembler {
-            ideal: self.ideal_locking(problem, frozen),
+            ideal: ideal_locking(&self.continuation.penalties, problem, frozen),
             ..BulkAssembler::of(problem, &problem.mesh)
         };
         let e_bulk = bulk.assemble_parallel(
@@ -783,4 +775,18 @@ fn cells_around(mesh: &crate::mesh::Mesh, nodes: &[u32]) -> (Vec<usize>, Vec<u32
         offsets.push(cells.len());
     }
     (offsets, cells)
+}
+
+/// The ideal-locking term of `problem` with the penalties `penalties` and the cell
+/// multipliers of `frozen`.
+fn ideal_locking<'a>(
+    penalties: &'a AugmentedLagrangian,
+    problem: &Problem,
+    frozen: &'a Frozen,
+) -> Option<IdealLocking<'a>> {
+    problem.has_ideal_locking().then(|| IdealLocking {
+        sets: penalties.locking_sets(),
+        r: penalties.locking(),
+        multipliers: &frozen.multipliers.locking,
+    })
 }
