@@ -10,16 +10,20 @@ Cases (the analytic values are computed from each scenario's data):
   p₀ = 2F/(πa);
 - ``hertz3d``: ``scenarios/hertz3d.toml``, a rigid paraboloid indenting a block by d
   (quarter model, frictionless): a = √(Rd), F = (4/3) E* √R d^{3/2}, p₀ = (2/π) E* √(d/R);
+- ``hertz3d-force``: ``scenarios/hertz3d-force.toml``, a block 20 a across pushed by a
+  known force F onto a flat paraboloid (a/R = 0.02; quarter model, frictionless):
+  a = (3FR/(4E*))^{1/3}, p₀ = 3F/(2πa²);
 - ``…-friction``: the same with Coulomb friction μ = 0.3 (no closed form: compared with
   the frictionless case and across levels).
 
 Usage (needs the hemicontact Python package, numpy and matplotlib)::
 
     python scripts/hertz.py [--levels2d 32 64 128 256] [--levels3d 8 16 32]
-                            [--no-friction] [--out out/hertz]
+                            [--levels3f 8 16 32] [--no-friction] [--out out/hertz]
     python scripts/hertz.py --sensitivity 38
 
-Writes ``table.md`` (the table printed), ``pressure-2d.png`` and ``pressure-3d.png`` to
+Writes ``table.md`` (the table printed), ``pressure-2d.png``, ``pressure-3d.png`` and
+``pressure-3d-force.png`` to
 the output folder; with ``--sensitivity N``, ``sensitivity.md``: the 3D set-up's departure
 from Hertz against the block size and the indenter radius, at N³ cells.
 """
@@ -55,6 +59,13 @@ def hertz(data, dim):
         force = 2.0 * q * data["mesh"]["size"][0]
         a = math.sqrt(4.0 * force * radius / (math.pi * e_star))
         return a, force, 2.0 * force / (math.pi * a)
+    if "displacement" not in obstacle:
+        # Force-driven quarter model: the traction on the bottom over its area, 4 times.
+        q = data["loads"]["traction"][0]["value"][2]
+        size = data["mesh"]["size"]
+        force = 4.0 * q * size[0] * size[1]
+        a = (3.0 * force * radius / (4.0 * e_star)) ** (1.0 / 3.0)
+        return a, force, 3.0 * force / (2.0 * math.pi * a * a)
     depth = -obstacle["displacement"][2]
     return (
         math.sqrt(radius * depth),
@@ -154,11 +165,12 @@ def table(dim, exact, rows):
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     fmt = lambda x: "" if math.isnan(x) else f"{x:.2f}"
+    applied = all(abs(r["force"] / f0 - 1.0) < 1e-6 for r in rows)
     for case in dict.fromkeys(row["case"] for row in rows):
         own = [row for row in rows if row["case"] == case]
         order_p = orders([row["peak"] for row in own])
-        # In 2D the force is the applied load: no order.
-        order_f = orders([row["force"] for row in own]) if dim == 3 else [float("nan")] * len(own)
+        # A force-driven case's force is the applied load: no order.
+        order_f = [float("nan")] * len(own) if applied else orders([row["force"] for row in own])
         for row, of, op in zip(own, order_f, order_p):
             lines.append(
                 f"| {row['case']} | {row['n']} | {row['dofs']} | {row['h']:.4f} | "
@@ -169,7 +181,7 @@ def table(dim, exact, rows):
             )
     head = (
         f"Hertz ({dim}D): a_H = {a0:.5f} m, F_H = {f0:.6g}, p₀_H = {p0:.6g} Pa"
-        + (" (F is the applied load)" if dim == 2 else "")
+        + (" (F is the applied load)" if applied else "")
     )
     return head + "\n\n" + "\n".join(lines) + "\n"
 
@@ -200,11 +212,13 @@ def figure(dim, exact, rows, path):
         )
     ax.set_xlabel("x (m)" if dim == 2 else "r (m), along the symmetry line y = 0")
     ax.set_ylabel("contact pressure p (Pa)")
-    ax.set_title(
-        "Hertz, 2D: rigid cylinder on a block (plane strain)"
-        if dim == 2
-        else "Hertz, 3D: rigid paraboloid indenting a block"
-    )
+    if dim == 2:
+        title = "Hertz, 2D: rigid cylinder on a block (plane strain)"
+    elif rows[0]["case"].startswith("hertz3d-force"):
+        title = "Hertz, 3D: block pressed by a known force onto a rigid paraboloid"
+    else:
+        title = "Hertz, 3D: rigid paraboloid indenting a block"
+    ax.set_title(title)
     ax.set_xlim(0.0, 1.6 * a0)
     ax.set_ylim(0.0, 1.15 * max(p0, max(row["peak"] for row in rows)))
     ax.grid(alpha=0.3)
@@ -262,6 +276,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--levels2d", type=int, nargs="*", default=[32, 64, 128, 256])
     parser.add_argument("--levels3d", type=int, nargs="*", default=[8, 16, 32])
+    parser.add_argument(
+        "--levels3f",
+        type=int,
+        nargs="*",
+        default=[8, 16, 32],
+        help="levels of the force-driven 3D case (hertz3d-force)",
+    )
     parser.add_argument("--no-friction", action="store_true")
     parser.add_argument("--out", default="out/hertz")
     parser.add_argument(
@@ -277,18 +298,23 @@ def main():
         print(sensitivity(args.sensitivity, out))
         return
     text = []
-    for dim, levels in ((2, args.levels2d), (3, args.levels3d)):
+    cases = (
+        (2, "hertz2d", args.levels2d),
+        (3, "hertz3d", args.levels3d),
+        (3, "hertz3d-force", args.levels3f),
+    )
+    for dim, stem, levels in cases:
         if not levels:
             continue
-        path = ROOT / "scenarios" / f"hertz{dim}d.toml"
+        path = ROOT / "scenarios" / f"{stem}.toml"
         rows = []
         exact = None
         for friction in (False,) if args.no_friction else (False, True):
-            name = f"hertz{dim}d" + ("-friction" if friction else "")
+            name = stem + ("-friction" if friction else "")
             _, exact, case_rows = run_case(name, path, levels, friction)
             rows += case_rows
         text.append(table(dim, exact, rows))
-        figure(dim, exact, rows, out / f"pressure-{dim}d.png")
+        figure(dim, exact, rows, out / f"pressure-{stem[len('hertz'):]}.png")
     report = "\n".join(text)
     (out / "table.md").write_text(report)
     print(report)
