@@ -18,6 +18,7 @@ pub mod friction;
 pub mod nodes;
 pub mod normal;
 pub mod obstacle;
+pub mod pairing;
 pub mod placement;
 pub mod slip_law;
 

@@ -1,0 +1,392 @@
+//! The pairing of two deformable parts in contact (node-to-segment): each node of the
+//! *slave* part is paired once, in the reference configuration (small deformation, as for
+//! rigid obstacles), with its closest point on the facets of the *master* part.
+//!
+//! For a slave node at x and a master facet F with vertices m_j and outward unit normal
+//! n_F, the candidate point is the closest point c of F to x, written with the facet's
+//! shape functions at c, `c = Σ_j N_j m_j` (`N_j ≥ 0`, `Σ N_j = 1`). The pair's
+//!
+//! - **normal** is `ν = −n_F`: the outward normal of the slave side, from the slave node
+//!   towards the master body;
+//! - **gap** is `g = (c − x)·ν = (x − c)·n_F`: positive when the node is outside the
+//!   master body, negative when it starts inside it;
+//! - **relative displacement** is `u_s − Σ_j N_j u_{m_j}`, whose normal part
+//!   `u_ν = (u_s − Σ N_j u_{m_j})·ν` enters every normal law through `u_ν ≤ g` and whose
+//!   tangential part is the slip relative to the master body.
+//!
+//! Which facet: among the facets onto which x projects orthogonally (its projection on
+//! the facet's line or plane inside the facet, up to a relative tolerance), the nearest.
+//! Two such facets at the same distance with distinct closest points make the pairing
+//! ambiguous: it is refused, naming the node. A node that projects onto no facet lies
+//! beyond the edge of the master surface, or above a convex corner between facets. Above
+//! a corner (the closest point is a vertex or edge shared by several master facets) it is
+//! paired with that point, with the mean of the facets' normals there. Beyond the master
+//! surface's own edge (the closest point is on the boundary of the master part) it is
+//! *separated*: it can never touch the master under small deformation, and is not a
+//! contact point.
+
+use crate::mesh::Mesh;
+
+/// The closest point of a slave node on a master surface; see the module documentation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projection {
+    /// The master facet holding the closest point (an index into the mesh's facets).
+    pub facet: usize,
+    /// The nodes of that facet (first d entries).
+    pub nodes: [u32; 3],
+    /// The shape functions N_j of the facet at the closest point (first d entries; ≥ 0,
+    /// summing to 1).
+    pub shape: [f64; 3],
+    /// The unit normal ν of the pair, from the slave node towards the master body.
+    pub normal: [f64; 3],
+    /// The gap g (m): positive when the node is outside the master body.
+    pub gap: f64,
+}
+
+/// The outcome of pairing one slave node.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pairing {
+    /// The node's closest point on the master surface.
+    Paired(Projection),
+    /// The node lies beyond the edge of the master surface: not a contact point.
+    Separated,
+}
+
+/// Relative tolerance (of the facet's size) of the inside test of a projection and of the
+/// comparison of distances and points.
+const TOLERANCE: f64 = 1e-9;
+
+/// The closest point of facet `f` of `mesh` to `x`: its shape functions and whether the
+/// orthogonal projection of x on the facet's line or plane falls inside the facet.
+fn closest_on_facet(mesh: &Mesh, f: usize, x: &[f64; 3]) -> ([f64; 3], bool) {
+    let d = mesh.dim();
+    let v = mesh.facet(f);
+    let mut p = [[0.0; 3]; 3];
+    for (a, &n) in v.iter().enumerate() {
+        p[a][..d].copy_from_slice(mesh.node(n as usize));
+    }
+    let sub = |a: &[f64; 3], b: &[f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    if d == 2 {
+        let e = sub(&p[1], &p[0]);
+        let t = dot(&sub(x, &p[0]), &e) / dot(&e, &e);
+        let inside = (-TOLERANCE..=1.0 + TOLERANCE).contains(&t);
+        let t = t.clamp(0.0, 1.0);
+        return ([1.0 - t, t, 0.0], inside);
+    }
+    // The barycentric coordinates of the orthogonal projection on the plane.
+    let (e1, e2, r) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(x, &p[0]));
+    let (a11, a12, a22) = (dot(&e1, &e1), dot(&e1, &e2), dot(&e2, &e2));
+    let (b1, b2) = (dot(&r, &e1), dot(&r, &e2));
+    let det = a11 * a22 - a12 * a12;
+    let s = (a22 * b1 - a12 * b2) / det;
+    let t = (a11 * b2 - a12 * b1) / det;
+    let lambda = [1.0 - s - t, s, t];
+    if lambda.iter().all(|&l| l >= -TOLERANCE) {
+        let clamp = lambda.map(|l| l.max(0.0));
+        let sum: f64 = clamp.iter().sum();
+        return (clamp.map(|l| l / sum), true);
+    }
+    // Outside: the closest point is on one of the three edges.
+    let mut best = ([0.0; 3], f64::INFINITY);
+    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+        let e = sub(&p[j], &p[i]);
+        let t = (dot(&sub(x, &p[i]), &e) / dot(&e, &e)).clamp(0.0, 1.0);
+        let c = [0, 1, 2].map(|k| p[i][k] + t * e[k]);
+        let dist = dot(&sub(x, &c), &sub(x, &c));
+        if dist < best.1 {
+            let mut shape = [0.0; 3];
+            shape[i] = 1.0 - t;
+            shape[j] = t;
+            best = (shape, dist);
+        }
+    }
+    (best.0, false)
+}
+
+/// The closest point of one master facet to a slave node.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    /// The facet.
+    facet: usize,
+    /// Its shape functions at the closest point.
+    shape: [f64; 3],
+    /// Whether the node projects orthogonally inside the facet.
+    inside: bool,
+    /// The closest point (m).
+    point: [f64; 3],
+    /// Its distance to the node (m).
+    distance: f64,
+}
+
+/// The point `Σ N_j m_j` of facet `f` with shape functions `shape`.
+fn point_of(mesh: &Mesh, f: usize, shape: &[f64; 3]) -> [f64; 3] {
+    let d = mesh.dim();
+    let mut c = [0.0; 3];
+    for (a, &n) in mesh.facet(f).iter().enumerate() {
+        for k in 0..d {
+            c[k] += shape[a] * mesh.node(n as usize)[k];
+        }
+    }
+    c
+}
+
+/// Pairs the node `slave` of `mesh` with its closest point on the master facets `master`
+/// (indices into the mesh's facets); see the module documentation.
+///
+/// # Errors
+/// The reason, in words naming the node, when two master facets are equally near with
+/// distinct closest points (an ambiguous pairing), or when `master` is empty.
+pub fn pair(mesh: &Mesh, master: &[usize], slave: u32) -> std::result::Result<Pairing, String> {
+    let d = mesh.dim();
+    let mut x = [0.0; 3];
+    x[..d].copy_from_slice(mesh.node(slave as usize));
+    if master.is_empty() {
+        return Err(format!("node {slave}: the master part has no facets"));
+    }
+    let dist = |c: &[f64; 3]| ((0..3).map(|k| (x[k] - c[k]) * (x[k] - c[k])).sum::<f64>()).sqrt();
+    // Every facet's closest point; the size of the master facets for the tolerances.
+    let mut size = 0.0f64;
+    let candidates: Vec<Candidate> = master
+        .iter()
+        .map(|&f| {
+            size = size.max(mesh.facet_measure_normal(f).0.powf(1.0 / (d - 1) as f64));
+            let (shape, inside) = closest_on_facet(mesh, f, &x);
+            let point = point_of(mesh, f, &shape);
+            Candidate {
+                facet: f,
+                shape,
+                inside,
+                point,
+                distance: dist(&point),
+            }
+        })
+        .collect();
+    let apart =
+        |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+    let tol = TOLERANCE * size.max(f64::MIN_POSITIVE);
+    let nearest = |inside_only: bool| {
+        candidates
+            .iter()
+            .filter(|c| c.inside || !inside_only)
+            .min_by(|a, b| {
+                a.distance
+                    .total_cmp(&b.distance)
+                    .then(a.facet.cmp(&b.facet))
+            })
+    };
+    if let Some(best) = nearest(true) {
+        // Another facet as near with a different closest point: ambiguous.
+        if let Some(other) = candidates.iter().find(|c| {
+            c.inside
+                && c.facet != best.facet
+                && (c.distance - best.distance).abs() <= tol
+                && apart(&c.point, &best.point) > tol
+        }) {
+            return Err(format!(
+                "node {slave}: its closest points on master facets {} and {} are distinct and \
+                 equally near ({:e} m); the pairing is ambiguous (refine the master side, or \
+                 make the other part the slave)",
+                best.facet, other.facet, best.distance
+            ));
+        }
+        let (_, n) = mesh.facet_measure_normal(best.facet);
+        return Ok(Pairing::Paired(projection(mesh, best, n, &x)));
+    }
+    // No orthogonal projection: above a corner shared by master facets, or beyond the edge.
+    let Some(best) = nearest(false) else {
+        return Ok(Pairing::Separated);
+    };
+    let sharing: Vec<&Candidate> = candidates
+        .iter()
+        .filter(|c| apart(&c.point, &best.point) <= tol)
+        .collect();
+    if sharing.len() < 2 {
+        return Ok(Pairing::Separated);
+    }
+    let mut n = [0.0; 3];
+    for c in &sharing {
+        let (_, nf) = mesh.facet_measure_normal(c.facet);
+        for k in 0..3 {
+            n[k] += nf[k];
+        }
+    }
+    let len = n.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if len <= TOLERANCE {
+        return Ok(Pairing::Separated);
+    }
+    let n = n.map(|v| v / len);
+    Ok(Pairing::Paired(projection(mesh, best, n, &x)))
+}
+
+/// The projection of the slave node at `x` on its closest point `c`, with the master
+/// normal `n` there.
+fn projection(mesh: &Mesh, c: &Candidate, n: [f64; 3], x: &[f64; 3]) -> Projection {
+    let mut nodes = [u32::MAX; 3];
+    for (a, &v) in mesh.facet(c.facet).iter().enumerate() {
+        nodes[a] = v;
+    }
+    Projection {
+        facet: c.facet,
+        nodes,
+        shape: c.shape,
+        normal: n.map(|v| -v),
+        gap: (0..3).map(|k| (x[k] - c.point[k]) * n[k]).sum(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(clippy::unwrap_used, clippy::expect_used)]
+    use super::*;
+
+    /// Two unit squares (2D) side by side along y, separated by `gap`, each of two
+    /// triangles, with the parts `lower_top` (the lower square's top) and `upper_bottom`.
+    fn two_squares(gap: f64, shift: f64) -> Mesh {
+        let coords = vec![
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            1.0,
+            1.0,
+            0.0,
+            1.0, // lower
+            shift,
+            1.0 + gap,
+            1.0 + shift,
+            1.0 + gap,
+            1.0 + shift,
+            2.0 + gap,
+            shift,
+            2.0 + gap,
+        ];
+        let cells = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
+        Mesh::from_parts(
+            2,
+            coords,
+            cells,
+            &[
+                ("lower_top".into(), vec![2, 3]),
+                ("upper_bottom".into(), vec![4, 5]),
+            ],
+        )
+        .unwrap()
+    }
+
+    fn facets_of(m: &Mesh, part: &str) -> Vec<usize> {
+        m.part_facets(m.part_index(part).unwrap()).collect()
+    }
+
+    #[test]
+    fn a_node_above_a_facet_gets_its_gap_normal_and_shape_functions() {
+        let m = two_squares(0.1, 0.25);
+        let master = facets_of(&m, "lower_top");
+        // Slave node 4 at (0.25, 1.1): above the lower square's top, a quarter along it.
+        let Pairing::Paired(p) = pair(&m, &master, 4).unwrap() else {
+            panic!("separated")
+        };
+        assert!((p.gap - 0.1).abs() < 1e-14, "gap {}", p.gap);
+        assert!((p.normal[1] + 1.0).abs() < 1e-14 && p.normal[0].abs() < 1e-14);
+        // Facet nodes (2, 3) at x = 1 and x = 0: N = (0.25, 0.75).
+        let n_of = |v: u32| p.shape[p.nodes.iter().position(|&w| w == v).unwrap()];
+        assert!((n_of(2) - 0.25).abs() < 1e-14 && (n_of(3) - 0.75).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_node_beyond_the_edge_of_the_master_surface_is_separated() {
+        let m = two_squares(0.1, 0.25);
+        let master = facets_of(&m, "lower_top");
+        // Slave node 5 at (1.25, 1.1): beyond the master's right end.
+        assert_eq!(pair(&m, &master, 5).unwrap(), Pairing::Separated);
+    }
+
+    #[test]
+    fn a_penetrating_node_has_a_negative_gap() {
+        let m = two_squares(-0.05, 0.5);
+        let master = facets_of(&m, "lower_top");
+        let Pairing::Paired(p) = pair(&m, &master, 4).unwrap() else {
+            panic!("separated")
+        };
+        assert!((p.gap + 0.05).abs() < 1e-14, "gap {}", p.gap);
+    }
+
+    /// A lower body of `coords`/`cells` with its top facets in the part `master`, and a
+    /// slave triangle `slave` (its first node the one paired).
+    fn with_slave(
+        mut coords: Vec<f64>,
+        mut cells: Vec<u32>,
+        master: Vec<u32>,
+        slave: [f64; 6],
+    ) -> (Mesh, u32) {
+        let first = (coords.len() / 2) as u32;
+        coords.extend_from_slice(&slave);
+        cells.extend_from_slice(&[first, first + 1, first + 2]);
+        let m = Mesh::from_parts(2, coords, cells, &[("master".into(), master)]).unwrap();
+        (m, first)
+    }
+
+    #[test]
+    fn a_node_above_a_convex_corner_is_paired_with_the_corner() {
+        // A roof: the triangle (0, 0), (2, 0), (1, 1), its apex a convex corner.
+        let (m, node) = with_slave(
+            vec![0.0, 0.0, 2.0, 0.0, 1.0, 1.0],
+            vec![0, 1, 2],
+            vec![1, 2, 2, 0],
+            [1.0, 1.5, 1.5, 2.0, 0.5, 2.0],
+        );
+        let Pairing::Paired(p) = pair(&m, &facets_of(&m, "master"), node).unwrap() else {
+            panic!("separated")
+        };
+        assert!((p.gap - 0.5).abs() < 1e-14, "gap {}", p.gap);
+        assert!(p.normal[0].abs() < 1e-14 && (p.normal[1] + 1.0).abs() < 1e-14);
+        let at_apex = p.nodes.iter().position(|&v| v == 2).unwrap();
+        assert!((p.shape[at_apex] - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_node_equally_near_two_facets_of_a_notch_is_refused_naming_it() {
+        // A pentagon with a V notch at its top, the notch's two facets the master part.
+        let (m, node) = with_slave(
+            vec![0.0, -1.0, 2.0, -1.0, 2.0, 1.0, 1.0, 0.0, 0.0, 1.0],
+            vec![0, 1, 3, 1, 2, 3, 0, 3, 4],
+            vec![2, 3, 3, 4],
+            [1.0, 0.8, 1.2, 1.5, 0.8, 1.5],
+        );
+        let e = pair(&m, &facets_of(&m, "master"), node).unwrap_err();
+        assert!(
+            e.contains(&format!("node {node}")) && e.contains("ambiguous"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_node_above_a_triangle_gets_its_barycentric_shape_functions() {
+        // The lower tetrahedron's face z = 0 is the master; the slave tetrahedron's first
+        // node is at (0.2, 0.3, 0.1).
+        let coords = vec![
+            0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0, //
+            0.2, 0.3, 0.1, 1.2, 0.3, 0.1, 0.2, 1.3, 0.1, 0.2, 0.3, 1.1,
+        ];
+        let m = Mesh::from_parts(
+            3,
+            coords,
+            vec![0, 1, 2, 3, 4, 5, 6, 7],
+            &[("master".into(), vec![0, 1, 2])],
+        )
+        .unwrap();
+        let Pairing::Paired(p) = pair(&m, &facets_of(&m, "master"), 4).unwrap() else {
+            panic!("separated")
+        };
+        assert!((p.gap - 0.1).abs() < 1e-14, "gap {}", p.gap);
+        assert!((p.normal[2] + 1.0).abs() < 1e-14);
+        let n_of = |v: u32| p.shape[p.nodes.iter().position(|&w| w == v).unwrap()];
+        for (v, exact) in [(0, 0.5), (1, 0.3), (2, 0.2)] {
+            assert!(
+                (n_of(v) - exact).abs() < 1e-14,
+                "N at node {v}: {}",
+                n_of(v)
+            );
+        }
+    }
+}
