@@ -80,10 +80,12 @@ fn agrees_with_direct(file: &str) {
 }
 
 /// The scenarios compared below: every file of `scenarios/`.
-const SCENARIOS: [&str; 11] = [
+const SCENARIOS: [&str; 13] = [
     "half-disc.toml",
     "hertz2d.toml",
+    "hertz3d-force.toml",
     "hertz3d.toml",
+    "layered-block.toml",
     "paper-elastic.toml",
     "paper-ideal.toml",
     "paper-no-locking.toml",
@@ -117,7 +119,9 @@ macro_rules! agreement {
 agreement! {
     half_disc => "half-disc.toml",
     hertz2d => "hertz2d.toml",
+    hertz3d_force => "hertz3d-force.toml",
     hertz3d => "hertz3d.toml",
+    layered_block => "layered-block.toml",
     paper_elastic => "paper-elastic.toml",
     paper_ideal => "paper-ideal.toml",
     paper_no_locking => "paper-no-locking.toml",
