@@ -281,6 +281,23 @@ impl Problem {
             let field = format!("contact[{k}]");
             self.check_part(&format!("{field}.part"), c.part)?;
             c.validate().map_err(|e| e.within(&field))?;
+            if let Some(m) = c.against {
+                let f = format!("{field}.against");
+                self.check_part(&f, m)?;
+                let names = self.mesh.part_names();
+                require(
+                    m != c.part,
+                    &f,
+                    format!("`{}`", names[m]),
+                    "a part other than the contact part itself (the master side)",
+                )?;
+                require(
+                    c.obstacle.is_none(),
+                    &f,
+                    format!("`{}`", names[m]),
+                    "either a master part or an obstacle, not both",
+                )?;
+            }
             if let Some(o) = &c.obstacle {
                 o.spec
                     .validate(dim)
@@ -313,7 +330,45 @@ impl Problem {
                     .map_err(|e| e.within(&format!("contact[{k}].obstacle")))?;
             }
         }
+        if self.contact.iter().any(|c| c.against.is_some()) {
+            self.check_pair_bodies()?;
+        }
         self.rigid_motions()?.check("problem")?;
+        Ok(())
+    }
+
+    /// The bodies joined by a contact pair must each be held by their own supports: the
+    /// rigid motions a pair carries (a body resting on another) are not solved yet.
+    fn check_pair_bodies(&self) -> Result<()> {
+        let points = self.contact_nodes()?;
+        let rigid = self.rigid_motions()?;
+        let d = self.mesh.dim();
+        for i in 0..points.len() {
+            let (n, nodes, _) = points.stencil(d, i);
+            if n == 1 {
+                continue;
+            }
+            for &v in &nodes[..n] {
+                let b = rigid.body_of[v as usize] as usize;
+                let free = rigid.free.get(b).map_or(0, Vec::len);
+                if free > 0 {
+                    let k = points.boundary[i] as usize;
+                    let role = if v == nodes[0] { "slave" } else { "master" };
+                    return Err(Error::Invalid {
+                        field: format!("contact[{k}].against"),
+                        value: format!(
+                            "`{}`: the {role} body (the body of node {v}) has {free} free \
+                             rigid motion(s)",
+                            self.mesh.part_names()[self.contact[k].against.unwrap_or(0)]
+                        ),
+                        allowed: "bodies of a contact pair each held by their own supports \
+                                  (Dirichlet conditions that leave no rigid motion free): a \
+                                  body held only through a pair is not supported yet"
+                            .into(),
+                    });
+                }
+            }
+        }
         Ok(())
     }
 

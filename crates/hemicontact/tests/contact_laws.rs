@@ -806,6 +806,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
     let mut rng = Rng::new(50);
     let boundaries = vec![
         ContactBoundary {
+            against: None,
             part: 0,
             gap: 0.001,
             obstacle: None,
@@ -819,6 +820,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             }),
         },
         ContactBoundary {
+            against: None,
             part: 1,
             gap: 0.0,
             obstacle: None,
@@ -834,6 +836,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             }),
         },
         ContactBoundary {
+            against: None,
             part: 2,
             gap: 0.0005,
             obstacle: None,
@@ -845,6 +848,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             }),
         },
         ContactBoundary {
+            against: None,
             part: 3,
             gap: 0.0,
             obstacle: None,
@@ -854,6 +858,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
         // Exact constraints: the augmented Lagrangian terms of Signorini contact and exact
         // friction (with the random multipliers of `random_frozen`).
         ContactBoundary {
+            against: None,
             part: 4,
             gap: 0.001,
             obstacle: None,
@@ -867,6 +872,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             }),
         },
         ContactBoundary {
+            against: None,
             part: 5,
             gap: 0.0,
             obstacle: None,
@@ -882,6 +888,7 @@ fn assembled_contact_terms_3d_match_finite_differences() {
             }),
         },
         ContactBoundary {
+            against: None,
             part: 6,
             gap: 0.0005,
             obstacle: None,

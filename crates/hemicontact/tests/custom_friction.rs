@@ -108,6 +108,7 @@ fn with_law(
         let mut friction = c.friction.clone().unwrap();
         friction.mu = FrictionCoefficient::Custom(CustomCoefficient::new(name, law.clone()));
         builder = builder.contact(ContactBoundary {
+            against: None,
             friction: Some(friction),
             ..c.clone()
         });

@@ -210,6 +210,7 @@ fn a_linear_custom_law_reproduces_the_built_in_compliance_on_the_paper_example()
     let mut builder = problem.to_builder().without_contact();
     for cb in problem.contact() {
         builder = builder.contact(ContactBoundary {
+            against: None,
             normal: NormalLaw::Custom(CustomCompliance::new("linear", law.clone())),
             ..cb.clone()
         });

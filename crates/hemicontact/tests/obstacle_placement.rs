@@ -205,6 +205,7 @@ fn disc_on_a_plane(gap: f64) -> Result<Problem, Error> {
             value: [0.0; 3],
         })
         .contact(ContactBoundary {
+            against: None,
             part: rim,
             gap: 0.0,
             obstacle: Some(ContactObstacle::new(plane)),

@@ -80,7 +80,7 @@ fn agrees_with_direct(file: &str) {
 }
 
 /// The scenarios compared below: every file of `scenarios/`.
-const SCENARIOS: [&str; 13] = [
+const SCENARIOS: [&str; 14] = [
     "half-disc.toml",
     "hertz2d.toml",
     "hertz3d-force.toml",
@@ -93,6 +93,7 @@ const SCENARIOS: [&str; 13] = [
     "paper.toml",
     "paper3d-paper-gap.toml",
     "paper3d.toml",
+    "punch-on-block.toml",
     "sliding-indenter.toml",
 ];
 
@@ -122,6 +123,7 @@ agreement! {
     hertz3d_force => "hertz3d-force.toml",
     hertz3d => "hertz3d.toml",
     layered_block => "layered-block.toml",
+    punch_on_block => "punch-on-block.toml",
     paper_elastic => "paper-elastic.toml",
     paper_ideal => "paper-ideal.toml",
     paper_no_locking => "paper-no-locking.toml",

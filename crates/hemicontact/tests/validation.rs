@@ -71,6 +71,7 @@ fn builder(material: Material, contact: Option<ContactBoundary>) -> Result<Probl
 
 fn friction(potential: FrictionPotential) -> ContactBoundary {
     ContactBoundary {
+        against: None,
         part: 0,
         gap: 0.0,
         obstacle: None,

@@ -285,9 +285,24 @@ impl<'a> ContactAssembler<'a> {
         let d = self.dim;
         let mut energy = 0.0;
         let mut hess = hess;
+        let paired = self.nodes.has_pairs();
+        let stride = slot_stride(d, paired);
         for i in 0..self.nodes.len() {
             let term = self.point(u, frozen, i);
             energy += term.energy;
+            if paired {
+                let (n, nodes, coef) = self.nodes.stencil(d, i);
+                for a in 0..n {
+                    let v = nodes[a] as usize;
+                    for k in 0..d {
+                        grad[d * v + k] += coef[a] * term.gradient[k];
+                    }
+                }
+                if let Some((h, slots)) = hess.as_mut() {
+                    Self::add_stencil(d, &term, &coef, &slots[i * stride..(i + 1) * stride], h);
+                }
+                continue;
+            }
             let v = self.nodes.node[i] as usize;
             for k in 0..d {
                 grad[d * v + k] += term.gradient[k];
@@ -297,6 +312,32 @@ impl<'a> ContactAssembler<'a> {
             }
         }
         energy
+    }
+
+    /// Adds the Hessian of `term` spread over a point's stencil with coefficients `coef`
+    /// ([`ContactNodes::stencil`]; zero past its length): the block of stencil nodes
+    /// (a, b) is `c_a c_b H`. `slots` are the point's [`slot_stride`] slots of the local
+    /// upper triangle (see [`contact_slots`]).
+    pub fn add_stencil(
+        d: usize,
+        term: &PointTerm,
+        coef: &[f64; 4],
+        slots: &[u32],
+        hess: &mut [f64],
+    ) {
+        let l = (d + 1) * d;
+        let mut idx = 0;
+        for p in 0..l {
+            for q in p..l {
+                let slot = slots[idx];
+                idx += 1;
+                if slot == FIXED_SLOT {
+                    continue;
+                }
+                let (a, k, b, m) = (p / d, p % d, q / d, q % d);
+                hess[slot as usize] += coef[a] * coef[b] * term.hessian[k][m];
+            }
+        }
     }
 
     /// Adds the Hessian node block of `term` (dimension `d`) to the upper-triangular values
@@ -395,13 +436,59 @@ pub struct PointTerm {
 /// Slots of the node blocks of the contact points in `pattern`: 6 entries per point (the
 /// upper triangle `(k, l)`, `k ≤ l < d`, row by row, padded), [`FIXED_SLOT`] where a DOF is
 /// prescribed.
+///
+/// With contact pairs ([`ContactNodes::has_pairs`]) every point has instead
+/// [`slot_stride`] entries: the upper triangle, row by row, of the local matrix of its
+/// stencil's DOFs `(a, k)` (stencil node a ≤ d, component k; [`ContactNodes::stencil`]),
+/// each the slot of the global pair of equations in upper-triangular order.
 pub fn contact_slots(
     nodes: &ContactNodes,
     dim: usize,
     equations: &[u32],
     pattern: &SystemPattern,
 ) -> Vec<u32> {
-    node_block_slots(&nodes.node, dim, equations, pattern)
+    if !nodes.has_pairs() {
+        return node_block_slots(&nodes.node, dim, equations, pattern);
+    }
+    let l = (dim + 1) * dim;
+    let stride = slot_stride(dim, true);
+    let mut slots = vec![FIXED_SLOT; stride * nodes.len()];
+    for i in 0..nodes.len() {
+        let (n, stencil, _) = nodes.stencil(dim, i);
+        let equation = |p: usize| {
+            let a = p / dim;
+            if a < n {
+                equations[dim * stencil[a] as usize + p % dim]
+            } else {
+                u32::MAX
+            }
+        };
+        let mut idx = 0;
+        for p in 0..l {
+            for q in p..l {
+                let (a, b) = (equation(p), equation(q));
+                if a != u32::MAX && b != u32::MAX {
+                    if let Some(s) = pattern.find(a.min(b) as usize, a.max(b) as usize) {
+                        slots[stride * i + idx] = s as u32;
+                    }
+                }
+                idx += 1;
+            }
+        }
+    }
+    slots
+}
+
+/// Number of Hessian slots per contact point in [`contact_slots`]: 6 (a node block) without
+/// contact pairs, and the upper triangle of the `(d + 1) d` stencil DOFs with them (21 in
+/// 2D, 78 in 3D).
+pub fn slot_stride(dim: usize, paired: bool) -> usize {
+    if paired {
+        let l = (dim + 1) * dim;
+        l * (l + 1) / 2
+    } else {
+        6
+    }
 }
 
 /// Slots in `pattern` of the diagonal node blocks of the nodes `nodes`, as

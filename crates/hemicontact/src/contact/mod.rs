@@ -47,6 +47,11 @@ pub struct ContactBoundary {
     pub gap: f64,
     /// The rigid obstacle the part faces, or `None` for the flat foundation at `gap`.
     pub obstacle: Option<ContactObstacle>,
+    /// The *master* boundary part this (slave) part touches: a part of another body, or the
+    /// other face of a crack ([`crate::contact::pairing`]). Each node of this part is then
+    /// paired with its closest point on the master's facets, and the laws act on the
+    /// displacement relative to the master there. `None` for a foundation or an obstacle.
+    pub against: Option<usize>,
     /// Normal law: normal compliance or the Signorini constraint.
     pub normal: NormalLaw,
     /// Friction law, or `None` for frictionless contact.
@@ -68,6 +73,13 @@ impl ContactBoundary {
             "gap",
             self.gap,
             "a gap g ≥ 0 (m)",
+        )?;
+        crate::error::require(
+            self.against.is_none() || self.gap == 0.0,
+            "gap",
+            self.gap,
+            "no gap with `against` (0): the positions of the two parts give the gap at each \
+             point",
         )?;
         crate::error::require(
             self.obstacle.is_none() || self.gap == 0.0,

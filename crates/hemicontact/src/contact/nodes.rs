@@ -52,6 +52,17 @@
 //! which every friction term, label, certificate and output reads. Moving the obstacle by
 //! `t` is then the same problem as moving every support by `−t` (Galilean invariance), with
 //! `u` shifted by `t`.
+//!
+//! # Two bodies
+//!
+//! A boundary with a master part (`against`) has one point per slave node paired with the
+//! master surface ([`super::pairing`]), with the weight of all its facets, the pair's normal
+//! and gap, and the master facet's nodes m_j and shape functions N_j at the projection
+//! ([`ContactNodes::master`], [`ContactNodes::master_shape`]). A node beyond the edge of the
+//! master surface is no point. Every law then reads the displacement relative to the master
+//! point, `u(x_i) − Σ_j N_j u(m_j)` ([`ContactNodes::relative`]), and the point's force acts
+//! on its stencil: its node with coefficient 1 and the master nodes with −N_j
+//! ([`ContactNodes::stencil`]).
 
 use super::{ContactBoundary, ContactObstacle};
 use crate::fem::simplex::cross;
@@ -90,6 +101,14 @@ pub struct ContactNodes {
     /// displacement of every evaluation ([`ContactNodes::kinematics`]); empty without
     /// placement.
     pub placed_tangential: Vec<[f64; 2]>,
+    /// The nodes m_j of the master facet of each point of a contact pair (first d entries),
+    /// `u32::MAX` at a point facing a foundation or an obstacle; empty when no contact part
+    /// has a master part (see *Two bodies* in the module documentation).
+    pub master: Vec<[u32; 3]>,
+    /// The master facet's shape functions N_j at the point's projection (first d entries,
+    /// ≥ 0, summing to 1), zero at a point facing a foundation or an obstacle; empty with
+    /// [`ContactNodes::master`].
+    pub master_shape: Vec<[f64; 3]>,
 }
 
 /// Angle between facet normals above which one contact boundary is split at a node into
@@ -127,6 +146,11 @@ impl ContactNodes {
             if let Some(obstacle) = &cb.obstacle {
                 obstacle_points(&mut out, mesh, b, obstacle, &facets, &incidence, excluded)
                     .map_err(|e| e.within(&format!("contact[{b}].obstacle")))?;
+                continue;
+            }
+            if let Some(master) = cb.against {
+                paired_points(&mut out, mesh, b, master, &facets, &incidence, excluded)
+                    .map_err(|e| e.within(&format!("contact[{b}].against")))?;
                 continue;
             }
             let mut group = Vec::new();
@@ -185,7 +209,50 @@ impl ContactNodes {
                 }
             }
         }
+        if !out.master.is_empty() {
+            out.master.resize(out.node.len(), [u32::MAX; 3]);
+            out.master_shape.resize(out.node.len(), [0.0; 3]);
+        }
         Ok(out)
+    }
+
+    /// Whether some points are paired with a master surface (contact between two bodies).
+    pub fn has_pairs(&self) -> bool {
+        !self.master.is_empty()
+    }
+
+    /// The stencil of point `i`: its node with coefficient 1, then the nodes of its master
+    /// facet with coefficients −N_j (a point facing a foundation or an obstacle has its node
+    /// alone). The relative displacement of the point is `Σ_a c_a u(v_a)`; its contact force
+    /// on node `v_a` is `c_a` times the force on the point. Returns the number of entries
+    /// (1, or 1 + d), the nodes and the coefficients.
+    #[inline]
+    pub fn stencil(&self, dim: usize, i: usize) -> (usize, [u32; 4], [f64; 4]) {
+        let mut nodes = [self.node[i], u32::MAX, u32::MAX, u32::MAX];
+        let mut coef = [1.0, 0.0, 0.0, 0.0];
+        match self.master.get(i) {
+            Some(m) if m[0] != u32::MAX => {
+                for j in 0..dim {
+                    nodes[j + 1] = m[j];
+                    coef[j + 1] = -self.master_shape[i][j];
+                }
+                (dim + 1, nodes, coef)
+            }
+            _ => (1, nodes, coef),
+        }
+    }
+
+    /// The node pairs each point's contact term couples beyond the cells: its node with
+    /// each node of its master facet ([`crate::mesh::Mesh::with_couplings`]).
+    pub fn couplings(&self, dim: usize) -> Vec<[u32; 2]> {
+        let mut out = Vec::new();
+        for i in 0..self.len() {
+            let (n, nodes, _) = self.stencil(dim, i);
+            out.extend(nodes[1..n].iter().map(|&m| [nodes[0], m]));
+        }
+        out.sort_unstable();
+        out.dedup();
+        out
     }
 
     /// Number of contact points.
@@ -217,6 +284,11 @@ impl ContactNodes {
             position: pick(&self.position, points),
             placed_normal: pick(&self.placed_normal, points),
             placed_tangential: pick(&self.placed_tangential, points),
+            master: pick(&self.master, points)
+                .into_iter()
+                .map(|m: [u32; 3]| m.map(|v| if v == u32::MAX { v } else { local(v) }))
+                .collect(),
+            master_shape: pick(&self.master_shape, points),
         }
     }
 
@@ -231,10 +303,12 @@ impl ContactNodes {
     /// rigid placement `u_R` ([`ContactNodes::place`]), `u` is the displacement relative to
     /// it: `u_ν` is then relative too (to be compared with the remaining `gap`), and
     /// `ξ_a = (u + u_R)·τ_a − t_a` is the whole slip, which the friction law sees.
+    ///
+    /// At a point of a contact pair, `u` at the node is replaced by the relative displacement
+    /// `u(x_i) − Σ_j N_j u(m_j)` ([`ContactNodes::stencil`]).
     #[inline]
     pub fn kinematics(&self, dim: usize, u: &[f64], i: usize) -> (f64, [f64; 2]) {
-        let v = self.node[i] as usize;
-        let x = &u[dim * v..dim * v + dim];
+        let x = self.relative(dim, u, i);
         let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
         let mut xi = [0.0; 2];
         for (a, t) in self.tangent[i].iter().enumerate().take(dim - 1) {
@@ -246,6 +320,26 @@ impl ContactNodes {
             }
         }
         (dot(&self.normal[i]), xi)
+    }
+
+    /// The displacement of point `i`'s node relative to its master point,
+    /// `Σ_a c_a u(v_a)` over its stencil ([`ContactNodes::stencil`]): the node's
+    /// displacement alone at a point facing a foundation or an obstacle (m; first d
+    /// entries).
+    #[inline]
+    pub fn relative(&self, dim: usize, u: &[f64], i: usize) -> [f64; 3] {
+        let v = self.node[i] as usize;
+        let mut x = [0.0; 3];
+        x[..dim].copy_from_slice(&u[dim * v..dim * v + dim]);
+        if let Some(m) = self.master.get(i).filter(|m| m[0] != u32::MAX) {
+            for (j, &mj) in m.iter().enumerate().take(dim) {
+                let (c, mj) = (self.master_shape[i][j], mj as usize);
+                for k in 0..dim {
+                    x[k] -= c * u[dim * mj + k];
+                }
+            }
+        }
+        x
     }
 
     /// Moves the bodies rigidly by `u_r` (DOF order, m) before a solve, which then solves
@@ -266,8 +360,7 @@ impl ContactNodes {
         self.placed_normal = vec![0.0; n];
         self.placed_tangential = vec![[0.0; 2]; n];
         for i in 0..n {
-            let v = self.node[i] as usize;
-            let x = &u_r[dim * v..dim * v + dim];
+            let x = self.relative(dim, u_r, i);
             let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
             let normal = dot(&self.normal[i]);
             self.placed_normal[i] = normal;
@@ -336,6 +429,70 @@ fn obstacle_points(
         out.tangent.push(tangent);
         out.foundation_motion.push(motion);
         out.position.push(x);
+    }
+    Ok(())
+}
+
+/// Appends the points of the slave boundary `b` paired with the master part `master`: one
+/// per node of `incidence` (sorted (node, facet) pairs) not `excluded` and not separated
+/// from the master surface, weighted by all its facets, with the normal, gap, facet nodes
+/// and shape functions of its closest-point projection ([`super::pairing::pair`]).
+fn paired_points(
+    out: &mut ContactNodes,
+    mesh: &Mesh,
+    b: usize,
+    master: usize,
+    facets: &[(f64, [f64; 3])],
+    incidence: &[(u32, u32)],
+    excluded: &[bool],
+) -> crate::Result<()> {
+    use super::pairing::{pair, Pairing};
+    let d = mesh.dim();
+    let master_facets: Vec<usize> = mesh.part_facets(master).collect();
+    let n_before = out.node.len();
+    out.master.resize(n_before, [u32::MAX; 3]);
+    out.master_shape.resize(n_before, [0.0; 3]);
+    for around in incidence.chunk_by(|a, b| a.0 == b.0) {
+        let v = around[0].0;
+        if excluded[v as usize] {
+            continue;
+        }
+        let projection = match pair(mesh, &master_facets, v) {
+            Ok(Pairing::Paired(p)) => p,
+            Ok(Pairing::Separated) => continue,
+            Err(message) => {
+                return Err(crate::Error::Invalid {
+                    field: String::new(),
+                    value: message,
+                    allowed: "a master part on which every node of the slave part has one \
+                              closest point"
+                        .into(),
+                })
+            }
+        };
+        let n = projection.normal;
+        let mut x = [0.0; 3];
+        x[..d].copy_from_slice(mesh.node(v as usize));
+        out.node.push(v);
+        out.boundary.push(b as u16);
+        out.weight.push(
+            around
+                .iter()
+                .map(|&(_, f)| facets[f as usize].0)
+                .sum::<f64>()
+                / d as f64,
+        );
+        out.normal.push(n);
+        out.gap.push(projection.gap);
+        out.tangent.push(tangent_basis(d, &n));
+        out.foundation_motion.push([0.0; 2]);
+        out.position.push(x);
+        let mut nodes = [u32::MAX; 3];
+        let mut shape = [0.0; 3];
+        nodes[..d].copy_from_slice(&projection.nodes[..d]);
+        shape[..d].copy_from_slice(&projection.shape[..d]);
+        out.master.push(nodes);
+        out.master_shape.push(shape);
     }
     Ok(())
 }

@@ -75,6 +75,7 @@ pub struct Mesh {
     part_names: Vec<String>,
     cell_region: Vec<u16>,
     region_names: Vec<String>,
+    couplings: Vec<[u32; 2]>,
 }
 
 /// Relative tolerance below which a cell counts as degenerate: `|T| ≤ tol · h_T^d`.
@@ -241,6 +242,7 @@ impl Mesh {
             part_names,
             cell_region: Vec::new(),
             region_names: Vec::new(),
+            couplings: Vec::new(),
         };
         mesh.check_cells(name)?;
         mesh.facet_cell = mesh.match_boundary_facets(name)?;
@@ -614,10 +616,47 @@ impl Mesh {
         (lo, hi)
     }
 
-    /// Node-to-node adjacency (nodes sharing a cell, excluding the node itself) in CSR form:
-    /// the neighbours of node `n` are `adj[ptr[n]..ptr[n+1]]`, sorted.
+    /// Node-to-node adjacency (nodes sharing a cell, or coupled by
+    /// [`Mesh::with_couplings`]; excluding the node itself) in CSR form: the neighbours of
+    /// node `n` are `adj[ptr[n]..ptr[n+1]]`, sorted. It is the graph of the system's matrix
+    /// (its pattern, its fill-reducing ordering and its partition among processes).
     pub fn node_adjacency(&self) -> (Vec<usize>, Vec<u32>) {
-        self.node_adjacency_of(0..self.n_cells())
+        let (ptr, adj) = self.node_adjacency_of(0..self.n_cells());
+        if self.couplings.is_empty() {
+            return (ptr, adj);
+        }
+        let n = self.n_nodes();
+        let mut extra: Vec<Vec<u32>> = vec![Vec::new(); n];
+        for &[a, b] in &self.couplings {
+            extra[a as usize].push(b);
+            extra[b as usize].push(a);
+        }
+        let mut out_ptr = Vec::with_capacity(n + 1);
+        out_ptr.push(0);
+        let mut out = Vec::with_capacity(adj.len() + 2 * self.couplings.len());
+        for (a, more) in extra.iter_mut().enumerate() {
+            more.extend_from_slice(&adj[ptr[a]..ptr[a + 1]]);
+            more.sort_unstable();
+            more.dedup();
+            out.extend_from_slice(more);
+            out_ptr.push(out.len());
+        }
+        (out_ptr, out)
+    }
+
+    /// The same mesh with the node pairs `couplings` coupled outside the cells: the slave
+    /// node of a contact pair and the nodes of its master facet, whose equations the
+    /// contact term couples ([`Mesh::node_adjacency`]). Pairs of a node with itself are
+    /// ignored.
+    pub fn with_couplings(mut self, couplings: Vec<[u32; 2]>) -> Mesh {
+        self.couplings = couplings.into_iter().filter(|p| p[0] != p[1]).collect();
+        self
+    }
+
+    /// The node pairs coupled outside the cells ([`Mesh::with_couplings`]); empty for a mesh
+    /// read or generated.
+    pub fn couplings(&self) -> &[[u32; 2]] {
+        &self.couplings
     }
 
     /// As [`Mesh::node_adjacency`], counting only the cells `cells` (each at most once): two

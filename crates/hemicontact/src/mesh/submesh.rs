@@ -82,6 +82,7 @@ impl Mesh {
                     .collect()
             },
             region_names: self.region_names.clone(),
+            couplings: Vec::new(),
         })
     }
 }

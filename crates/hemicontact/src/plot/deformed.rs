@@ -83,6 +83,8 @@ struct Key {
     gaps: bool,
     /// Whether the problem has a contact boundary.
     contact: bool,
+    /// Whether a contact boundary faces a rigid foundation or obstacle (not another body).
+    foundation: bool,
     /// Whether the mesh edges are drawn (else only the deformed boundary: too fine).
     mesh_drawn: bool,
     cells: usize,
@@ -145,18 +147,20 @@ fn entries(solution: &Solution, key: &Key) -> Vec<Entry> {
         push_field(&mut e, key.field);
         return e;
     }
-    e.push(Entry::new(
-        Swatch::Line {
-            color: DARK,
-            width: 4.0,
-            dashed: false,
-        },
-        if key.gaps && m > 1.0 {
-            format!("rigid foundation (gap × {})", super::layout::number(m))
-        } else {
-            "rigid foundation".to_string()
-        },
-    ));
+    if key.foundation {
+        e.push(Entry::new(
+            Swatch::Line {
+                color: DARK,
+                width: 4.0,
+                dashed: false,
+            },
+            if key.gaps && m > 1.0 {
+                format!("rigid foundation (gap × {})", super::layout::number(m))
+            } else {
+                "rigid foundation".to_string()
+            },
+        ));
+    }
     let count =
         |f: &dyn Fn(&ContactResult) -> bool| solution.contact.iter().filter(|c| f(c)).count();
     let states: [(Rgb, &str, usize); 4] = [
@@ -329,6 +333,10 @@ fn panel_layout(
     let mut shift = vec![[0.0; 2]; mesh.n_nodes()];
     let mut foundation = Vec::new();
     for (b, cb) in problem.contact.iter().enumerate() {
+        if cb.against.is_some() {
+            // Against another body: that body, drawn deformed, is the other side.
+            continue;
+        }
         if cb.obstacle.is_some() {
             for i in (0..points.len()).filter(|&i| points.boundary[i] as usize == b) {
                 let (g, n) = (points.gap[i], points.normal[i]);
@@ -410,6 +418,7 @@ fn panel_layout(
         field,
         gaps,
         contact: !problem.contact.is_empty(),
+        foundation: problem.contact.iter().any(|c| c.against.is_none()),
         mesh_drawn: true,
         cells: if d == 2 { mesh.n_cells() } else { facing.len() },
         interfaces: d == 2 && problem.materials.len() > 1,

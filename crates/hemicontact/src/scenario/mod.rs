@@ -241,7 +241,12 @@ impl Scenario {
                 Some(fs) => Some(self.build_friction(k, fs)?),
             };
             let obstacle = c.obstacle.clone().map(crate::contact::ContactObstacle::new);
+            let against = match &c.against {
+                Some(name) => Some(self.part(mesh, &f("against"), name)?),
+                None => None,
+            };
             out.push(ContactBoundary {
+                against,
                 part,
                 gap: c.gap,
                 obstacle,

@@ -357,6 +357,10 @@ pub struct ContactSpec {
     /// `obstacle = { kind = "circle", center = [0.0, 1.0], radius = 1.0 }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub obstacle: Option<crate::contact::ObstacleSpec>,
+    /// The master part this (slave) part touches, a boundary part of another body or the
+    /// other face of a crack, instead of the flat foundation, e.g. `against = "b_top"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub against: Option<String>,
     /// Normal law.
     #[serde(default)]
     pub law: NormalLawKind,

@@ -380,6 +380,30 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     } = *inp;
     let d = ca.dim;
     let m = d - 1;
+    // Between two bodies, the force on a slave point acts back on its master facet's nodes
+    // (action = reaction): the model force of each pair, spread with −N_j, joins `∇W − f`
+    // there, so that the master body's equilibrium below checks that it balances.
+    let with_reactions;
+    let grad_bulk = if ca.nodes.has_pairs() {
+        let mut g = grad_bulk.to_vec();
+        for i in 0..ca.nodes.len() {
+            let (n, nodes, coef) = ca.nodes.stencil(d, i);
+            if n == 1 {
+                continue;
+            }
+            let model = ca.point(u, &frozen, i).gradient;
+            for a in 1..n {
+                let v = nodes[a] as usize;
+                for k in 0..d {
+                    g[d * v + k] += coef[a] * model[k];
+                }
+            }
+        }
+        with_reactions = g;
+        with_reactions.as_slice()
+    } else {
+        grad_bulk
+    };
     // Equilibrium, body by body, at the free DOFs of the nodes without a contact point (at
     // those, the interface force is what the laws check).
     let mut on_contact = vec![false; grad_bulk.len() / d];

@@ -166,6 +166,7 @@ impl Scales {
                 .contact
                 .iter()
                 .map(|c| ContactBoundary {
+                    against: c.against,
                     part: c.part,
                     gap: c.gap / u,
                     obstacle: c

@@ -245,6 +245,16 @@ impl System {
             && processes.size() > 1
             && kind.resolve(d, dofs.n_free()) == super::LinearSolver::Petsc;
         let contact = problem.contact_nodes()?;
+        if distributed && contact.has_pairs() {
+            let k = problem.contact.iter().position(|c| c.against.is_some());
+            return Err(crate::Error::Invalid {
+                field: format!("contact[{}].against", k.unwrap_or(0)),
+                value: format!("a contact pair on {} processes", processes.size()),
+                allowed: "one process: contact between two bodies is solved on one process \
+                          (run without mpirun; threads still apply)"
+                    .into(),
+            });
+        }
         let continuation = Continuation::new(problem, &settings.constraints, &contact);
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact);
         let f_ext = problem.external_forces();
@@ -299,6 +309,15 @@ impl System {
             )
         };
         let mesh = part.as_ref().map_or(&problem.mesh, |p| &p.1);
+        // The contact pairs couple each slave node with its master facet's nodes: the
+        // matrix's graph (its pattern and fill-reducing ordering) has those couplings too.
+        let coupled;
+        let mesh = if contact.has_pairs() {
+            coupled = mesh.clone().with_couplings(contact.couplings(d));
+            &coupled
+        } else {
+            mesh
+        };
         // This process's rows: the DOFs of its own nodes (all of them on one process).
         let own_dofs = part
             .as_ref()

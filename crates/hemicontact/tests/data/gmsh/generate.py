@@ -21,6 +21,12 @@ dimension d - 1, and one physical group of dimension d for the domain):
 - ../../../../../scenarios/meshes/half-disc.msh: the lower half of the disc of radius 1
   centred at (0, 1): physical lines "contact" (the arc) and "top" (the flat side y = 1), the
   surface "body"; element size 0.1 (0.05 on the arc). Used by scenarios/half-disc.toml.
+- ../../../../../scenarios/meshes/punch-on-block.msh: two bodies meshed apart, with no
+  shared node: the block [0,1] x [0,0.5] (surface "block"; physical lines "block_bottom",
+  "block_top", "block_sides"; element size 0.1 at the bottom, 0.025 at the top) and the
+  punch [0.25,0.75] x [0.5,0.7] on it (surface "punch"; lines "punch_bottom", "punch_top",
+  "punch_sides"; element size 0.02 at the bottom, 0.05 at the top): non-matching meshes
+  along the interface y = 0.5. Used by scenarios/punch-on-block.toml.
 
 The files with errors (bad-*.msh) are hand-written variants of tiny.msh (a unit square of
 two triangles, also hand-written); see tests/gmsh.rs for the error each must give.
@@ -102,12 +108,40 @@ def half_disc():
     gmsh.model.remove()
 
 
+def rectangle(g, x0, y0, x1, y1, size, top_size):
+    """The lines bottom, right, top, left of a rectangle and its surface; element size
+    `size` at the bottom corners, `top_size` at the top corners."""
+    corners = [(x0, y0, size), (x1, y0, size), (x1, y1, top_size), (x0, y1, top_size)]
+    p = [g.addPoint(x, y, 0, h) for x, y, h in corners]
+    lines = [g.addLine(p[i], p[(i + 1) % 4]) for i in range(4)]
+    return lines, g.addPlaneSurface([g.addCurveLoop(lines)])
+
+
+def punch_on_block():
+    gmsh.model.add("punch-on-block")
+    g = gmsh.model.geo
+    block_lines, block = rectangle(g, 0.0, 0.0, 1.0, 0.5, 0.1, 0.025)
+    punch_lines, punch = rectangle(g, 0.25, 0.5, 0.75, 0.7, 0.02, 0.05)
+    g.synchronize()
+    for name, lines, surface in [("block", block_lines, block), ("punch", punch_lines, punch)]:
+        bottom, right, top, left = lines
+        gmsh.model.addPhysicalGroup(1, [bottom], name=f"{name}_bottom")
+        gmsh.model.addPhysicalGroup(1, [top], name=f"{name}_top")
+        gmsh.model.addPhysicalGroup(1, [left, right], name=f"{name}_sides")
+        gmsh.model.addPhysicalGroup(2, [surface], name=name)
+    gmsh.model.mesh.generate(2)
+    os.makedirs(SCENARIO_MESHES, exist_ok=True)
+    write(os.path.join(SCENARIO_MESHES, "punch-on-block.msh"), False)
+    gmsh.model.remove()
+
+
 def main():
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
     square()
     cube()
     half_disc()
+    punch_on_block()
     gmsh.finalize()
 
 

@@ -1,0 +1,401 @@
+//! # Verification: contact between two deformable bodies
+//!
+//! Two blocks stacked along y, the upper one (slave side, its part `a_bottom`) pressed on
+//! the lower one (master side, `b_top`) by a prescribed displacement −δ of its top, the
+//! lower one held at its bottom. With ν = 0 the exact solution is uniaxial and uniform:
+//! `u_y = −δ y/H` in both blocks, the stress `σ_yy = −E δ/H`, and the contact pressure
+//! `p = E δ/H` at every point of the interface.
+//!
+//! 1. **Matching meshes** (the interface nodes of the two blocks coincide): the exact
+//!    solution is in the discrete space and node-to-segment pairing transmits the nodal
+//!    forces one to one, so the displacement, the pressure at every point and the force on
+//!    the master side are reproduced to round-off, with Signorini's exact constraint and
+//!    with normal compliance (whose penetration `p/c_ν` is then part of the solution), in 2D
+//!    and 3D.
+//! 2. **Non-matching meshes** (node-to-segment's known limit): the slave nodes' forces are
+//!    spread onto the master facets with the shape functions at the projections, which is not
+//!    the master side's consistent load of a uniform traction, so the patch test does not
+//!    hold exactly. The measured error of the pressure and of the displacement is stated, and
+//!    the total force is still exact (action = reaction).
+//! 3. **Action = reaction**: the reactions of the two bodies' supports are equal and
+//!    opposite, and every solve here is certified, the certificate checking each body's
+//!    equilibrium with the pair forces spread onto the master nodes (without them the
+//!    master body's residual is 0.7 of its force scale: checked by removing them).
+//! 4. **Friction on the relative slip**: blocks sliding on each other carry the friction
+//!    bound, and slip by the jump of the displacement across the interface.
+//! 5. **Refusals**: a part against itself, a body of the pair with free rigid motions, a gap
+//!    with a master part.
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use hemicontact::contact::{
+    ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,
+    NormTreatment, NormalCompliance, NormalLaw,
+};
+use hemicontact::material::{Elasticity, Hooke, Material, Plane};
+use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
+use hemicontact::mesh::Mesh;
+use hemicontact::problem::{Dirichlet, Problem, Traction};
+use hemicontact::solver::{solve, SolverSettings};
+
+const E: f64 = 1000.0;
+const DELTA: f64 = 0.01;
+const H: f64 = 1.0;
+
+/// The facets of part `name` of `m`, renumbered by `offset`.
+fn facets_of(m: &Mesh, name: &str, offset: u32) -> Vec<u32> {
+    let p = m.part_index(name).unwrap();
+    m.part_facets(p)
+        .flat_map(|f| m.facet(f).iter().map(move |&v| v + offset))
+        .collect()
+}
+
+/// Two rectangles `[0, 1] × [0, H/2]` (`b`, `nx_b` squares across) and `[0, 1] × [H/2, H]`
+/// (`a`, `nx_a` squares across) in one mesh, without shared nodes; parts `a_*` and `b_*`.
+fn stacked_2d(nx_a: usize, nx_b: usize, ny: usize) -> Mesh {
+    let block = |y0: f64, nx: usize| {
+        rectangle(&Rectangle {
+            origin: [0.0, y0],
+            size: [1.0, H / 2.0],
+            n: [nx, ny],
+            pattern: CutPattern::Uniform,
+            progression: [1.0, 1.0],
+        })
+        .unwrap()
+    };
+    merged(2, &block(0.0, nx_b), &block(H / 2.0, nx_a))
+}
+
+/// Two boxes `[0, 1]² × [0, H/2]` (`b`, `n_b` cubes across) and `[0, 1]² × [H/2, H]` (`a`,
+/// `n_a` across), as [`stacked_2d`] along z.
+fn stacked_3d(n_a: usize, n_b: usize, nz: usize) -> Mesh {
+    let block = |z0: f64, n: usize| {
+        cuboid(&BoxSpec {
+            origin: [0.0, 0.0, z0],
+            size: [1.0, 1.0, H / 2.0],
+            n: [n, n, nz],
+            pattern: CutPattern::Uniform,
+            progression: [1.0; 3],
+        })
+        .unwrap()
+    };
+    merged(3, &block(0.0, n_b), &block(H / 2.0, n_a))
+}
+
+/// The meshes `b` and `a` as one mesh (b's nodes first), their parts prefixed `b_` and `a_`.
+fn merged(d: usize, b: &Mesh, a: &Mesh) -> Mesh {
+    let offset = b.n_nodes() as u32;
+    let mut coords = b.coords().to_vec();
+    coords.extend_from_slice(a.coords());
+    let mut cells = b.cells().to_vec();
+    cells.extend(a.cells().iter().map(|&v| v + offset));
+    let mut parts = Vec::new();
+    for side in b.part_names() {
+        parts.push((format!("b_{side}"), facets_of(b, side, 0)));
+        parts.push((format!("a_{side}"), facets_of(a, side, offset)));
+    }
+    Mesh::from_parts(d, coords, cells, &parts).unwrap()
+}
+
+fn material() -> Material {
+    // ν = 0: λ = 0, G = E/2.
+    Material::elastic(Elasticity::Hooke(Hooke {
+        lambda: 0.0,
+        mu: E / 2.0,
+    }))
+}
+
+/// The stacked blocks: `b_bottom` held, `a_top` moved by (0, −δ), `a_bottom` against
+/// `b_top` with the normal law `normal`, frictionless.
+fn pressed(mesh: Mesh, normal: NormalLaw) -> Problem {
+    sheared(mesh, normal, None, 0.0)
+}
+
+/// The stacked blocks: `b_bottom` held, `a_top` moved by (s, −δ), `a_bottom` against `b_top`
+/// with the normal law `normal` and the friction law `friction`.
+fn sheared(mesh: Mesh, normal: NormalLaw, friction: Option<Friction>, s: f64) -> Problem {
+    let d = mesh.dim();
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let (bottom, top, slave, master) = (
+        part("b_bottom"),
+        part("a_top"),
+        part("a_bottom"),
+        part("b_top"),
+    );
+    Problem::builder(mesh, material())
+        .plane(Plane::Strain)
+        .dirichlet(Dirichlet {
+            part: bottom,
+            components: [true; 3],
+            value: [0.0; 3],
+        })
+        .dirichlet(Dirichlet {
+            part: top,
+            components: [true; 3],
+            value: if d == 2 {
+                [s, -DELTA, 0.0]
+            } else {
+                [s, 0.0, -DELTA]
+            },
+        })
+        .contact(ContactBoundary {
+            part: slave,
+            gap: 0.0,
+            obstacle: None,
+            against: Some(master),
+            normal,
+            friction,
+        })
+        .build()
+        .unwrap()
+}
+
+/// Largest error of the displacement against `u_y = −δ y/H − penetration above the
+/// interface`, and of the contact pressures against `E δ/H`-based `p`, relative to δ and p.
+fn errors(problem: &Problem, u: &[f64], pressures: &[f64], p: f64, penetration: f64) -> (f64, f64) {
+    let mesh = problem.mesh();
+    // The upper block's nodes come after the lower block's, whose top part is `b_top`.
+    let first_upper = mesh
+        .part_nodes(mesh.part_index("a_bottom").unwrap())
+        .into_iter()
+        .min()
+        .unwrap() as usize;
+    let d = mesh.dim();
+    let mut eu = 0.0f64;
+    for v in 0..mesh.n_nodes() {
+        let y = mesh.node(v)[d - 1];
+        // The strain ε = −p/E in both blocks; the upper one shifted down by the penetration.
+        let upper = v >= first_upper;
+        let exact = -p / E * y - if upper { penetration } else { 0.0 };
+        for k in 0..d - 1 {
+            eu = eu.max(u[d * v + k].abs());
+        }
+        eu = eu.max((u[d * v + d - 1] - exact).abs());
+    }
+    let ep = pressures
+        .iter()
+        .map(|q| (q - p).abs())
+        .fold(0.0f64, f64::max);
+    (eu / DELTA, ep / p)
+}
+
+#[test]
+fn matching_meshes_pass_the_contact_patch_test_to_round_off() {
+    let settings = SolverSettings::default();
+    for (d, mesh, points) in [(2, stacked_2d(4, 4, 2), 5), (3, stacked_3d(3, 3, 2), 16)] {
+        // Signorini: no penetration, p = E δ / H.
+        let problem = pressed(mesh.clone(), NormalLaw::Signorini);
+        let s = solve(&problem, &settings).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        assert_eq!(s.contact.len(), points, "one point per slave node");
+        let pressures: Vec<f64> = s.contact.iter().map(|c| c.pressure).collect();
+        let (eu, ep) = errors(&problem, &s.u, &pressures, E * DELTA / H, 0.0);
+        println!(
+            "{d}D matching, Signorini: displacement error {eu:.1e} δ, pressure error {ep:.1e} p"
+        );
+        assert!(eu < 1e-10 && ep < 1e-10, "{eu:e} {ep:e}");
+        assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+        // Normal compliance c_ν: p = E(δ − p/c_ν)/H, so p = E δ / (H + E/c_ν).
+        let c_nu = 5.0e4;
+        let problem = pressed(mesh, NormalLaw::Compliance(NormalCompliance { c_nu }));
+        let s = solve(&problem, &settings).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        let p = E * DELTA / (H + E / c_nu);
+        let pressures: Vec<f64> = s.contact.iter().map(|c| c.pressure).collect();
+        let (eu, ep) = errors(&problem, &s.u, &pressures, p, p / c_nu);
+        println!(
+            "{d}D matching, compliance: displacement error {eu:.1e} δ, pressure error {ep:.1e} p"
+        );
+        assert!(eu < 1e-10 && ep < 1e-10, "{eu:e} {ep:e}");
+        assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    }
+}
+
+/// The stacked blocks with `nx_a` and `nx_b` squares across: the largest pressure and
+/// displacement errors, relative to p and δ, and the total force on the slave and master
+/// nodes along y.
+fn non_matching(nx_a: usize, nx_b: usize, ny: usize) -> (f64, f64, f64, f64) {
+    let problem = pressed(stacked_2d(nx_a, nx_b, ny), NormalLaw::Signorini);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let pressures: Vec<f64> = s.contact.iter().map(|c| c.pressure).collect();
+    let (eu, ep) = errors(&problem, &s.u, &pressures, E * DELTA / H, 0.0);
+    // Reactions at the held bottom and the moved top: equal and opposite.
+    let mesh = problem.mesh();
+    let total = |name: &str| -> f64 {
+        mesh.part_nodes(mesh.part_index(name).unwrap())
+            .iter()
+            .map(|&v| s.reactions[2 * v as usize + 1])
+            .sum()
+    };
+    (ep, eu, total("a_top"), total("b_bottom"))
+}
+
+#[test]
+fn non_matching_meshes_transmit_the_force_exactly_and_the_pressure_within_the_stated_error() {
+    // Refined at a fixed ratio of 5 slave segments to 4 master segments.
+    let mut last_eu = f64::INFINITY;
+    for (nx_a, nx_b, ny) in [(5, 4, 2), (10, 8, 4), (20, 16, 8)] {
+        let (ep, eu, top, bottom) = non_matching(nx_a, nx_b, ny);
+        println!(
+            "slave {nx_a} / master {nx_b} across: pressure error {ep:.2e} p, displacement \
+             error {eu:.2e} δ, force on the top {top:.6e}, on the bottom {bottom:.6e} N/m"
+        );
+        // Action = reaction: what the upper block receives, the lower one passes on.
+        assert!(
+            (top + bottom).abs() < 1e-12 * bottom.abs(),
+            "{top} {bottom}"
+        );
+        // The force tends to E δ/H (per unit width); the displacement error converges,
+        // at the measured orders 0.72 and 0.88 (the error is a boundary layer at the
+        // interface, whose width is one element).
+        assert!(
+            (bottom - E * DELTA / H).abs() < 1e-3 * E * DELTA / H,
+            "{bottom}"
+        );
+        let order = (last_eu / eu).log2();
+        println!("  order {order:.2}");
+        assert!(last_eu.is_infinite() || order > 0.6, "{eu} after {last_eu}");
+        last_eu = eu;
+        // Node-to-segment does not pass the patch test across non-matching meshes: the
+        // local pressure error stays (7.7 % here) under refinement; the stated bound.
+        assert!(ep > 1e-3 && ep < 0.08, "{ep}");
+    }
+    // The coarser side as the slave is worse: 10.6 % against 7.7 %.
+    let (coarse_slave, ..) = non_matching(4, 5, 2);
+    let (fine_slave, ..) = non_matching(5, 4, 2);
+    println!("slave 4 / master 5: {coarse_slave:.2e} p, slave 5 / master 4: {fine_slave:.2e} p");
+    assert!(coarse_slave > fine_slave, "{coarse_slave} {fine_slave}");
+}
+
+/// Friction acts on the slip of the slave node relative to the master body: the upper block
+/// moved by (s, −δ) slides on the lower one, held at its bottom, the shear traction F
+/// applied on the free sides. With a friction bound F below the stick force `G s/H`, every
+/// point slips and carries τ = F: the shear stress is F in both blocks (`u_x = F y/G` below,
+/// the same plus the slip above), and the slip `s − F H/G` is the jump of `u_x` across the
+/// interface, not the displacement of the slave node (`s − F H/(2G)`).
+#[test]
+fn sliding_blocks_carry_the_friction_bound_and_slip_by_the_relative_displacement() {
+    let g_shear = E / 2.0;
+    let s = 0.02;
+    let exact = |bound| Friction {
+        bound,
+        mu: FrictionCoefficient::Constant { mu: 0.4 },
+        potential: FrictionPotential::Norm {
+            treatment: NormTreatment::Exact,
+        },
+    };
+    // Tresca with bound 4 Pa, and Coulomb with μ = 0.4 under p = E δ/H = 10 Pa: F = 4 Pa.
+    for (name, fr) in [
+        ("Tresca", exact(FrictionBound::Tresca)),
+        ("Coulomb", exact(FrictionBound::Coulomb)),
+    ] {
+        let fr = match fr.bound {
+            FrictionBound::Tresca => Friction {
+                mu: FrictionCoefficient::Constant { mu: 4.0 },
+                ..fr
+            },
+            _ => fr,
+        };
+        let mut problem = sheared(stacked_2d(4, 4, 2), NormalLaw::Signorini, Some(fr), s);
+        // The shear stress τ = F on the free sides too: (0, ∓F) on the left and right.
+        let mut builder = problem.to_builder();
+        for (side, sign) in [("left", -1.0), ("right", 1.0)] {
+            for body in ["a", "b"] {
+                let part = problem
+                    .mesh()
+                    .part_index(&format!("{body}_{side}"))
+                    .unwrap();
+                builder = builder.traction(Traction {
+                    part,
+                    value: [0.0, sign * 4.0, 0.0],
+                });
+            }
+        }
+        problem = builder.build().unwrap();
+        let sol = solve(&problem, &SolverSettings::default()).unwrap();
+        assert!(sol.report.converged, "{}", sol.report.message);
+        assert!(
+            sol.report.certificate.passes(),
+            "{:?}",
+            sol.report.certificate
+        );
+        let bound = 4.0;
+        let slip = s - bound * H / g_shear;
+        let mut worst = 0.0f64;
+        for c in &sol.contact {
+            let traction = c.friction_traction[0].hypot(c.friction_traction[1]);
+            worst = worst
+                .max((c.slip - slip).abs() / slip)
+                .max((traction - bound).abs() / bound)
+                .max((c.pressure - E * DELTA / H).abs() / (E * DELTA / H));
+        }
+        let mesh = problem.mesh();
+        let shear: f64 = mesh
+            .part_nodes(mesh.part_index("a_top").unwrap())
+            .iter()
+            .map(|&v| sol.reactions[2 * v as usize])
+            .sum();
+        println!(
+            "{name}: slip {:.6e} (exact {slip:.6e}), largest relative error {worst:.1e}, \
+             shear force on the top {shear:.6e} N/m",
+            sol.contact[2].slip
+        );
+        assert!(worst < 1e-9, "{worst:e}");
+        assert!((shear.abs() - bound).abs() < 1e-9 * bound, "{shear}");
+    }
+}
+
+/// What a pair cannot be, each refused naming `contact[0].against` and the reason.
+#[test]
+fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
+    let mesh = stacked_2d(4, 4, 2);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let pair = |against: usize| ContactBoundary {
+        part: part("a_bottom"),
+        gap: 0.0,
+        obstacle: None,
+        against: Some(against),
+        normal: NormalLaw::Signorini,
+        friction: None,
+    };
+    let held = |b: hemicontact::problem::ProblemBuilder| {
+        b.dirichlet(Dirichlet {
+            part: part("b_bottom"),
+            components: [true; 3],
+            value: [0.0; 3],
+        })
+    };
+    let refusal = |b: hemicontact::problem::ProblemBuilder| match b.build() {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    // Against itself.
+    let e =
+        refusal(held(Problem::builder(mesh.clone(), material())).contact(pair(part("a_bottom"))));
+    assert!(
+        e.contains("contact[0].against") && e.contains("other than the contact part"),
+        "{e}"
+    );
+    // A free upper body, resting on the lower one only through the pair.
+    let e = refusal(held(Problem::builder(mesh.clone(), material())).contact(pair(part("b_top"))));
+    println!("{e}");
+    assert!(
+        e.contains("contact[0].against") && e.contains("slave body") && e.contains("free"),
+        "{e}"
+    );
+    // A gap with a master part.
+    let e = refusal(
+        held(Problem::builder(mesh.clone(), material()))
+            .dirichlet(Dirichlet {
+                part: part("a_top"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .contact(ContactBoundary {
+                gap: 0.1,
+                ..pair(part("b_top"))
+            }),
+    );
+    assert!(e.contains("gap") && e.contains("against"), "{e}");
+}
