@@ -367,7 +367,10 @@ fn bad_files_give_errors_that_say_what_is_wrong() {
         ),
         (
             "bad-coincident-nodes.msh",
-            &["nodes 30 and 50 are at the same point", "not merged"],
+            &[
+                "nodes 30 and 50 of one body are at the same point",
+                "not merged",
+            ],
         ),
         (
             "bad-nan.msh",

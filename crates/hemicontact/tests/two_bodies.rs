@@ -113,14 +113,21 @@ fn pressed(mesh: Mesh, normal: NormalLaw) -> Problem {
 /// The stacked blocks: `b_bottom` held, `a_top` moved by (s, −δ), `a_bottom` against `b_top`
 /// with the normal law `normal` and the friction law `friction`.
 fn sheared(mesh: Mesh, normal: NormalLaw, friction: Option<Friction>, s: f64) -> Problem {
+    let names = ["b_bottom", "a_top", "a_bottom", "b_top"];
+    sheared_named(mesh, normal, friction, s, names)
+}
+
+/// [`sheared`] with the parts named `[held, moved, slave, master]`.
+fn sheared_named(
+    mesh: Mesh,
+    normal: NormalLaw,
+    friction: Option<Friction>,
+    s: f64,
+    names: [&str; 4],
+) -> Problem {
     let d = mesh.dim();
     let part = |n: &str| mesh.part_index(n).unwrap();
-    let (bottom, top, slave, master) = (
-        part("b_bottom"),
-        part("a_top"),
-        part("a_bottom"),
-        part("b_top"),
-    );
+    let [bottom, top, slave, master] = names.map(part);
     Problem::builder(mesh, material())
         .plane(Plane::Strain)
         .dirichlet(Dirichlet {
@@ -398,4 +405,51 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
             }),
     );
     assert!(e.contains("gap") && e.contains("against"), "{e}");
+}
+
+/// Two bodies meshed apart in Gmsh whose interface nodes coincide: the reader keeps the
+/// coincident nodes of different bodies (it refuses them inside one body), and the pair
+/// transmits the uniform pressure exactly.
+#[test]
+fn a_gmsh_mesh_of_two_bodies_with_coincident_interface_nodes_passes_the_patch_test() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/gmsh/two-blocks.msh");
+    let read = hemicontact::mesh::gmsh::read_msh(&path).unwrap();
+    let mesh = read.mesh;
+    let interface: Vec<u32> = mesh.part_nodes(mesh.part_index("upper_bottom").unwrap());
+    // Each interface node has its twin on the other body, within round-off (Gmsh places
+    // the nodes of the two lines from opposite ends: 3e-12 apart); the corners coincide exactly, which
+    // the reader used to refuse as an unmerged geometry.
+    let lower = mesh.part_nodes(mesh.part_index("lower_top").unwrap());
+    let twin = |v: u32, tol: f64| {
+        lower.iter().any(|&w| {
+            let (a, b) = (mesh.node(w as usize), mesh.node(v as usize));
+            w != v && (a[0] - b[0]).abs() <= tol && (a[1] - b[1]).abs() <= tol
+        })
+    };
+    assert!(interface.iter().all(|&v| twin(v, 1e-11)));
+    assert_eq!(interface.iter().filter(|&&v| twin(v, 0.0)).count(), 2);
+    let names = ["lower_bottom", "upper_top", "upper_bottom", "lower_top"];
+    let problem = sheared_named(mesh, NormalLaw::Signorini, None, 0.0, names);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged && s.report.certificate.passes());
+    let p = E * DELTA / H;
+    let mesh = problem.mesh();
+    let mut worst = s
+        .contact
+        .iter()
+        .map(|c| (c.pressure - p).abs() / p)
+        .fold(0.0f64, f64::max);
+    for v in 0..mesh.n_nodes() {
+        let exact = -p / E * mesh.node(v)[1];
+        worst = worst
+            .max((s.u[2 * v + 1] - exact).abs() / DELTA)
+            .max(s.u[2 * v].abs() / DELTA);
+    }
+    println!(
+        "two-blocks.msh: {} points, largest relative error {worst:.1e}",
+        s.contact.len()
+    );
+    assert_eq!(s.contact.len(), interface.len());
+    assert!(worst < 1e-10, "{worst:e}");
 }

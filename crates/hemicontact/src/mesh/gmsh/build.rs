@@ -252,13 +252,39 @@ pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
     })
 }
 
+/// The body (connected component of the cells `cells`, `d + 1` file node indices each) of
+/// each of the file's `n` nodes, as the index of a representative node; unused nodes are
+/// their own.
+fn bodies_of(d: usize, cells: &[u32], n: usize) -> Vec<u32> {
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    fn root(parent: &mut [u32], mut a: u32) -> u32 {
+        while parent[a as usize] != a {
+            let up = parent[parent[a as usize] as usize];
+            parent[a as usize] = up;
+            a = up;
+        }
+        a
+    }
+    for cell in cells.chunks_exact(d + 1) {
+        let r0 = root(&mut parent, cell[0]);
+        for &v in &cell[1..] {
+            let r = root(&mut parent, v);
+            if r != r0 {
+                parent[r as usize] = r0;
+            }
+        }
+    }
+    (0..n as u32).map(|a| root(&mut parent, a)).collect()
+}
+
 /// The nodes used by the cells `cells` (indices into the file's nodes), in file order: their
 /// coordinates (d each), their tags, and the new index of each node of the file (`u32::MAX`
 /// for those dropped).
 ///
 /// # Errors
-/// Two used nodes at the same point: an unmerged geometry (the mesh would have a crack
-/// there, its two faces becoming boundary facets).
+/// Two used nodes of one body at the same point: an unmerged geometry (the mesh would have
+/// a crack there, its two faces becoming boundary facets). Nodes of different bodies may
+/// coincide (two bodies meshed apart that touch).
 fn used_nodes(src: &Source, d: usize, cells: &[u32]) -> Result<(Vec<f64>, Vec<u64>, Vec<u32>)> {
     let nodes = src.nodes;
     let mut new_index = vec![u32::MAX; nodes.tags.len()];
@@ -287,11 +313,33 @@ fn used_nodes(src: &Source, d: usize, cells: &[u32]) -> Result<(Vec<f64>, Vec<u6
             .find(|o| o.is_ne())
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-    if let Some(w) = order.windows(2).find(|w| key(w[0]) == key(w[1])) {
+    // Coincident nodes of two different bodies (meshed apart, touching along an interface
+    // that a contact pair joins) are kept; inside one body they would cut it.
+    let body = bodies_of(d, cells, nodes.tags.len());
+    let file_index: Vec<usize> = new_index
+        .iter()
+        .enumerate()
+        .filter(|(_, &k)| k != u32::MAX)
+        .map(|(i, _)| i)
+        .collect();
+    let same_body = |a: u32, b: u32| body[file_index[a as usize]] == body[file_index[b as usize]];
+    let duplicate = order
+        .chunk_by(|&a, &b| key(a) == key(b))
+        .filter(|run| run.len() > 1)
+        .find_map(|run| {
+            run.iter().enumerate().find_map(|(i, &a)| {
+                run[i + 1..]
+                    .iter()
+                    .find(|&&b| same_body(a, b))
+                    .map(|&b| [a.min(b), a.max(b)])
+            })
+        });
+    if let Some(w) = duplicate {
         return Err(src.whole(format!(
-            "nodes {} and {} are at the same point {:?} (duplicate nodes: the geometry is not \
-             merged, which would cut the body; merge duplicates in Gmsh, e.g. with \
-             Geometry.Tolerance / `Coherence;`)",
+            "nodes {} and {} of one body are at the same point {:?} (duplicate nodes: the \
+             geometry is not merged, which would cut the body; merge duplicates in Gmsh, e.g. \
+             with Geometry.Tolerance / `Coherence;`; nodes of two different bodies may \
+             coincide)",
             node_tags[w[0] as usize],
             node_tags[w[1] as usize],
             key(w[0])

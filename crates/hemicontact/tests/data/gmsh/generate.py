@@ -28,6 +28,11 @@ dimension d - 1, and one physical group of dimension d for the domain):
   "punch_sides"; element size 0.02 at the bottom, 0.05 at the top): non-matching meshes
   along the interface y = 0.5. Used by scenarios/punch-on-block.toml.
 
+- two-blocks.msh: the blocks [0,1] x [0,0.5] ("lower") and [0,1] x [0.5,1] ("upper"),
+  meshed apart from their own points (not merged), so that their nodes on the interface
+  y = 0.5 coincide: physical lines "lower_bottom", "lower_top", "lower_sides",
+  "upper_bottom", "upper_top", "upper_sides"; element size 0.25.
+
 The files with errors (bad-*.msh) are hand-written variants of tiny.msh (a unit square of
 two triangles, also hand-written); see tests/gmsh.rs for the error each must give.
 """
@@ -135,6 +140,23 @@ def punch_on_block():
     gmsh.model.remove()
 
 
+def two_blocks():
+    gmsh.model.add("two-blocks")
+    g = gmsh.model.geo
+    lower_lines, lower = rectangle(g, 0.0, 0.0, 1.0, 0.5, 0.25, 0.25)
+    upper_lines, upper = rectangle(g, 0.0, 0.5, 1.0, 1.0, 0.25, 0.25)
+    g.synchronize()
+    for name, lines, surface in [("lower", lower_lines, lower), ("upper", upper_lines, upper)]:
+        bottom, right, top, left = lines
+        gmsh.model.addPhysicalGroup(1, [bottom], name=f"{name}_bottom")
+        gmsh.model.addPhysicalGroup(1, [top], name=f"{name}_top")
+        gmsh.model.addPhysicalGroup(1, [left, right], name=f"{name}_sides")
+        gmsh.model.addPhysicalGroup(2, [surface], name=name)
+    gmsh.model.mesh.generate(2)
+    write(os.path.join(HERE, "two-blocks.msh"), False)
+    gmsh.model.remove()
+
+
 def main():
     gmsh.initialize()
     gmsh.option.setNumber("General.Terminal", 0)
@@ -142,6 +164,7 @@ def main():
     cube()
     half_disc()
     punch_on_block()
+    two_blocks()
     gmsh.finalize()
 
 
