@@ -281,7 +281,7 @@ impl Problem {
             let field = format!("contact[{k}]");
             self.check_part(&format!("{field}.part"), c.part)?;
             c.validate().map_err(|e| e.within(&field))?;
-            if let Some(m) = c.against {
+            if let Some(m) = c.against.map(|a| a.part) {
                 let f = format!("{field}.against");
                 self.check_part(&f, m)?;
                 let names = self.mesh.part_names();
@@ -337,33 +337,32 @@ impl Problem {
         Ok(())
     }
 
-    /// The bodies joined by a contact pair must each be held by their own supports: the
-    /// rigid motions a pair carries (a body resting on another) are not solved yet.
+    /// The master body of a contact pair must be held by its own supports: a slave body may
+    /// rest on it through the pair (its free rigid motions carried by the pair as by a
+    /// foundation, the master side being held), but the rigid motions of a master body,
+    /// which only a joint analysis of the two bodies could carry, are not solved yet.
     fn check_pair_bodies(&self) -> Result<()> {
         let points = self.contact_nodes()?;
         let rigid = self.rigid_motions()?;
         let d = self.mesh.dim();
         for i in 0..points.len() {
             let (n, nodes, _) = points.stencil(d, i);
-            if n == 1 {
-                continue;
-            }
-            for &v in &nodes[..n] {
+            for &v in &nodes[1..n] {
                 let b = rigid.body_of[v as usize] as usize;
                 let free = rigid.free.get(b).map_or(0, Vec::len);
                 if free > 0 {
                     let k = points.boundary[i] as usize;
-                    let role = if v == nodes[0] { "slave" } else { "master" };
                     return Err(Error::Invalid {
                         field: format!("contact[{k}].against"),
                         value: format!(
-                            "`{}`: the {role} body (the body of node {v}) has {free} free \
+                            "`{}`: the master body (the body of node {v}) has {free} free \
                              rigid motion(s)",
-                            self.mesh.part_names()[self.contact[k].against.unwrap_or(0)]
+                            self.mesh.part_names()[self.contact[k].against.map_or(0, |a| a.part)]
                         ),
-                        allowed: "bodies of a contact pair each held by their own supports \
-                                  (Dirichlet conditions that leave no rigid motion free): a \
-                                  body held only through a pair is not supported yet"
+                        allowed: "a master body held by its own supports (Dirichlet \
+                                  conditions that leave no rigid motion free); a body that \
+                                  rests on another through a pair must be its slave side \
+                                  (`part`), not its master side (`against`)"
                             .into(),
                     });
                 }

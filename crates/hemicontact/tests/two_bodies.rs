@@ -28,7 +28,7 @@
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{
-    ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,
+    ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalCompliance, NormalLaw,
 };
 use hemicontact::material::{Elasticity, Hooke, Material, Plane};
@@ -52,6 +52,11 @@ fn facets_of(m: &Mesh, name: &str, offset: u32) -> Vec<u32> {
 /// Two rectangles `[0, 1] × [0, H/2]` (`b`, `nx_b` squares across) and `[0, 1] × [H/2, H]`
 /// (`a`, `nx_a` squares across) in one mesh, without shared nodes; parts `a_*` and `b_*`.
 fn stacked_2d(nx_a: usize, nx_b: usize, ny: usize) -> Mesh {
+    stacked_2d_apart(nx_a, nx_b, ny, 0.0)
+}
+
+/// [`stacked_2d`] with the upper block raised by `gap`.
+fn stacked_2d_apart(nx_a: usize, nx_b: usize, ny: usize, gap: f64) -> Mesh {
     let block = |y0: f64, nx: usize| {
         rectangle(&Rectangle {
             origin: [0.0, y0],
@@ -62,7 +67,7 @@ fn stacked_2d(nx_a: usize, nx_b: usize, ny: usize) -> Mesh {
         })
         .unwrap()
     };
-    merged(2, &block(0.0, nx_b), &block(H / 2.0, nx_a))
+    merged(2, &block(0.0, nx_b), &block(H / 2.0 + gap, nx_a))
 }
 
 /// Two boxes `[0, 1]² × [0, H/2]` (`b`, `n_b` cubes across) and `[0, 1]² × [H/2, H]` (`a`,
@@ -148,7 +153,7 @@ fn sheared_named(
             part: slave,
             gap: 0.0,
             obstacle: None,
-            against: Some(master),
+            against: Some(MasterPart::new(master)),
             normal,
             friction,
         })
@@ -159,6 +164,19 @@ fn sheared_named(
 /// Largest error of the displacement against `u_y = −δ y/H − penetration above the
 /// interface`, and of the contact pressures against `E δ/H`-based `p`, relative to δ and p.
 fn errors(problem: &Problem, u: &[f64], pressures: &[f64], p: f64, penetration: f64) -> (f64, f64) {
+    errors_raised(problem, u, pressures, p, penetration, 0.0)
+}
+
+/// [`errors`] with the upper block raised by `raised` in the mesh: it moves down by that
+/// gap before it is compressed.
+fn errors_raised(
+    problem: &Problem,
+    u: &[f64],
+    pressures: &[f64],
+    p: f64,
+    penetration: f64,
+    raised: f64,
+) -> (f64, f64) {
     let mesh = problem.mesh();
     // The upper block's nodes come after the lower block's, whose top part is `b_top`.
     let first_upper = mesh
@@ -172,7 +190,11 @@ fn errors(problem: &Problem, u: &[f64], pressures: &[f64], p: f64, penetration: 
         let y = mesh.node(v)[d - 1];
         // The strain ε = −p/E in both blocks; the upper one shifted down by the penetration.
         let upper = v >= first_upper;
-        let exact = -p / E * y - if upper { penetration } else { 0.0 };
+        let exact = if upper {
+            -p / E * (y - raised) - raised - penetration
+        } else {
+            -p / E * y
+        };
         for k in 0..d - 1 {
             eu = eu.max(u[d * v + k].abs());
         }
@@ -362,7 +384,7 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
         part: part("a_bottom"),
         gap: 0.0,
         obstacle: None,
-        against: Some(against),
+        against: Some(MasterPart::new(against)),
         normal: NormalLaw::Signorini,
         friction: None,
     };
@@ -384,11 +406,16 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
         e.contains("contact[0].against") && e.contains("other than the contact part"),
         "{e}"
     );
-    // A free upper body, resting on the lower one only through the pair.
-    let e = refusal(held(Problem::builder(mesh.clone(), material())).contact(pair(part("b_top"))));
+    // A free upper body as the master side of the held lower one.
+    let e = refusal(
+        held(Problem::builder(mesh.clone(), material())).contact(ContactBoundary {
+            part: part("b_top"),
+            ..pair(part("a_bottom"))
+        }),
+    );
     println!("{e}");
     assert!(
-        e.contains("contact[0].against") && e.contains("slave body") && e.contains("free"),
+        e.contains("contact[0].against") && e.contains("master body") && e.contains("free"),
         "{e}"
     );
     // A gap with a master part.
@@ -452,4 +479,70 @@ fn a_gmsh_mesh_of_two_bodies_with_coincident_interface_nodes_passes_the_patch_te
     );
     assert_eq!(s.contact.len(), interface.len());
     assert!(worst < 1e-10, "{worst:e}");
+}
+
+/// A block resting on a held block: the upper block (the slave side) is pushed by a
+/// pressure p on its top, held only along x there, so its vertical translation and its
+/// rotation are free and carried by the pair, as by a foundation. With ν = 0 the exact
+/// solution is the uniform compression `σ_yy = −p`, `u_y = −p y/E`, and the pressure p at
+/// every point.
+#[test]
+fn a_block_resting_on_a_held_block_is_carried_by_the_pair() {
+    // Matching and non-matching meshes, touching or apart by a gap the solve closes.
+    for (nx_a, gap) in [(4, 0.0), (5, 0.0), (4, 0.01), (5, 0.01)] {
+        let mesh = stacked_2d_apart(nx_a, 4, 2, gap);
+        let part = |n: &str| mesh.part_index(n).unwrap();
+        let p = 10.0;
+        let problem = Problem::builder(mesh.clone(), material())
+            .plane(Plane::Strain)
+            .dirichlet(Dirichlet {
+                part: part("b_bottom"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .dirichlet(Dirichlet {
+                part: part("a_top"),
+                components: [true, false, false],
+                value: [0.0; 3],
+            })
+            .traction(Traction {
+                part: part("a_top"),
+                value: [0.0, -p, 0.0],
+            })
+            .contact(ContactBoundary {
+                part: part("a_bottom"),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part("b_top"))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            })
+            .build()
+            .unwrap();
+        let rigid = problem.rigid_motions().unwrap();
+        let free: Vec<usize> = rigid.free.iter().map(Vec::len).collect();
+        assert_eq!(
+            free,
+            vec![0, 2],
+            "the upper block translates along y and rotates"
+        );
+        let s = solve(&problem, &SolverSettings::default()).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+        let total: f64 = s.contact.iter().map(|c| c.pressure * c.weight).sum();
+        let pressures: Vec<f64> = s.contact.iter().map(|c| c.pressure).collect();
+        // The upper block moves down by the gap first.
+        let (eu, ep) = errors_raised(&problem, &s.u, &pressures, p, 0.0, gap);
+        println!(
+            "resting block ({nx_a} : 4, gap {gap}): Σ w p = {total:.12} (exact {p}), \
+             pressure error {ep:.2e} p, displacement error {eu:.2e} δ"
+        );
+        // The load passes through the pair exactly; the pointwise error is node-to-segment's.
+        assert!((total - p).abs() < 1e-10 * p, "{total}");
+        if nx_a == 4 {
+            assert!(ep < 1e-10 && eu < 1e-10, "{ep:e} {eu:e}");
+        } else {
+            assert!(ep < 0.08, "{ep}");
+        }
+    }
 }

@@ -51,7 +51,7 @@ pub struct ContactBoundary {
     /// other face of a crack ([`crate::contact::pairing`]). Each node of this part is then
     /// paired with its closest point on the master's facets, and the laws act on the
     /// displacement relative to the master there. `None` for a foundation or an obstacle.
-    pub against: Option<usize>,
+    pub against: Option<MasterPart>,
     /// Normal law: normal compliance or the Signorini constraint.
     pub normal: NormalLaw,
     /// Friction law, or `None` for frictionless contact.
@@ -93,5 +93,45 @@ impl ContactBoundary {
             Some(f) => f.validate().map_err(|e| e.within("friction")),
             None => Ok(()),
         }
+    }
+}
+
+/// The master side of a contact pair: a boundary part, and the units in which its pairing
+/// measures gaps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MasterPart {
+    /// Boundary part index (see [`crate::mesh::Mesh::part_names`]).
+    pub part: usize,
+    /// Unit of the mesh's coordinates (m; 1 in the user's problem, the length scale in the
+    /// solver's dimensionless one).
+    pub length_unit: f64,
+    /// Unit of the gaps and displacements (m; 1 in the user's problem, the displacement
+    /// scale in the solver's dimensionless one).
+    pub gap_unit: f64,
+}
+
+impl MasterPart {
+    /// The master part `part`, in the user's units.
+    pub fn new(part: usize) -> Self {
+        MasterPart {
+            part,
+            length_unit: 1.0,
+            gap_unit: 1.0,
+        }
+    }
+
+    /// The same part in a problem whose lengths are in units of `length` and whose
+    /// displacements are in units of `displacement` (m).
+    pub fn nondimensional(&self, length: f64, displacement: f64) -> Self {
+        MasterPart {
+            part: self.part,
+            length_unit: self.length_unit * length,
+            gap_unit: self.gap_unit * displacement,
+        }
+    }
+
+    /// A gap `g` measured on the mesh (in units of `length_unit`) in units of `gap_unit`.
+    pub fn gap(&self, g: f64) -> f64 {
+        g * (self.length_unit / self.gap_unit)
     }
 }

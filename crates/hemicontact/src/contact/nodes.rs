@@ -148,7 +148,7 @@ impl ContactNodes {
                     .map_err(|e| e.within(&format!("contact[{b}].obstacle")))?;
                 continue;
             }
-            if let Some(master) = cb.against {
+            if let Some(master) = &cb.against {
                 paired_points(&mut out, mesh, b, master, &facets, &incidence, excluded)
                     .map_err(|e| e.within(&format!("contact[{b}].against")))?;
                 continue;
@@ -435,20 +435,21 @@ fn obstacle_points(
 
 /// Appends the points of the slave boundary `b` paired with the master part `master`: one
 /// per node of `incidence` (sorted (node, facet) pairs) not `excluded` and not separated
-/// from the master surface, weighted by all its facets, with the normal, gap, facet nodes
+/// from the master surface, weighted by all its facets, with the normal, gap (in the
+/// master's gap unit), facet nodes
 /// and shape functions of its closest-point projection ([`super::pairing::pair`]).
 fn paired_points(
     out: &mut ContactNodes,
     mesh: &Mesh,
     b: usize,
-    master: usize,
+    master: &super::MasterPart,
     facets: &[(f64, [f64; 3])],
     incidence: &[(u32, u32)],
     excluded: &[bool],
 ) -> crate::Result<()> {
     use super::pairing::{pair, Pairing};
     let d = mesh.dim();
-    let master_facets: Vec<usize> = mesh.part_facets(master).collect();
+    let master_facets: Vec<usize> = mesh.part_facets(master.part).collect();
     let n_before = out.node.len();
     out.master.resize(n_before, [u32::MAX; 3]);
     out.master_shape.resize(n_before, [0.0; 3]);
@@ -483,7 +484,7 @@ fn paired_points(
                 / d as f64,
         );
         out.normal.push(n);
-        out.gap.push(projection.gap);
+        out.gap.push(master.gap(projection.gap));
         out.tangent.push(tangent_basis(d, &n));
         out.foundation_motion.push([0.0; 2]);
         out.position.push(x);

@@ -242,7 +242,11 @@ impl Scenario {
             };
             let obstacle = c.obstacle.clone().map(crate::contact::ContactObstacle::new);
             let against = match &c.against {
-                Some(name) => Some(self.part(mesh, &f("against"), name)?),
+                Some(name) => Some(crate::contact::MasterPart::new(self.part(
+                    mesh,
+                    &f("against"),
+                    name,
+                )?)),
                 None => None,
             };
             out.push(ContactBoundary {

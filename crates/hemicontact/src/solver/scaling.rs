@@ -76,7 +76,11 @@ impl Scales {
         }
         displacement =
             displacement.max(max_abs(&problem.body_force[..dim]) / stress * length * length);
-        if problem.contact.iter().any(|c| c.obstacle.is_some()) {
+        if problem
+            .contact
+            .iter()
+            .any(|c| c.obstacle.is_some() || c.against.is_some())
+        {
             let points = problem.contact_nodes()?;
             let penetration = points.gap.iter().fold(0.0f64, |m, g| m.max(-g));
             displacement = displacement.max(penetration.min(length));
@@ -166,7 +170,7 @@ impl Scales {
                 .contact
                 .iter()
                 .map(|c| ContactBoundary {
-                    against: c.against,
+                    against: c.against.map(|a| a.nondimensional(self.length, u)),
                     part: c.part,
                     gap: c.gap / u,
                     obstacle: c
