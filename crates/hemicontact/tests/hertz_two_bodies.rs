@@ -1,0 +1,195 @@
+//! # Verification: Hertz contact between two elastic cylinders (2D, plane strain)
+//!
+//! Two cylinders of radii R₁ (upper) and R₂ (lower) and different materials, pressed
+//! together by a force F per unit length along their axes, touch over a strip of
+//! half-width `a = √(4 F R*/(π E*))` with the elliptical pressure `p(x) = p₀ √(1 − x²/a²)`,
+//! `p₀ = 2F/(π a)`, where `1/R* = 1/R₁ + 1/R₂` and `1/E* = (1 − ν₁²)/E₁ + (1 − ν₂²)/E₂`
+//! (Johnson, *Contact Mechanics*, 1985, §4.2 and eq. 4.45). Hertz's theory holds for
+//! bodies large against a (half-spaces near the contact).
+//!
+//! Model: the half x ≥ 0 of each body (symmetry rollers on x = 0), each a block
+//! `[0, 1] × [0, 1]` whose contact face follows the circle of its radius, graded toward the
+//! contact point. The lower body (the master side) is held along y at its bottom; the upper
+//! body (the slave side), pushed by the traction F/2 on its top, is free to move along y:
+//! its vertical translation is carried by the pair. The force is thus exact by construction
+//! (checked: the pair passes it whole); the half-width within one element and the peak
+//! pressure within 5 % of Hertz are checked at the finest level, and the refinement table
+//! is printed (`cargo test --release --test hertz_two_bodies -- --nocapture`).
+#![allow(clippy::unwrap_used, clippy::expect_used)]
+
+use hemicontact::contact::{ContactBoundary, MasterPart, NormalLaw};
+use hemicontact::material::{Elasticity, Hooke, Material, Plane};
+use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
+use hemicontact::mesh::Mesh;
+use hemicontact::problem::{Dirichlet, Problem, Traction};
+use hemicontact::solver::{solve, SolverSettings};
+use std::f64::consts::PI;
+
+const R1: f64 = 2.0;
+const R2: f64 = 3.0;
+const E1: f64 = 10.0;
+const NU1: f64 = 0.3;
+const E2: f64 = 20.0;
+const NU2: f64 = 0.25;
+/// The traction on the upper body's top (Pa): F = 2 q per unit length on the whole pair.
+const Q: f64 = 0.025;
+
+fn hooke(e: f64, nu: f64) -> Material {
+    Material::elastic(Elasticity::Hooke(Hooke::from_young_poisson(
+        e,
+        nu,
+        2,
+        Plane::Strain,
+    )))
+}
+
+/// The block `[0, 1] × [y0, y0 + 1]` (n × n cells, graded toward x = 0 and toward its
+/// contact face at y = 0 by `r`), its face y = 0 moved onto the circle of radius `radius`
+/// through the origin, curving away from the other body (`side` = +1 for the upper body,
+/// −1 for the lower); the mapping fades linearly to the far face.
+fn body(n: usize, r: f64, side: f64, radius: f64) -> Mesh {
+    let y0 = if side > 0.0 { 0.0 } else { -1.0 };
+    let m = rectangle(&Rectangle {
+        origin: [0.0, y0],
+        size: [1.0, 1.0],
+        n: [n, n],
+        pattern: CutPattern::Uniform,
+        progression: [r, if side > 0.0 { r } else { 1.0 / r }],
+    })
+    .unwrap();
+    let mut coords = m.coords().to_vec();
+    for x in coords.chunks_exact_mut(2) {
+        let lift = radius - (radius * radius - x[0] * x[0]).sqrt();
+        let weight = 1.0 - x[1].abs();
+        x[1] += side * lift * weight;
+    }
+    let parts: Vec<(String, Vec<u32>)> = m
+        .part_names()
+        .iter()
+        .map(|name| {
+            let p = m.part_index(name).unwrap();
+            let facets = m.part_facets(p).flat_map(|f| m.facet(f).to_vec()).collect();
+            (name.clone(), facets)
+        })
+        .collect();
+    Mesh::from_parts(2, coords, m.cells().to_vec(), &parts).unwrap()
+}
+
+/// The two bodies in one mesh (lower first), parts prefixed `lower_` and `upper_`, cell
+/// regions `lower` and `upper`.
+fn cylinders(n: usize, r: f64) -> Mesh {
+    let (b, a) = (body(n, r, -1.0, R2), body(n, r, 1.0, R1));
+    let offset = b.n_nodes() as u32;
+    let mut coords = b.coords().to_vec();
+    coords.extend_from_slice(a.coords());
+    let mut cells = b.cells().to_vec();
+    cells.extend(a.cells().iter().map(|&v| v + offset));
+    let mut parts = Vec::new();
+    for (prefix, m, shift) in [("lower", &b, 0), ("upper", &a, offset)] {
+        for name in m.part_names() {
+            let p = m.part_index(name).unwrap();
+            let facets = m
+                .part_facets(p)
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .collect();
+            parts.push((format!("{prefix}_{name}"), facets));
+        }
+    }
+    let region = (0..b.n_cells())
+        .map(|_| 0u16)
+        .chain((0..a.n_cells()).map(|_| 1u16))
+        .collect();
+    Mesh::from_parts(2, coords, cells, &parts)
+        .unwrap()
+        .with_regions(region, vec!["lower".into(), "upper".into()])
+        .unwrap()
+}
+
+/// One level: (h at the contact, a_FE, p_FE(0), total force of the pair, DOFs).
+fn level(n: usize, r: f64) -> (f64, f64, f64, f64, usize) {
+    let mesh = cylinders(n, r);
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    let roller = |p: usize| Dirichlet {
+        part: p,
+        components: [true, false, false],
+        value: [0.0; 3],
+    };
+    let problem = Problem::builder(mesh.clone(), hooke(E2, NU2))
+        .materials(vec![hooke(E2, NU2), hooke(E1, NU1)], vec![0, 1])
+        .plane(Plane::Strain)
+        .dirichlet(roller(part("lower_left")))
+        .dirichlet(roller(part("upper_left")))
+        .dirichlet(Dirichlet {
+            part: part("lower_bottom"),
+            components: [false, true, false],
+            value: [0.0; 3],
+        })
+        .traction(Traction {
+            part: part("upper_top"),
+            value: [0.0, -Q, 0.0],
+        })
+        .contact(ContactBoundary {
+            part: part("upper_bottom"),
+            gap: 0.0,
+            obstacle: None,
+            against: Some(MasterPart::new(part("lower_top"))),
+            normal: NormalLaw::Signorini,
+            friction: None,
+        })
+        .build()
+        .unwrap();
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let x = |c: &hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
+    let a_fe = s
+        .contact
+        .iter()
+        .filter(|c| c.pressure > 0.0)
+        .map(x)
+        .fold(0.0, f64::max);
+    let peak = s.contact.iter().find(|c| x(c) == 0.0).unwrap().pressure;
+    let force: f64 = s.contact.iter().map(|c| c.force[1]).sum();
+    let mut xs: Vec<f64> = s.contact.iter().map(x).collect();
+    xs.sort_by(f64::total_cmp);
+    let h = xs
+        .windows(2)
+        .find(|w| w[1] >= a_fe)
+        .map_or(xs[1] - xs[0], |w| w[1] - w[0]);
+    (h, a_fe, peak, force, s.report.n_dofs)
+}
+
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "66k DOFs at the finest level: run with --release (CI does)"
+)]
+fn two_cylinders_half_width_and_peak_pressure_against_hertz() {
+    let e_star = 1.0 / ((1.0 - NU1 * NU1) / E1 + (1.0 - NU2 * NU2) / E2);
+    let r_star = 1.0 / (1.0 / R1 + 1.0 / R2);
+    let force = 2.0 * Q;
+    let a = (4.0 * force * r_star / (PI * e_star)).sqrt();
+    let p0 = 2.0 * force / (PI * a);
+    println!(
+        "Hertz: F = {force} N/m, R* = {r_star:.4}, E* = {e_star:.4}, a = {a:.5}, p0 = {p0:.5}"
+    );
+    println!("n     DOFs    h        a_FE     (a_FE−a)/h   p_FE(0)   p error");
+    let mut last = None;
+    for (n, r) in [(32, 1.017f64.powi(4)), (64, 1.017f64.powi(2)), (128, 1.017)] {
+        let (h, a_fe, peak, f, dofs) = level(n, r);
+        println!(
+            "{n:<5} {dofs:<7} {h:.5}  {a_fe:.5}  {:+.2}        {peak:.5}   {:+.2} %",
+            (a_fe - a) / h,
+            100.0 * (peak / p0 - 1.0)
+        );
+        // The pair passes the whole load: F/2 on the half model.
+        assert!((f.abs() - Q).abs() <= 1e-8 * Q, "force {f} vs {Q}");
+        last = Some((h, a_fe, peak));
+    }
+    let (h, a_fe, peak) = last.unwrap();
+    assert!(
+        (a_fe - a).abs() <= h,
+        "half-width {a_fe} vs Hertz {a} (h = {h})"
+    );
+    assert!((peak / p0 - 1.0).abs() <= 0.05, "peak {peak} vs Hertz {p0}");
+}
