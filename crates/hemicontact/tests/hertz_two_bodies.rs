@@ -17,11 +17,15 @@
 //! is printed (`cargo test --release --test hertz_two_bodies -- --nocapture`).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
-use hemicontact::contact::{ContactBoundary, MasterPart, NormalLaw};
+use hemicontact::contact::{
+    ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
+    NormTreatment, NormalLaw,
+};
 use hemicontact::material::{Elasticity, Hooke, Material, Plane};
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem, Traction};
+use hemicontact::solver::certificate::FrictionState;
 use hemicontact::solver::{solve, SolverSettings};
 use std::f64::consts::PI;
 
@@ -192,4 +196,216 @@ fn two_cylinders_half_width_and_peak_pressure_against_hertz() {
         "half-width {a_fe} vs Hertz {a} (h = {h})"
     );
     assert!((peak / p0 - 1.0).abs() <= 0.05, "peak {peak} vs Hertz {p0}");
+}
+
+/// The full width `[−1, 1]` of a body from its half `[0, 1]` ([`body`]): the half mirrored
+/// about x = 0 (cells reoriented), the nodes on x = 0 shared. Parts `bottom`, `top` (both
+/// halves) and `sides` (x = ±1).
+fn mirrored(half: &Mesh) -> Mesh {
+    let n = half.n_nodes();
+    let mut coords = half.coords().to_vec();
+    let mut image = vec![0u32; n];
+    for v in 0..n {
+        let x = half.node(v);
+        if x[0] == 0.0 {
+            image[v] = v as u32;
+        } else {
+            image[v] = (coords.len() / 2) as u32;
+            coords.extend_from_slice(&[-x[0], x[1]]);
+        }
+    }
+    let mut cells = half.cells().to_vec();
+    for c in half.cells().chunks_exact(3) {
+        // Mirroring reverses the orientation: swap two vertices.
+        cells.extend_from_slice(&[
+            image[c[1] as usize],
+            image[c[0] as usize],
+            image[c[2] as usize],
+        ]);
+    }
+    let facets = |name: &str| -> Vec<u32> {
+        let p = half.part_index(name).unwrap();
+        let mut out: Vec<u32> = half
+            .part_facets(p)
+            .flat_map(|f| half.facet(f).to_vec())
+            .collect();
+        let mirrored: Vec<u32> = half
+            .part_facets(p)
+            .flat_map(|f| {
+                let v = half.facet(f);
+                [image[v[1] as usize], image[v[0] as usize]]
+            })
+            .collect();
+        out.extend(mirrored);
+        out
+    };
+    let parts = vec![
+        ("bottom".to_string(), facets("bottom")),
+        ("top".to_string(), facets("top")),
+        ("sides".to_string(), facets("right")),
+    ];
+    Mesh::from_parts(2, coords, cells, &parts).unwrap()
+}
+
+/// Cattaneo–Mindlin (2D): two identical cylinders (R = 20 m, E = 10 Pa, ν = 0.3), pressed
+/// by P per unit length, then sheared: the upper one's top and sides moved along x by s
+/// (which holds its rotation; its vertical translation stays free, carried by the pair),
+/// the lower one's bottom clamped and its sides held along x, Coulomb friction μ = 0.3
+/// between them, exact. The radius is large against a (a/R = 0.005): the pair's
+/// small-deformation kinematics turns the approach of two curved faces into a spurious slip
+/// of relative size (a/R)² (see `docs/model.md`), 9 % of μ p₀ in the traction at a/R = 0.05. With identical materials
+/// the normal load makes no slip, so the static (total-slip) law and the incremental one
+/// agree, and Cattaneo's solution holds: a central stick zone of half-width
+/// `c = a √(1 − Q/(μP))` (Q the tangential force), the traction
+/// `q(x) = μ p₀ √(1 − x²/a²)` in the slip zones c ≤ |x| ≤ a and
+/// `q(x) = μ p₀ [√(1 − x²/a²) − (c/a) √(1 − x²/c²)]` in the stick zone (Johnson, §7.1).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "33k DOFs with exact friction: run with --release (CI does)"
+)]
+fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
+    let (e, nu, radius, mu) = (10.0, 0.3, 20.0, 0.3);
+    let (n, r) = (64, 1.017f64.powi(2));
+    let lower = mirrored(&body(n, r, -1.0, radius));
+    let upper = mirrored(&body(n, r, 1.0, radius));
+    let offset = lower.n_nodes() as u32;
+    let mut coords = lower.coords().to_vec();
+    coords.extend_from_slice(upper.coords());
+    let mut cells = lower.cells().to_vec();
+    cells.extend(upper.cells().iter().map(|&v| v + offset));
+    let mut parts = Vec::new();
+    for (prefix, m, shift) in [("lower", &lower, 0), ("upper", &upper, offset)] {
+        for name in m.part_names() {
+            let p = m.part_index(name).unwrap();
+            let facets = m
+                .part_facets(p)
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .collect();
+            parts.push((format!("{prefix}_{name}"), facets));
+        }
+    }
+    let mesh = Mesh::from_parts(2, coords, cells, &parts).unwrap();
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    // P = q · 2 m per unit length; Hertz with R* = R/2, E* = E/(2(1 − ν²)).
+    let q = 0.0025;
+    let force = 2.0 * q;
+    let (r_star, e_star) = (radius / 2.0, e / (2.0 * (1.0 - nu * nu)));
+    let a = (4.0 * force * r_star / (PI * e_star)).sqrt();
+    let p0 = 2.0 * force / (PI * a);
+    let shear = 4.0e-4;
+    let problem = Problem::builder(mesh.clone(), hooke(e, nu))
+        .plane(Plane::Strain)
+        .dirichlet(Dirichlet {
+            part: part("lower_bottom"),
+            components: [true, true, false],
+            value: [0.0; 3],
+        })
+        .dirichlet(Dirichlet {
+            part: part("upper_top"),
+            components: [true, false, false],
+            value: [shear, 0.0, 0.0],
+        })
+        .dirichlet(Dirichlet {
+            part: part("upper_sides"),
+            components: [true, false, false],
+            value: [shear, 0.0, 0.0],
+        })
+        .dirichlet(Dirichlet {
+            part: part("lower_sides"),
+            components: [true, false, false],
+            value: [0.0; 3],
+        })
+        .traction(Traction {
+            part: part("upper_top"),
+            value: [0.0, -q, 0.0],
+        })
+        .contact(ContactBoundary {
+            part: part("upper_bottom"),
+            gap: 0.0,
+            obstacle: None,
+            against: Some(MasterPart::new(part("lower_top"))),
+            normal: NormalLaw::Signorini,
+            friction: Some(Friction {
+                bound: FrictionBound::Coulomb,
+                mu: FrictionCoefficient::Constant { mu },
+                potential: FrictionPotential::Norm {
+                    treatment: NormTreatment::Exact,
+                },
+            }),
+        })
+        .build()
+        .unwrap();
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let x = |c: &hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
+    // The tangential force Q: the friction forces of the points (on the upper body).
+    let tangential: f64 = s.contact.iter().map(|c| c.force[0]).sum();
+    let normal: f64 = s.contact.iter().map(|c| c.force[1]).sum();
+    let big_q = tangential.abs();
+    // Q is what the upper body's supports apply (its top and sides, each node once).
+    let mut held: Vec<u32> = mesh.part_nodes(part("upper_top"));
+    held.extend(mesh.part_nodes(part("upper_sides")));
+    held.sort_unstable();
+    held.dedup();
+    let applied: f64 = held.iter().map(|&v| s.reactions[2 * v as usize]).sum();
+    assert!(
+        (applied.abs() - big_q).abs() <= 1e-8 * big_q,
+        "Q = {big_q} vs supports {applied}"
+    );
+    let ratio = big_q / (mu * force);
+    let c = a * (1.0 - ratio).sqrt();
+    let in_contact: Vec<_> = s.contact.iter().filter(|c| c.pressure > 0.0).collect();
+    let a_fe = in_contact.iter().map(|c| x(c).abs()).fold(0.0, f64::max);
+    let stick: Vec<f64> = in_contact
+        .iter()
+        .filter(|c| c.friction_state == FrictionState::Stick)
+        .map(|c| x(c))
+        .collect();
+    let c_fe = stick.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let h = in_contact
+        .iter()
+        .map(|c| x(c))
+        .filter(|&y| y > c_fe)
+        .fold(f64::INFINITY, f64::min)
+        - c_fe;
+    // The traction profile against Cattaneo's, away from the stick–slip edges (one element).
+    let mut worst: f64 = 0.0;
+    for c_pt in &in_contact {
+        let xi = x(c_pt);
+        if (xi.abs() - c).abs() <= 1.5 * h || xi.abs() >= a {
+            continue;
+        }
+        let slip_part = mu * p0 * (1.0 - xi * xi / (a * a)).sqrt();
+        let exact = if xi.abs() < c {
+            slip_part - (c / a) * mu * p0 * (1.0 - xi * xi / (c * c)).sqrt()
+        } else {
+            slip_part
+        };
+        let computed = c_pt.friction_traction[0].abs();
+        worst = worst.max((computed - exact).abs() / (mu * p0));
+    }
+    println!(
+        "Cattaneo–Mindlin: P = {force} N/m (contact {:.6}), Q = {big_q:.6e} = {ratio:.3} μP; \
+         a = {a:.5} (FE {a_fe:.5}), c = {c:.5} (FE {c_fe:.5}, h = {h:.5}); traction error \
+         {:.2} % of μ p0 away from the edges; {} points stick, {} slip",
+        normal.abs(),
+        100.0 * worst,
+        stick.len(),
+        in_contact.len() - stick.len()
+    );
+    assert!(
+        (normal.abs() - force / 1.0).abs() <= 1e-8 * force,
+        "{normal}"
+    );
+    assert!(
+        ratio > 0.2 && ratio < 0.9,
+        "Q/μP = {ratio}: choose the shear in between"
+    );
+    assert!(
+        (c_fe - c).abs() <= h,
+        "stick half-width {c_fe} vs {c} (h = {h})"
+    );
+    assert!(worst <= 0.05, "traction error {worst}");
 }
