@@ -7,6 +7,9 @@
 //! (Johnson, *Contact Mechanics*, 1985, §4.2 and eq. 4.45). Hertz's theory holds for
 //! bodies large against a (half-spaces near the contact).
 //!
+//! In 3D, two spheres: `a = (3 F R*/(4 E*))^{1/3}`, `p(r) = p₀ √(1 − r²/a²)`,
+//! `p₀ = 3F/(2π a²)` (Johnson, §4.2, eq. 4.22–4.24), on a quarter of each body.
+//!
 //! Model: the half x ≥ 0 of each body (symmetry rollers on x = 0), each a block
 //! `[0, 1] × [0, 1]` whose contact face follows the circle of its radius, graded toward the
 //! contact point. The lower body (the master side) is held along y at its bottom; the upper
@@ -22,7 +25,7 @@ use hemicontact::contact::{
     NormTreatment, NormalLaw,
 };
 use hemicontact::material::{Elasticity, Hooke, Material, Plane};
-use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
+use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem, Traction};
 use hemicontact::solver::certificate::FrictionState;
@@ -408,4 +411,172 @@ fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
         "stick half-width {c_fe} vs {c} (h = {h})"
     );
     assert!(worst <= 0.05, "traction error {worst}");
+}
+
+/// The quarter box `[0, 1]² × [0, 1]` (n³ cubes, graded toward x = y = 0 and toward its
+/// contact face z = 0 by `r`), its face z = 0 moved onto the sphere of radius `radius`
+/// through the origin, curving away from the other body (`side` = +1 upper, −1 lower), the
+/// mapping fading linearly to the far face; parts and regions as [`cylinders`].
+fn ball(n: usize, r: f64, side: f64, radius: f64) -> Mesh {
+    let z0 = if side > 0.0 { 0.0 } else { -1.0 };
+    let m = cuboid(&BoxSpec {
+        origin: [0.0, 0.0, z0],
+        size: [1.0; 3],
+        n: [n; 3],
+        pattern: CutPattern::Uniform,
+        progression: [r, r, if side > 0.0 { r } else { 1.0 / r }],
+    })
+    .unwrap();
+    let mut coords = m.coords().to_vec();
+    for x in coords.chunks_exact_mut(3) {
+        let lift = radius - (radius * radius - x[0] * x[0] - x[1] * x[1]).sqrt();
+        x[2] += side * lift * (1.0 - x[2].abs());
+    }
+    let parts: Vec<(String, Vec<u32>)> = m
+        .part_names()
+        .iter()
+        .map(|name| {
+            let p = m.part_index(name).unwrap();
+            (
+                name.clone(),
+                m.part_facets(p).flat_map(|f| m.facet(f).to_vec()).collect(),
+            )
+        })
+        .collect();
+    Mesh::from_parts(3, coords, m.cells().to_vec(), &parts).unwrap()
+}
+
+/// One 3D level: (h at the contact, a_FE on the axis y = 0, p_FE(0), total force, DOFs).
+fn level_3d(n: usize, r: f64, radii: [f64; 2], q: f64) -> (f64, f64, f64, f64, usize) {
+    let (b, a) = (ball(n, r, -1.0, radii[1]), ball(n, r, 1.0, radii[0]));
+    let offset = b.n_nodes() as u32;
+    let mut coords = b.coords().to_vec();
+    coords.extend_from_slice(a.coords());
+    let mut cells = b.cells().to_vec();
+    cells.extend(a.cells().iter().map(|&v| v + offset));
+    let mut parts = Vec::new();
+    for (prefix, m, shift) in [("lower", &b, 0), ("upper", &a, offset)] {
+        for name in m.part_names() {
+            let p = m.part_index(name).unwrap();
+            let facets = m
+                .part_facets(p)
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .collect();
+            parts.push((format!("{prefix}_{name}"), facets));
+        }
+    }
+    let region = (0..b.n_cells())
+        .map(|_| 0u16)
+        .chain((0..a.n_cells()).map(|_| 1u16))
+        .collect();
+    let mesh = Mesh::from_parts(3, coords, cells, &parts)
+        .unwrap()
+        .with_regions(region, vec!["lower".into(), "upper".into()])
+        .unwrap();
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    let roller = |p: usize, k: usize| {
+        let mut components = [false; 3];
+        components[k] = true;
+        Dirichlet {
+            part: p,
+            components,
+            value: [0.0; 3],
+        }
+    };
+    let lame = |e: f64, nu: f64| {
+        Material::elastic(Elasticity::Hooke(Hooke::from_young_poisson(
+            e,
+            nu,
+            3,
+            Plane::Strain,
+        )))
+    };
+    let mut builder = Problem::builder(mesh.clone(), lame(E2, NU2))
+        .materials(vec![lame(E2, NU2), lame(E1, NU1)], vec![0, 1]);
+    for body in ["lower", "upper"] {
+        builder = builder
+            .dirichlet(roller(part(&format!("{body}_left")), 0))
+            .dirichlet(roller(part(&format!("{body}_front")), 1));
+    }
+    let problem = builder
+        .dirichlet(roller(part("lower_bottom"), 2))
+        .traction(Traction {
+            part: part("upper_top"),
+            value: [0.0, 0.0, -q],
+        })
+        .contact(ContactBoundary {
+            part: part("upper_bottom"),
+            gap: 0.0,
+            obstacle: None,
+            against: Some(MasterPart::new(part("lower_top"))),
+            normal: NormalLaw::Signorini,
+            friction: None,
+        })
+        .build()
+        .unwrap();
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let on_axis: Vec<_> = s
+        .contact
+        .iter()
+        .filter(|c| mesh.node(c.node as usize)[1] == 0.0)
+        .collect();
+    let x = |c: &&hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
+    let a_fe = on_axis
+        .iter()
+        .filter(|c| c.pressure > 0.0)
+        .map(x)
+        .fold(0.0, f64::max);
+    let peak = on_axis.iter().find(|c| x(c) == 0.0).unwrap().pressure;
+    let force: f64 = s.contact.iter().map(|c| c.force[2]).sum();
+    let mut xs: Vec<f64> = on_axis.iter().map(x).collect();
+    xs.sort_by(f64::total_cmp);
+    let h = xs
+        .windows(2)
+        .find(|w| w[1] >= a_fe)
+        .map_or(xs[1] - xs[0], |w| w[1] - w[0]);
+    (h, a_fe, peak, force, s.report.n_dofs)
+}
+
+/// Hertz between two elastic spheres (3D): radii 5 m (upper) and 10 m (lower), the
+/// materials of the cylinders above, F = 4 q on the whole pair, the quarter of each body
+/// graded toward the contact point (cells growing by a factor 20 across the body).
+#[test]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "30k DOFs in 3D: run with --release (CI does)"
+)]
+fn two_spheres_contact_radius_against_hertz() {
+    let radii = [5.0, 10.0];
+    let q = 0.000306;
+    let e_star = 1.0 / ((1.0 - NU1 * NU1) / E1 + (1.0 - NU2 * NU2) / E2);
+    let r_star = 1.0 / (1.0 / radii[0] + 1.0 / radii[1]);
+    let force = 4.0 * q;
+    let a = (3.0 * force * r_star / (4.0 * e_star)).cbrt();
+    let p0 = 3.0 * force / (2.0 * PI * a * a);
+    println!("Hertz (spheres): F = {force} N, R* = {r_star:.4}, E* = {e_star:.4}, a = {a:.5}, p0 = {p0:.5}");
+    println!("n     DOFs    h        a_FE     (a_FE−a)/h   p_FE(0)   p error");
+    let growth: f64 = 20.0;
+    let mut last = None;
+    for n in [8, 12, 16] {
+        let r = growth.powf(1.0 / n as f64);
+        let (h, a_fe, peak, f, dofs) = level_3d(n, r, radii, q);
+        println!(
+            "{n:<5} {dofs:<7} {h:.5}  {a_fe:.5}  {:+.2}        {peak:.5}   {:+.2} %",
+            (a_fe - a) / h,
+            100.0 * (peak / p0 - 1.0)
+        );
+        assert!((f.abs() - q).abs() <= 1e-8 * q, "force {f} vs {q}");
+        last = Some((h, a_fe, peak));
+    }
+    // The contact radius is within one element of Hertz's. The peak pressure is not within
+    // 5 % (−7.5 % at n = 16, and −12.6 % with the lower body made rigid and flat, which
+    // points at the set-up of the curved upper body rather than at the pair): stated in
+    // docs/benchmarks.md, not asserted.
+    let (h, a_fe, _) = last.unwrap();
+    assert!(
+        (a_fe - a).abs() <= h,
+        "radius {a_fe} vs Hertz {a} (h = {h})"
+    );
 }

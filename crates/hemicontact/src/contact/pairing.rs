@@ -15,9 +15,13 @@
 //!   tangential part is the slip relative to the master body.
 //!
 //! Which facet: among the facets onto which x projects orthogonally (its projection on
-//! the facet's line or plane inside the facet, up to a relative tolerance), the nearest.
+//! the facet's line or plane inside the facet, or outside it by at most 5 % of its size,
+//! the point then taken on its edge), the nearest.
 //! Two such facets at the same distance with distinct closest points make the pairing
-//! ambiguous: it is refused, naming the node. A node that projects onto no facet lies
+//! ambiguous: it is refused, naming the node, unless the two are neighbours whose normals
+//! differ by less than the corner angle ([`super::nodes::CORNER_ANGLE_DEG`], 30°): above
+//! the nearly flat crease between two triangles of a curved surface either point is as
+//! good, and the one of the lower facet index is taken. A node that projects onto no facet lies
 //! beyond the edge of the master surface, or above a convex corner between facets. Above
 //! a corner (the closest point is a vertex or edge shared by several master facets) it is
 //! paired with that point, with the mean of the facets' normals there. Beyond the master
@@ -56,6 +60,14 @@ pub enum Pairing {
 /// comparison of distances and points.
 const TOLERANCE: f64 = 1e-9;
 
+/// How far outside a facet (relative to its size: the edge parameter in 2D, the
+/// barycentric coordinates in 3D) an orthogonal projection still counts as inside it. On a
+/// triangulated curved surface cut by a symmetry plane, the slave nodes on that plane
+/// project just outside the master facets along it (by the gap times the facets' tilt, up
+/// to about 1 % of their size on a sphere's quarter), and must not be taken for nodes beyond
+/// the master surface's edge.
+const INSIDE: f64 = 0.05;
+
 /// The closest point of facet `f` of `mesh` to `x`: its shape functions and whether the
 /// orthogonal projection of x on the facet's line or plane falls inside the facet.
 fn closest_on_facet(mesh: &Mesh, f: usize, x: &[f64; 3]) -> ([f64; 3], bool) {
@@ -70,7 +82,7 @@ fn closest_on_facet(mesh: &Mesh, f: usize, x: &[f64; 3]) -> ([f64; 3], bool) {
     if d == 2 {
         let e = sub(&p[1], &p[0]);
         let t = dot(&sub(x, &p[0]), &e) / dot(&e, &e);
-        let inside = (-TOLERANCE..=1.0 + TOLERANCE).contains(&t);
+        let inside = (-INSIDE..=1.0 + INSIDE).contains(&t);
         let t = t.clamp(0.0, 1.0);
         return ([1.0 - t, t, 0.0], inside);
     }
@@ -82,7 +94,7 @@ fn closest_on_facet(mesh: &Mesh, f: usize, x: &[f64; 3]) -> ([f64; 3], bool) {
     let s = (a22 * b1 - a12 * b2) / det;
     let t = (a11 * b2 - a12 * b1) / det;
     let lambda = [1.0 - s - t, s, t];
-    if lambda.iter().all(|&l| l >= -TOLERANCE) {
+    if lambda.iter().all(|&l| l >= -INSIDE) {
         let clamp = lambda.map(|l| l.max(0.0));
         let sum: f64 = clamp.iter().sum();
         return (clamp.map(|l| l / sum), true);
@@ -176,12 +188,26 @@ pub fn pair(mesh: &Mesh, master: &[usize], slave: u32) -> std::result::Result<Pa
             })
     };
     if let Some(best) = nearest(true) {
-        // Another facet as near with a different closest point: ambiguous.
+        // Another facet as near with a different closest point: ambiguous, unless the two
+        // facets are neighbours that meet at a nearly flat crease (a triangulated curved
+        // surface), where either closest point is as good.
+        let (_, best_normal) = mesh.facet_measure_normal(best.facet);
+        let cos_crease = super::nodes::CORNER_ANGLE_DEG.to_radians().cos();
+        let flat_neighbour = |c: &Candidate| {
+            let (_, n) = mesh.facet_measure_normal(c.facet);
+            let cos: f64 = (0..3).map(|k| n[k] * best_normal[k]).sum();
+            let shared = mesh
+                .facet(c.facet)
+                .iter()
+                .any(|v| mesh.facet(best.facet).contains(v));
+            shared && cos >= cos_crease
+        };
         if let Some(other) = candidates.iter().find(|c| {
             c.inside
                 && c.facet != best.facet
                 && (c.distance - best.distance).abs() <= tol
                 && apart(&c.point, &best.point) > tol
+                && !flat_neighbour(c)
         }) {
             return Err(format!(
                 "node {slave}: its closest points on master facets {} and {} are distinct and \
