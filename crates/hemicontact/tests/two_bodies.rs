@@ -23,8 +23,14 @@
 //!    master body's residual is 0.7 of its force scale: checked by removing them).
 //! 4. **Friction on the relative slip**: blocks sliding on each other carry the friction
 //!    bound, and slip by the jump of the displacement across the interface.
-//! 5. **Refusals**: a part against itself, a body of the pair with free rigid motions, a gap
+//! 5. **Refusals**: a part against itself, a master body with free rigid motions, a gap
 //!    with a master part.
+//! 6. **A free body resting on a held one** through the pair, with or without an initial
+//!    gap, carries the load exactly; a Gmsh file of two bodies with coincident interface
+//!    nodes passes the patch test.
+//! 7. **The trace constant of the jump** (uniqueness condition): with the master side
+//!    clamped it equals the slave body's own (1.267894592052 both), and it grows when the
+//!    master side is free (1.71).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{
@@ -545,4 +551,71 @@ fn a_block_resting_on_a_held_block_is_carried_by_the_pair() {
             assert!(ep < 0.08, "{ep}");
         }
     }
+}
+
+/// The trace constant of the uniqueness condition takes, at a pair, the jump across the
+/// interface. With the master side clamped the jump is the slave side's own trace, so the
+/// constant equals that of the slave body alone against a foundation on the same part (the
+/// two bodies' stiffnesses decouple); with the master side free it is larger (both sides
+/// move the jump).
+#[test]
+fn the_trace_constant_of_a_pair_is_that_of_the_jump() {
+    use hemicontact::solver::uniqueness::trace_constant;
+    let settings = SolverSettings::default();
+    let mesh = stacked_2d(5, 4, 2);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let clamp = |p: usize| Dirichlet {
+        part: p,
+        components: [true; 3],
+        value: [0.0; 3],
+    };
+    let pair = ContactBoundary {
+        part: part("a_bottom"),
+        gap: 0.0,
+        obstacle: None,
+        against: Some(MasterPart::new(part("b_top"))),
+        normal: NormalLaw::Signorini,
+        friction: None,
+    };
+    let both = |master_clamped: bool| {
+        let mut b = Problem::builder(mesh.clone(), material())
+            .plane(Plane::Strain)
+            .dirichlet(clamp(part("b_bottom")))
+            .dirichlet(clamp(part("a_top")))
+            .contact(pair.clone());
+        if master_clamped {
+            b = b.dirichlet(clamp(part("b_top")));
+        }
+        b.build().unwrap()
+    };
+    let alone = {
+        let m = rectangle(&Rectangle {
+            origin: [0.0, H / 2.0],
+            size: [1.0, H / 2.0],
+            n: [5, 2],
+            pattern: CutPattern::Uniform,
+            progression: [1.0, 1.0],
+        })
+        .unwrap();
+        let (top, bottom) = (
+            m.part_index("top").unwrap(),
+            m.part_index("bottom").unwrap(),
+        );
+        Problem::builder(m, material())
+            .plane(Plane::Strain)
+            .dirichlet(clamp(top))
+            .contact(ContactBoundary {
+                part: bottom,
+                against: None,
+                ..pair.clone()
+            })
+            .build()
+            .unwrap()
+    };
+    let (clamped, _) = trace_constant(&both(true), &settings).unwrap();
+    let (free, _) = trace_constant(&both(false), &settings).unwrap();
+    let (one, _) = trace_constant(&alone, &settings).unwrap();
+    println!("trace constants: master clamped {clamped:.12}, slave alone {one:.12}, master free {free:.12}");
+    assert!((clamped - one).abs() <= 1e-8 * one, "{clamped} vs {one}");
+    assert!(free > 1.01 * clamped, "{free} vs {clamped}");
 }

@@ -71,7 +71,9 @@ pub struct Uniqueness {
 }
 
 /// The discrete trace constant ‖γ‖ of the problem's Γ_C (all contact boundaries) and the
-/// number of power iterations; `0.0` if there is no contact point. Always uses the direct
+/// number of power iterations; `0.0` if there is no contact point. At the points of a
+/// contact pair the trace is the jump `u(x_s) − Σ_j N_j u(m_j)` across the interface, whose
+/// friction the condition bounds. Always uses the direct
 /// (Cholesky) linear solver, whatever `settings.linear_solver` says: the power iteration
 /// needs `K_ε⁻¹` to round-off (the ordering and thread settings are used).
 ///
@@ -97,27 +99,69 @@ pub fn trace_constant(problem: &Problem, settings: &super::SolverSettings) -> Re
         return Err(crate::Error::Breakdown("no Cholesky factorization".into()));
     };
     cholesky.factorize(&system.pattern, &k)?;
-    // Lumped boundary mass on the free DOFs.
+    // Lumped boundary mass on the free DOFs: diagonal without pairs; with pairs the mass
+    // of the jump, `Σ_i w_i |Σ_a c_a x(v_a)|²` over each point's stencil.
     let n = system.pattern.n();
+    let contact = &system.contact;
+    let dofs = &system.dofs;
     let mut m = vec![0.0; n];
-    for i in 0..system.contact.len() {
-        let v = system.contact.node[i] as usize;
-        for c in 0..d {
-            let eq = system.dofs.equation(d * v + c);
-            if eq != FIXED {
-                m[eq as usize] += system.contact.weight[i];
+    for i in 0..contact.len() {
+        let (len, nodes, _) = contact.stencil(d, i);
+        for &v in &nodes[..len] {
+            for c in 0..d {
+                let eq = dofs.equation(d * v as usize + c);
+                if eq != FIXED {
+                    m[eq as usize] += contact.weight[i];
+                }
             }
         }
     }
+    let paired = contact.has_pairs();
+    // y = M x.
+    let apply_mass = |x: &[f64], y: &mut [f64]| {
+        if !paired {
+            for ((yi, xi), mi) in y.iter_mut().zip(x).zip(&m) {
+                *yi = xi * mi;
+            }
+            return;
+        }
+        y.fill(0.0);
+        for i in 0..contact.len() {
+            let (len, nodes, coef) = contact.stencil(d, i);
+            for c in 0..d {
+                let eq = |a: usize| dofs.equation(d * nodes[a] as usize + c);
+                let jump: f64 = (0..len)
+                    .filter(|&a| eq(a) != FIXED)
+                    .map(|a| coef[a] * x[eq(a) as usize])
+                    .sum();
+                for a in (0..len).filter(|&a| eq(a) != FIXED) {
+                    y[eq(a) as usize] += contact.weight[i] * coef[a] * jump;
+                }
+            }
+        }
+    };
     let mut x: Vec<f64> = m.iter().map(|&w| if w > 0.0 { 1.0 } else { 0.0 }).collect();
+    if paired {
+        // A uniform start has no jump (M x = 0 at every pair): start from the slave nodes
+        // alone.
+        x.fill(0.0);
+        for &v in &contact.node {
+            for c in 0..d {
+                let eq = dofs.equation(d * v as usize + c);
+                if eq != FIXED {
+                    x[eq as usize] = 1.0;
+                }
+            }
+        }
+    }
+    let mut mx = vec![0.0; n];
     let mut kx = vec![0.0; n];
     let mut lambda = 0.0;
     let max_iter = 2000;
     for it in 1..=max_iter {
         // x ← K⁻¹ M x, normalized.
-        for (xi, mi) in x.iter_mut().zip(&m) {
-            *xi *= mi;
-        }
+        apply_mass(&x, &mut mx);
+        x.copy_from_slice(&mx);
         cholesky.solve_in_place(&mut x);
         let s = x.iter().map(|v| v * v).sum::<f64>().sqrt();
         if s == 0.0 {
@@ -127,7 +171,8 @@ pub fn trace_constant(problem: &Problem, settings: &super::SolverSettings) -> Re
             *xi /= s;
         }
         system.pattern.sym_matvec(&k, &x, &mut kx);
-        let xmx: f64 = x.iter().zip(&m).map(|(a, w)| w * a * a).sum();
+        apply_mass(&x, &mut mx);
+        let xmx: f64 = x.iter().zip(&mx).map(|(a, b)| a * b).sum();
         let xkx: f64 = x.iter().zip(&kx).map(|(a, b)| a * b).sum();
         let next = xmx / xkx;
         if it > 1 && (next - lambda).abs() <= 1e-10 * next {
