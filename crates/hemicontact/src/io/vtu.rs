@@ -581,7 +581,9 @@ pub const STATE_CODES: &str = "contact_normal_state: -1 not a contact node, 0 se
 /// `contact_normal` ν of the point (outward from the body; against a rigid obstacle the
 /// opposite of the obstacle's normal at the node's closest point). Where a node
 /// is several contact points (on two contact boundaries, or at a corner of one), the last
-/// point's values are shown and the forces are summed.
+/// point's values are shown and the forces are summed. Between two bodies the master
+/// side's nodes carry the reaction of the pairs, `−N_j R` for each pair whose master facet
+/// holds the node (action = reaction: the `interface_force` of the two sides sums to zero).
 /// Cell data: `locking_active` is 1 where the locking constraint acts (nearly locking:
 /// `Q(ε) > 0`; ideal locking: multiplier > 0), `locking_q` is Q(ε), `locking_multiplier`
 /// the magnitude λ_T of the locking stress `λ_T ∂Q` (ideal locking: the multiplier; nearly
@@ -625,6 +627,16 @@ pub fn solution_vtu<'a>(
         for k in 0..3 {
             force[3 * v + k] += c.force[k];
             traction[3 * v + k] = c.friction_traction[k];
+        }
+    }
+    // Between two bodies, the reaction of each pair on the master facet's nodes: −N_j R.
+    for (i, c) in solution.contact.iter().enumerate() {
+        let (len, nodes, coef) = points.stencil(d, i);
+        for a in 1..len {
+            let m = nodes[a] as usize;
+            for k in 0..3 {
+                force[3 * m + k] += coef[a] * c.force[k];
+            }
         }
     }
     let mut units: String = field_units(d)
