@@ -23,6 +23,8 @@
 //! is printed (`cargo test --release --test hertz_two_bodies -- --nocapture`).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalLaw,
@@ -51,6 +53,28 @@ fn hooke(e: f64, nu: f64) -> Material {
         2,
         Plane::Strain,
     )))
+}
+
+/// The pair of the two bodies: the upper body's bottom (slave) against the lower body's top
+/// (master), Signorini, with `friction`.
+fn pair(mesh: &Mesh, friction: Option<Friction>) -> ContactBoundary {
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    ContactBoundary {
+        part: part("upper_bottom"),
+        gap: 0.0,
+        obstacle: None,
+        against: Some(MasterPart::new(part("lower_top"))),
+        normal: NormalLaw::Signorini,
+        friction,
+    }
+}
+
+/// The solution of `problem`, converged and certified.
+fn certified(problem: &Problem) -> hemicontact::solver::Solution {
+    let s = solve(problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    s
 }
 
 /// The block `[0, 1] × [y0, y0 + 1]` (n × n cells, graded toward x = 0 and toward its
@@ -88,31 +112,30 @@ fn body(n: usize, r: f64, side: f64, radius: f64) -> Mesh {
 /// The two bodies in one mesh (lower first), parts prefixed `lower_` and `upper_`, cell
 /// regions `lower` and `upper`.
 fn cylinders(n: usize, r: f64) -> Mesh {
-    let (b, a) = (body(n, r, -1.0, R2), body(n, r, 1.0, R1));
-    let offset = b.n_nodes() as u32;
-    let mut coords = b.coords().to_vec();
-    coords.extend_from_slice(a.coords());
-    let mut cells = b.cells().to_vec();
-    cells.extend(a.cells().iter().map(|&v| v + offset));
-    let mut parts = Vec::new();
-    for (prefix, m, shift) in [("lower", &b, 0), ("upper", &a, offset)] {
-        for name in m.part_names() {
-            let p = m.part_index(name).unwrap();
-            let facets = m
-                .part_facets(p)
-                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
-                .collect();
-            parts.push((format!("{prefix}_{name}"), facets));
-        }
-    }
-    let region = (0..b.n_cells())
-        .map(|_| 0u16)
-        .chain((0..a.n_cells()).map(|_| 1u16))
-        .collect();
-    Mesh::from_parts(2, coords, cells, &parts)
-        .unwrap()
-        .with_regions(region, vec!["lower".into(), "upper".into()])
-        .unwrap()
+    common::two_bodies(
+        &body(n, r, -1.0, R2),
+        &body(n, r, 1.0, R1),
+        ["lower", "upper"],
+    )
+}
+
+/// From the points `(x, p)` along a line from the contact's centre: the spacing of the
+/// points at the edge of the contact, the edge a_FE (the farthest point with a positive
+/// pressure) and the pressure at x = 0.
+fn profile(along: &[(f64, f64)]) -> (f64, f64, f64) {
+    let a_fe = along
+        .iter()
+        .filter(|(_, p)| *p > 0.0)
+        .map(|(x, _)| *x)
+        .fold(0.0, f64::max);
+    let peak = along.iter().find(|(x, _)| *x == 0.0).unwrap().1;
+    let mut xs: Vec<f64> = along.iter().map(|(x, _)| *x).collect();
+    xs.sort_by(f64::total_cmp);
+    let h = xs
+        .windows(2)
+        .find(|w| w[1] >= a_fe)
+        .map_or(xs[1] - xs[0], |w| w[1] - w[0]);
+    (h, a_fe, peak)
 }
 
 /// One level: (h at the contact, a_FE, p_FE(0), total force of the pair, DOFs).
@@ -138,34 +161,17 @@ fn level(n: usize, r: f64) -> (f64, f64, f64, f64, usize) {
             part: part("upper_top"),
             value: [0.0, -Q, 0.0],
         })
-        .contact(ContactBoundary {
-            part: part("upper_bottom"),
-            gap: 0.0,
-            obstacle: None,
-            against: Some(MasterPart::new(part("lower_top"))),
-            normal: NormalLaw::Signorini,
-            friction: None,
-        })
+        .contact(pair(&mesh, None))
         .build()
         .unwrap();
-    let s = solve(&problem, &SolverSettings::default()).unwrap();
-    assert!(s.report.converged, "{}", s.report.message);
-    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
-    let x = |c: &hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
-    let a_fe = s
+    let s = certified(&problem);
+    let along: Vec<(f64, f64)> = s
         .contact
         .iter()
-        .filter(|c| c.pressure > 0.0)
-        .map(x)
-        .fold(0.0, f64::max);
-    let peak = s.contact.iter().find(|c| x(c) == 0.0).unwrap().pressure;
+        .map(|c| (mesh.node(c.node as usize)[0], c.pressure))
+        .collect();
+    let (h, a_fe, peak) = profile(&along);
     let force: f64 = s.contact.iter().map(|c| c.force[1]).sum();
-    let mut xs: Vec<f64> = s.contact.iter().map(x).collect();
-    xs.sort_by(f64::total_cmp);
-    let h = xs
-        .windows(2)
-        .find(|w| w[1] >= a_fe)
-        .map_or(xs[1] - xs[0], |w| w[1] - w[0]);
     (h, a_fe, peak, force, s.report.n_dofs)
 }
 
@@ -275,23 +281,7 @@ fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
     let (n, r) = (64, 1.017f64.powi(2));
     let lower = mirrored(&body(n, r, -1.0, radius));
     let upper = mirrored(&body(n, r, 1.0, radius));
-    let offset = lower.n_nodes() as u32;
-    let mut coords = lower.coords().to_vec();
-    coords.extend_from_slice(upper.coords());
-    let mut cells = lower.cells().to_vec();
-    cells.extend(upper.cells().iter().map(|&v| v + offset));
-    let mut parts = Vec::new();
-    for (prefix, m, shift) in [("lower", &lower, 0), ("upper", &upper, offset)] {
-        for name in m.part_names() {
-            let p = m.part_index(name).unwrap();
-            let facets = m
-                .part_facets(p)
-                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
-                .collect();
-            parts.push((format!("{prefix}_{name}"), facets));
-        }
-    }
-    let mesh = Mesh::from_parts(2, coords, cells, &parts).unwrap();
+    let mesh = common::two_bodies(&lower, &upper, ["lower", "upper"]);
     let part = |name: &str| mesh.part_index(name).unwrap();
     // P = q · 2 m per unit length; Hertz with R* = R/2, E* = E/(2(1 − ν²)).
     let q = 0.0025;
@@ -326,25 +316,19 @@ fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
             part: part("upper_top"),
             value: [0.0, -q, 0.0],
         })
-        .contact(ContactBoundary {
-            part: part("upper_bottom"),
-            gap: 0.0,
-            obstacle: None,
-            against: Some(MasterPart::new(part("lower_top"))),
-            normal: NormalLaw::Signorini,
-            friction: Some(Friction {
+        .contact(pair(
+            &mesh,
+            Some(Friction {
                 bound: FrictionBound::Coulomb,
                 mu: FrictionCoefficient::Constant { mu },
                 potential: FrictionPotential::Norm {
                     treatment: NormTreatment::Exact,
                 },
             }),
-        })
+        ))
         .build()
         .unwrap();
-    let s = solve(&problem, &SolverSettings::default()).unwrap();
-    assert!(s.report.converged, "{}", s.report.message);
-    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let s = certified(&problem);
     let x = |c: &hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
     // The tangential force Q: the friction forces of the points (on the upper body).
     let tangential: f64 = s.contact.iter().map(|c| c.force[0]).sum();
@@ -452,30 +436,7 @@ fn ball(n: usize, r: f64, side: f64, radius: f64) -> Mesh {
 /// One 3D level: (h at the contact, a_FE on the axis y = 0, p_FE(0), total force, DOFs).
 fn level_3d(n: usize, r: f64, radii: [f64; 2], q: f64) -> (f64, f64, f64, f64, usize) {
     let (b, a) = (ball(n, r, -1.0, radii[1]), ball(n, r, 1.0, radii[0]));
-    let offset = b.n_nodes() as u32;
-    let mut coords = b.coords().to_vec();
-    coords.extend_from_slice(a.coords());
-    let mut cells = b.cells().to_vec();
-    cells.extend(a.cells().iter().map(|&v| v + offset));
-    let mut parts = Vec::new();
-    for (prefix, m, shift) in [("lower", &b, 0), ("upper", &a, offset)] {
-        for name in m.part_names() {
-            let p = m.part_index(name).unwrap();
-            let facets = m
-                .part_facets(p)
-                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
-                .collect();
-            parts.push((format!("{prefix}_{name}"), facets));
-        }
-    }
-    let region = (0..b.n_cells())
-        .map(|_| 0u16)
-        .chain((0..a.n_cells()).map(|_| 1u16))
-        .collect();
-    let mesh = Mesh::from_parts(3, coords, cells, &parts)
-        .unwrap()
-        .with_regions(region, vec!["lower".into(), "upper".into()])
-        .unwrap();
+    let mesh = common::two_bodies(&b, &a, ["lower", "upper"]);
     let part = |name: &str| mesh.part_index(name).unwrap();
     let roller = |p: usize, k: usize| {
         let mut components = [false; 3];
@@ -507,38 +468,21 @@ fn level_3d(n: usize, r: f64, radii: [f64; 2], q: f64) -> (f64, f64, f64, f64, u
             part: part("upper_top"),
             value: [0.0, 0.0, -q],
         })
-        .contact(ContactBoundary {
-            part: part("upper_bottom"),
-            gap: 0.0,
-            obstacle: None,
-            against: Some(MasterPart::new(part("lower_top"))),
-            normal: NormalLaw::Signorini,
-            friction: None,
-        })
+        .contact(pair(&mesh, None))
         .build()
         .unwrap();
-    let s = solve(&problem, &SolverSettings::default()).unwrap();
-    assert!(s.report.converged, "{}", s.report.message);
-    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
-    let on_axis: Vec<_> = s
+    let s = certified(&problem);
+    // Along the symmetry line y = 0.
+    let along: Vec<(f64, f64)> = s
         .contact
         .iter()
-        .filter(|c| mesh.node(c.node as usize)[1] == 0.0)
+        .map(|c| mesh.node(c.node as usize))
+        .zip(&s.contact)
+        .filter(|(x, _)| x[1] == 0.0)
+        .map(|(x, c)| (x[0], c.pressure))
         .collect();
-    let x = |c: &&hemicontact::solver::certificate::ContactResult| mesh.node(c.node as usize)[0];
-    let a_fe = on_axis
-        .iter()
-        .filter(|c| c.pressure > 0.0)
-        .map(x)
-        .fold(0.0, f64::max);
-    let peak = on_axis.iter().find(|c| x(c) == 0.0).unwrap().pressure;
+    let (h, a_fe, peak) = profile(&along);
     let force: f64 = s.contact.iter().map(|c| c.force[2]).sum();
-    let mut xs: Vec<f64> = on_axis.iter().map(x).collect();
-    xs.sort_by(f64::total_cmp);
-    let h = xs
-        .windows(2)
-        .find(|w| w[1] >= a_fe)
-        .map_or(xs[1] - xs[0], |w| w[1] - w[0]);
     (h, a_fe, peak, force, s.report.n_dofs)
 }
 

@@ -33,6 +33,8 @@
 //!    master side is free (1.71).
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
+mod common;
+
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalCompliance, NormalLaw,
@@ -46,14 +48,6 @@ use hemicontact::solver::{solve, SolverSettings};
 const E: f64 = 1000.0;
 const DELTA: f64 = 0.01;
 const H: f64 = 1.0;
-
-/// The facets of part `name` of `m`, renumbered by `offset`.
-fn facets_of(m: &Mesh, name: &str, offset: u32) -> Vec<u32> {
-    let p = m.part_index(name).unwrap();
-    m.part_facets(p)
-        .flat_map(|f| m.facet(f).iter().map(move |&v| v + offset))
-        .collect()
-}
 
 /// Two rectangles `[0, 1] × [0, H/2]` (`b`, `nx_b` squares across) and `[0, 1] × [H/2, H]`
 /// (`a`, `nx_a` squares across) in one mesh, without shared nodes; parts `a_*` and `b_*`.
@@ -73,7 +67,7 @@ fn stacked_2d_apart(nx_a: usize, nx_b: usize, ny: usize, gap: f64) -> Mesh {
         })
         .unwrap()
     };
-    merged(2, &block(0.0, nx_b), &block(H / 2.0 + gap, nx_a))
+    merged(&block(0.0, nx_b), &block(H / 2.0 + gap, nx_a))
 }
 
 /// Two boxes `[0, 1]² × [0, H/2]` (`b`, `n_b` cubes across) and `[0, 1]² × [H/2, H]` (`a`,
@@ -89,22 +83,12 @@ fn stacked_3d(n_a: usize, n_b: usize, nz: usize) -> Mesh {
         })
         .unwrap()
     };
-    merged(3, &block(0.0, n_b), &block(H / 2.0, n_a))
+    merged(&block(0.0, n_b), &block(H / 2.0, n_a))
 }
 
 /// The meshes `b` and `a` as one mesh (b's nodes first), their parts prefixed `b_` and `a_`.
-fn merged(d: usize, b: &Mesh, a: &Mesh) -> Mesh {
-    let offset = b.n_nodes() as u32;
-    let mut coords = b.coords().to_vec();
-    coords.extend_from_slice(a.coords());
-    let mut cells = b.cells().to_vec();
-    cells.extend(a.cells().iter().map(|&v| v + offset));
-    let mut parts = Vec::new();
-    for side in b.part_names() {
-        parts.push((format!("b_{side}"), facets_of(b, side, 0)));
-        parts.push((format!("a_{side}"), facets_of(a, side, offset)));
-    }
-    Mesh::from_parts(d, coords, cells, &parts).unwrap()
+fn merged(b: &Mesh, a: &Mesh) -> Mesh {
+    common::two_bodies(b, a, ["b", "a"])
 }
 
 fn material() -> Material {

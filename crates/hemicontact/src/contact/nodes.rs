@@ -417,13 +417,7 @@ fn obstacle_points(
         }
         out.node.push(v);
         out.boundary.push(b as u16);
-        out.weight.push(
-            around
-                .iter()
-                .map(|&(_, f)| facets[f as usize].0)
-                .sum::<f64>()
-                / d as f64,
-        );
+        out.weight.push(lumped_weight(around, facets, d));
         out.normal.push(n);
         out.gap.push(projection.gap);
         out.tangent.push(tangent);
@@ -476,13 +470,7 @@ fn paired_points(
         x[..d].copy_from_slice(mesh.node(v as usize));
         out.node.push(v);
         out.boundary.push(b as u16);
-        out.weight.push(
-            around
-                .iter()
-                .map(|&(_, f)| facets[f as usize].0)
-                .sum::<f64>()
-                / d as f64,
-        );
+        out.weight.push(lumped_weight(around, facets, d));
         out.normal.push(n);
         out.gap.push(master.gap(projection.gap));
         out.tangent.push(tangent_basis(d, &n));
@@ -496,6 +484,16 @@ fn paired_points(
         out.master_shape.push(shape);
     }
     Ok(())
+}
+
+/// The lumped weight `Σ |F| / d` of a node over all its facets `around` ((node, facet)
+/// pairs; `facets` the measures and normals of the part's facets).
+fn lumped_weight(around: &[(u32, u32)], facets: &[(f64, [f64; 3])], d: usize) -> f64 {
+    around
+        .iter()
+        .map(|&(_, f)| facets[f as usize].0)
+        .sum::<f64>()
+        / d as f64
 }
 
 /// Orthonormal tangent basis of the unit normal `n`; see the module documentation.

@@ -196,3 +196,34 @@ pub fn fresh_dir(prefix: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+/// Two meshes as one (the nodes of `lower` first), their boundary parts prefixed
+/// `{names[0]}_` and `{names[1]}_` and their cells in the regions `names[0]` and `names[1]`:
+/// two bodies that share no node, for contact between them.
+pub fn two_bodies(lower: &Mesh, upper: &Mesh, names: [&str; 2]) -> Mesh {
+    let d = lower.dim();
+    let offset = lower.n_nodes() as u32;
+    let mut coords = lower.coords().to_vec();
+    coords.extend_from_slice(upper.coords());
+    let mut cells = lower.cells().to_vec();
+    cells.extend(upper.cells().iter().map(|&v| v + offset));
+    let mut parts = Vec::new();
+    for (prefix, m, shift) in [(names[0], lower, 0), (names[1], upper, offset)] {
+        for name in m.part_names() {
+            let p = m.part_index(name).unwrap();
+            let facets = m
+                .part_facets(p)
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .collect();
+            parts.push((format!("{prefix}_{name}"), facets));
+        }
+    }
+    let region = (0..lower.n_cells())
+        .map(|_| 0u16)
+        .chain((0..upper.n_cells()).map(|_| 1u16))
+        .collect();
+    Mesh::from_parts(d, coords, cells, &parts)
+        .unwrap()
+        .with_regions(region, names.map(String::from).to_vec())
+        .unwrap()
+}

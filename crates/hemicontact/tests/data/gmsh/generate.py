@@ -122,19 +122,25 @@ def rectangle(g, x0, y0, x1, y1, size, top_size):
     return lines, g.addPlaneSurface([g.addCurveLoop(lines)])
 
 
-def punch_on_block():
-    gmsh.model.add("punch-on-block")
-    g = gmsh.model.geo
-    block_lines, block = rectangle(g, 0.0, 0.0, 1.0, 0.5, 0.1, 0.025)
-    punch_lines, punch = rectangle(g, 0.25, 0.5, 0.75, 0.7, 0.02, 0.05)
-    g.synchronize()
-    for name, lines, surface in [("block", block_lines, block), ("punch", punch_lines, punch)]:
+def name_blocks(blocks):
+    """Synchronizes, names each rectangle's lines `NAME_bottom`, `NAME_top`, `NAME_sides`
+    and its surface `NAME`, and meshes."""
+    gmsh.model.geo.synchronize()
+    for name, lines, surface in blocks:
         bottom, right, top, left = lines
         gmsh.model.addPhysicalGroup(1, [bottom], name=f"{name}_bottom")
         gmsh.model.addPhysicalGroup(1, [top], name=f"{name}_top")
         gmsh.model.addPhysicalGroup(1, [left, right], name=f"{name}_sides")
         gmsh.model.addPhysicalGroup(2, [surface], name=name)
     gmsh.model.mesh.generate(2)
+
+
+def punch_on_block():
+    gmsh.model.add("punch-on-block")
+    g = gmsh.model.geo
+    block_lines, block = rectangle(g, 0.0, 0.0, 1.0, 0.5, 0.1, 0.025)
+    punch_lines, punch = rectangle(g, 0.25, 0.5, 0.75, 0.7, 0.02, 0.05)
+    name_blocks([("block", block_lines, block), ("punch", punch_lines, punch)])
     os.makedirs(SCENARIO_MESHES, exist_ok=True)
     write(os.path.join(SCENARIO_MESHES, "punch-on-block.msh"), False)
     gmsh.model.remove()
@@ -145,14 +151,7 @@ def two_blocks():
     g = gmsh.model.geo
     lower_lines, lower = rectangle(g, 0.0, 0.0, 1.0, 0.5, 0.25, 0.25)
     upper_lines, upper = rectangle(g, 0.0, 0.5, 1.0, 1.0, 0.25, 0.25)
-    g.synchronize()
-    for name, lines, surface in [("lower", lower_lines, lower), ("upper", upper_lines, upper)]:
-        bottom, right, top, left = lines
-        gmsh.model.addPhysicalGroup(1, [bottom], name=f"{name}_bottom")
-        gmsh.model.addPhysicalGroup(1, [top], name=f"{name}_top")
-        gmsh.model.addPhysicalGroup(1, [left, right], name=f"{name}_sides")
-        gmsh.model.addPhysicalGroup(2, [surface], name=name)
-    gmsh.model.mesh.generate(2)
+    name_blocks([("lower", lower_lines, lower), ("upper", upper_lines, upper)])
     write(os.path.join(HERE, "two-blocks.msh"), False)
     gmsh.model.remove()
 
