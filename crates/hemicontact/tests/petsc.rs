@@ -47,7 +47,12 @@ fn max_rel_diff(a: &[f64], b: &[f64]) -> f64 {
 /// to 1e-8 (relative, maximum norm), the same reactions, and PETSc's Krylov iterations
 /// reported per Newton step.
 fn agrees_with_direct(file: &str) {
-    let scenario = Scenario::from_file(&scenarios_dir().join(file)).unwrap();
+    let mut scenario = Scenario::from_file(&scenarios_dir().join(file)).unwrap();
+    if file == "hertz3d-force.toml" {
+        // Its committed 107k DOFs cost minutes on two cores; at n = 16 (15k DOFs) the
+        // agreement is the same (its table in docs/distributed.md is at both).
+        scenario = scenario.with_resolution(16).unwrap();
+    }
     let mut settings = scenario.settings().unwrap();
     settings.linear_solver = LinearSolver::Direct;
     let direct = solve_scenario(&scenario, &settings);
