@@ -252,7 +252,7 @@ fn unnamed_groups_are_named_by_tag_and_regions_are_recorded() {
     assert!(
         g.notes
             .iter()
-            .any(|n| n.contains("one `[material]` applies")),
+            .any(|n| n.contains("a single `[material]` applies")),
         "{:?}",
         g.notes
     );

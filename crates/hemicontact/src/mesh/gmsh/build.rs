@@ -208,8 +208,8 @@ pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
         .collect();
     if region_names.len() > 1 {
         notes.push(format!(
-            "{} cell regions ({}): one `[material]` applies to all of them, or each region \
-             gets its own by a `[[material]]` table naming it in `part`",
+            "{} cell regions ({}): `[[material]]` tables naming them in `part` give each its \
+             own material (a single `[material]` applies to all of them)",
             region_names.len(),
             region_names
                 .iter()
