@@ -85,7 +85,9 @@ fn agrees_with_direct(file: &str) {
 }
 
 /// The scenarios compared below: every file of `scenarios/`.
-const SCENARIOS: [&str; 14] = [
+const SCENARIOS: [&str; 17] = [
+    "cattaneo-mindlin.toml",
+    "fault.toml",
     "half-disc.toml",
     "hertz2d.toml",
     "hertz3d-force.toml",
@@ -100,6 +102,7 @@ const SCENARIOS: [&str; 14] = [
     "paper3d.toml",
     "punch-on-block.toml",
     "sliding-indenter.toml",
+    "two-cylinders.toml",
 ];
 
 #[test]
@@ -123,6 +126,8 @@ macro_rules! agreement {
 }
 
 agreement! {
+    cattaneo_mindlin => "cattaneo-mindlin.toml",
+    fault => "fault.toml",
     half_disc => "half-disc.toml",
     hertz2d => "hertz2d.toml",
     hertz3d_force => "hertz3d-force.toml",
@@ -137,6 +142,7 @@ agreement! {
     paper3d_paper_gap => "paper3d-paper-gap.toml",
     paper3d => "paper3d.toml",
     sliding_indenter => "sliding-indenter.toml",
+    two_cylinders => "two-cylinders.toml",
 }
 
 /// `scenarios/paper3d.toml` at a small resolution with `[solver.petsc] options`.

@@ -28,6 +28,18 @@ dimension d - 1, and one physical group of dimension d for the domain):
   "punch_sides"; element size 0.02 at the bottom, 0.05 at the top): non-matching meshes
   along the interface y = 0.5. Used by scenarios/punch-on-block.toml.
 
+- ../../../../../scenarios/meshes/fault.msh: two blocks meshed apart, one on the other:
+  [0,4] x [0,1] (surface "host"; lines "host_bottom", "host_top", "host_sides"; element
+  size 0.125 at the top, 0.25 at the bottom) and [0,4] x [1,2] (surface "upper"; lines
+  "upper_bottom", "upper_top", "upper_sides"; element size 0.1 at the bottom, 0.25 at the
+  top): non-matching meshes along the fault y = 1. Used by scenarios/fault.toml.
+
+- crack.msh: the block [0,2] x [0,1] (surface "body"; lines "bottom", "top", "sides") cut by
+  the crack y = 0.5, 0.5 <= x <= 1.5 (element size 0.125, 0.0625 at the crack's tips): the
+  line "crack_lower" embedded in the surface, then Gmsh's Crack plugin duplicates its inner
+  nodes for the cells above it, whose faces form the physical line "crack_upper". The two
+  faces' nodes coincide; the tips are shared.
+
 - two-blocks.msh: the blocks [0,1] x [0,0.5] ("lower") and [0,1] x [0.5,1] ("upper"),
   meshed apart from their own points (not merged), so that their nodes on the interface
   y = 0.5 coincide: physical lines "lower_bottom", "lower_top", "lower_sides",
@@ -146,6 +158,47 @@ def punch_on_block():
     gmsh.model.remove()
 
 
+def fault():
+    gmsh.model.add("fault")
+    g = gmsh.model.geo
+    host_lines, host = rectangle(g, 0.0, 0.0, 4.0, 1.0, 0.25, 0.125)
+    upper_lines, upper = rectangle(g, 0.0, 1.0, 4.0, 2.0, 0.1, 0.25)
+    name_blocks([("host", host_lines, host), ("upper", upper_lines, upper)])
+    write(os.path.join(SCENARIO_MESHES, "fault.msh"), False)
+    gmsh.model.remove()
+
+
+def crack():
+    gmsh.model.add("crack")
+    g = gmsh.model.geo
+    p = [g.addPoint(x, y, 0, 0.125) for x, y in [(0, 0), (2, 0), (2, 1), (0, 1)]]
+    lines = [g.addLine(p[i], p[(i + 1) % 4]) for i in range(4)]
+    surface = g.addPlaneSurface([g.addCurveLoop(lines)])
+    tips = [g.addPoint(x, 0.5, 0, 0.0625) for x in (0.5, 1.5)]
+    line = g.addLine(*tips)
+    g.synchronize()
+    gmsh.model.mesh.embed(1, [line], 2, surface)
+    bottom, right, top, left = lines
+    gmsh.model.addPhysicalGroup(1, [bottom], name="bottom")
+    gmsh.model.addPhysicalGroup(1, [top], name="top")
+    gmsh.model.addPhysicalGroup(1, [left, right], name="sides")
+    lower = gmsh.model.addPhysicalGroup(1, [line], name="crack_lower")
+    gmsh.model.addPhysicalGroup(2, [surface], name="body")
+    gmsh.model.mesh.generate(2)
+    # New nodes for the cells on one side of the crack, their faces in a new group (the
+    # plugin's normal is that of the plane of a 1D crack).
+    gmsh.plugin.setNumber("Crack", "Dimension", 1)
+    gmsh.plugin.setNumber("Crack", "PhysicalGroup", lower)
+    gmsh.plugin.setNumber("Crack", "NewPhysicalGroup", 100)
+    gmsh.plugin.setNumber("Crack", "NormalX", 0)
+    gmsh.plugin.setNumber("Crack", "NormalY", 0)
+    gmsh.plugin.setNumber("Crack", "NormalZ", 1)
+    gmsh.plugin.run("Crack")
+    gmsh.model.setPhysicalName(1, 100, "crack_upper")
+    write(os.path.join(HERE, "crack.msh"), False)
+    gmsh.model.remove()
+
+
 def two_blocks():
     gmsh.model.add("two-blocks")
     g = gmsh.model.geo
@@ -163,6 +216,8 @@ def main():
     cube()
     half_disc()
     punch_on_block()
+    fault()
+    crack()
     two_blocks()
     gmsh.finalize()
 
