@@ -110,14 +110,21 @@ fn print_problem(c: &Console, problem: &Problem, settings: &SolverSettings, sour
         settings.certificate_tolerance
     );
     for (k, contact) in problem.contact().iter().enumerate() {
-        match &contact.obstacle {
-            None => say!(
+        match (&contact.obstacle, &contact.against) {
+            (None, Some(master)) => say!(
+                c,
+                "contact[{k}] part `{}` (slave side) against part `{}` (master side) of \
+                 another body: node-to-segment, gaps and normals from the two parts' geometry",
+                mesh.part_names()[contact.part],
+                mesh.part_names()[master.part],
+            ),
+            (None, None) => say!(
                 c,
                 "contact[{k}] part `{}`: gap {} m",
                 mesh.part_names()[contact.part],
                 significant(contact.gap),
             ),
-            Some(o) => say!(
+            (Some(o), _) => say!(
                 c,
                 "contact[{k}] part `{}`: {}",
                 mesh.part_names()[contact.part],

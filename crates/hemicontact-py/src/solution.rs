@@ -220,6 +220,19 @@ impl NativeSolution {
         f64_bytes(py, &self.solution.u)
     }
 
+    /// The body of each node (int64 bytes, `n_nodes`): the connected components of the
+    /// mesh numbered by their smallest node, as `summary.json`'s `bodies`; −1 for a node in
+    /// no cell.
+    fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        let (body_of, _) = hemicontact::fem::rigid::bodies(self.problem.mesh());
+        i64_bytes(
+            py,
+            body_of
+                .iter()
+                .map(|&b| if b == u32::MAX { -1 } else { i64::from(b) }),
+        )
+    }
+
     /// Reaction forces at prescribed DOFs, zero elsewhere (float64 bytes, `n_nodes × dim`,
     /// N; N/m in 2D).
     fn reactions<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {

@@ -51,3 +51,28 @@ def test_a_free_master_body_is_refused_naming_the_field():
     d["dirichlet"] = [{"part": "lower_bottom"}]
     with pytest.raises(hc.ScenarioError, match=r"contact\[0\]\.against"):
         hc.solve(hc.Scenario.from_dict(d))
+
+
+def test_results_per_body_balance_and_act_equal_and_opposite():
+    # The two blocks pressed together: the lower one (body 0, the smaller nodes) pushed
+    # down by the pair with the force p × 1 m and held by its bottom's reaction, the upper
+    # one pushed up by the pair and down by its top's prescribed displacement.
+    r = hc.solve(hc.Scenario.from_dict(_pressed()))
+    assert r.converged, r.message
+    p = E * DELTA / H
+    assert len(r.bodies) == 2
+    lower, upper = r.bodies
+    assert lower["regions"] == ["lower"] and upper["regions"] == ["upper"]
+    assert "lower_top" in lower["parts"] and "upper_bottom" in upper["parts"]
+    assert np.allclose(upper["contact_force"], [0.0, p], rtol=0, atol=1e-10 * p)
+    assert np.allclose(lower["contact_force"], [0.0, -p], rtol=0, atol=1e-10 * p)
+    assert np.allclose(lower["reaction"], [0.0, p], rtol=0, atol=1e-10 * p)
+    assert np.allclose(upper["reaction"], [0.0, -p], rtol=0, atol=1e-10 * p)
+    for b in r.bodies:
+        assert b["imbalance"] < 1e-10
+        assert np.all(b["load"] == 0.0)
+    # The body of each node: the two blocks, their nodes numbered apart.
+    assert set(r.body.tolist()) == {0, 1}
+    assert np.bincount(r.body).tolist() == [lower["nodes"], upper["nodes"]]
+    on_upper = r.body[r.contact["node"]]
+    assert np.all(on_upper == 1)

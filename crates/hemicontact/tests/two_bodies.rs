@@ -603,3 +603,159 @@ fn the_trace_constant_of_a_pair_is_that_of_the_jump() {
     assert!((clamped - one).abs() <= 1e-8 * one, "{clamped} vs {one}");
     assert!(free > 1.01 * clamped, "{free} vs {clamped}");
 }
+
+/// The forces on each body (`summary.json`'s `bodies`): on non-matching meshes sheared
+/// with exact Coulomb friction, each body's load, reactions and interface forces balance,
+/// the pair's forces on the two bodies are equal and opposite, and the slave body's equals
+/// the pair's resultant in `contact_totals`.
+#[test]
+fn each_body_balances_and_the_pair_acts_equal_and_opposite_on_the_two() {
+    let fr = Friction {
+        bound: FrictionBound::Coulomb,
+        mu: FrictionCoefficient::Constant { mu: 0.3 },
+        potential: FrictionPotential::Norm {
+            treatment: NormTreatment::Exact,
+        },
+    };
+    let problem = sheared(stacked_2d(5, 4, 2), NormalLaw::Signorini, Some(fr), 0.002);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    let bodies = hemicontact::io::bodies::bodies(&problem, &s);
+    let totals = hemicontact::io::contact_totals::contact_totals(&problem, &s.contact);
+    assert_eq!(bodies.len(), 2);
+    let (lower, upper) = (&bodies[0], &bodies[1]);
+    println!("lower: {lower:?}\nupper: {upper:?}");
+    assert_eq!(lower.regions, ["b"]);
+    assert_eq!(upper.regions, ["a"]);
+    assert!(upper.parts.contains(&"a_bottom".to_string()));
+    let scale = upper.contact_force[1].abs();
+    // Pressed (p = E δ/H on 1 m) and sheared: the friction force is below μ times it.
+    assert!((scale - E * DELTA / H).abs() < 0.01 * scale, "{scale}");
+    assert!(upper.contact_force[0].abs() > 0.1 * 0.3 * scale);
+    for k in 0..2 {
+        assert!((lower.contact_force[k] + upper.contact_force[k]).abs() < 1e-10 * scale);
+        assert!((upper.contact_force[k] - totals[0].force[k]).abs() < 1e-12 * scale);
+    }
+    for b in &bodies {
+        assert!(b.imbalance < 1e-9, "{b:?}");
+    }
+}
+
+/// The interface figure's master side: on matching meshes the pressure spread onto the
+/// master nodes is the slave side's to round-off, at every master node along the
+/// interface; on non-matching ones it carries the same force, its nodal values off by the
+/// node-to-segment error.
+#[test]
+fn the_master_side_carries_the_slave_pressure() {
+    use hemicontact::plot::interface::{along, master_pressure};
+    let p = E * DELTA / H;
+    for (nx_a, nx_b) in [(4, 4), (5, 4)] {
+        let problem = pressed(stacked_2d(nx_a, nx_b, 2), NormalLaw::Signorini);
+        let s = solve(&problem, &SolverSettings::default()).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        let al = along(&problem, &s, 0);
+        let master = master_pressure(&problem, &s, 0, &al);
+        let worst = master
+            .iter()
+            .map(|m| (m.1 - p).abs() / p)
+            .fold(0.0f64, f64::max);
+        println!("{nx_a} slave against {nx_b} master segments: {} master nodes, pressure error {worst:.2e}", master.len());
+        // Every master node of the interface is along the slave side (same width).
+        assert_eq!(master.len(), nx_b + 1);
+        if nx_a == nx_b {
+            assert!(worst < 1e-12, "{worst:e}");
+        } else {
+            assert!(worst > 1e-3 && worst < 0.1, "{worst:e}");
+        }
+    }
+}
+
+/// A crack: two parts of one mesh (the crack's faces, their nodes coincident, its tips
+/// shared) paired with each other. Pressed across the crack (ν = 0), the block is in
+/// uniform compression as if uncut: the faces carry the pressure E δ/H at every point and
+/// the displacement is exact, the tips (nodes of both faces) are no contact points. Without
+/// the pair the faces are free and pass through each other.
+#[test]
+fn a_crack_closed_by_compression_transmits_the_pressure_exactly() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/gmsh/crack.msh");
+    let read = hemicontact::mesh::gmsh::read_msh(&path).unwrap();
+    println!("crack.msh notes: {:?}", read.notes);
+    assert!(read
+        .notes
+        .iter()
+        .any(|n| n.contains("`crack_lower` and `crack_upper`")));
+    let mesh = read.mesh;
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    let upper = mesh.part_nodes(part("crack_upper"));
+    let lower = mesh.part_nodes(part("crack_lower"));
+    let shared = upper.iter().filter(|v| lower.contains(v)).count();
+    assert_eq!(shared, 2, "the two tips");
+    let build = |pair: bool| {
+        let mut b = Problem::builder(mesh.clone(), material())
+            .plane(Plane::Strain)
+            .dirichlet(Dirichlet {
+                part: part("bottom"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .dirichlet(Dirichlet {
+                part: part("top"),
+                components: [true; 3],
+                value: [0.0, -DELTA, 0.0],
+            });
+        if pair {
+            b = b.contact(ContactBoundary {
+                part: part("crack_upper"),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part("crack_lower"))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            });
+        }
+        b.build().unwrap()
+    };
+    let problem = build(true);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(
+        s.report.converged && s.report.certificate.passes(),
+        "{}",
+        s.report.message
+    );
+    let p = E * DELTA / H;
+    let mut worst = s
+        .contact
+        .iter()
+        .map(|c| (c.pressure - p).abs() / p)
+        .fold(0.0f64, f64::max);
+    for v in 0..mesh.n_nodes() {
+        let exact = -p / E * mesh.node(v)[1];
+        worst = worst
+            .max((s.u[2 * v + 1] - exact).abs() / DELTA)
+            .max(s.u[2 * v].abs() / DELTA);
+    }
+    println!(
+        "crack.msh: {} points ({} nodes on the upper face, 2 tips), largest relative error {worst:.1e}",
+        s.contact.len(),
+        upper.len()
+    );
+    assert_eq!(s.contact.len(), upper.len() - 2);
+    assert!(worst < 1e-10, "{worst:e}");
+    // Without the pair the faces pass through each other: the upper face's nodes move down
+    // past their twins.
+    let free = solve(&build(false), &SolverSettings::default()).unwrap();
+    assert!(free.report.converged);
+    let twin = |v: u32| {
+        *lower
+            .iter()
+            .find(|&&w| w != v && mesh.node(w as usize) == mesh.node(v as usize))
+            .unwrap()
+    };
+    let overlap = upper
+        .iter()
+        .filter(|v| !lower.contains(v))
+        .map(|&v| free.u[2 * v as usize + 1] - free.u[2 * twin(v) as usize + 1])
+        .fold(0.0f64, f64::min);
+    println!("without the pair the faces overlap by {:.2e} m", -overlap);
+    assert!(overlap < -1e-3 * DELTA, "{overlap}");
+}

@@ -16,6 +16,14 @@ def _f64(b: bytes, *shape: int) -> np.ndarray:
     return np.frombuffer(b, dtype="<f8").reshape(shape)
 
 
+def _body(b: Dict[str, Any]) -> Dict[str, Any]:
+    """One entry of ``summary.json``'s ``bodies`` with its force vectors as arrays."""
+    out = dict(b)
+    for key in ("load", "reaction", "contact_force"):
+        out[key] = np.array(out[key], dtype=float)
+    return out
+
+
 def _totals(t: Dict[str, Any]) -> Dict[str, Any]:
     """One entry of ``summary.json``'s ``contact_totals`` with its vectors as arrays."""
     out = dict(t)
@@ -53,6 +61,14 @@ class Result:
       ``max_pressure`` (Pa, 0 without contact), ``max_pressure_node`` and
       ``max_pressure_at`` (its reference coordinates, m; both ``None`` without contact).
       The vectors are numpy arrays of d components;
+    - ``body`` (N): the body of each node, the bodies being the connected components of
+      the mesh numbered by their smallest node (−1 at a node in no cell); ``bodies``: one
+      dict per body, the ``bodies`` of ``summary.json``: ``nodes``, ``cells``, ``regions``
+      and ``parts`` (the names of the cell regions and boundary parts on it), the resultant
+      ``load`` (external loads), ``reaction`` (supports) and ``contact_force`` (interface
+      forces: R_i at its contact points, −N_j R_i at its master nodes of a pair), numpy
+      arrays of d components (N; N/m in 2D), whose sum vanishes at equilibrium, and
+      ``imbalance`` (the norm of that sum over the largest of the three);
     - on a mesh whose unused nodes :meth:`Mesh.from_arrays` dropped, the nodal arrays
       (``points``, ``displacement``, ``reactions``), ``cells`` and ``contact["node"]`` use
       the numbering of the points given, with NaN rows at the dropped nodes;
@@ -92,11 +108,13 @@ class Result:
         self.contact_totals: List[Dict[str, Any]] = [
             _totals(t) for t in self.summary["contact_totals"]
         ]
+        self.bodies: List[Dict[str, Any]] = [_body(b) for b in self.summary["bodies"]]
         d = self.dim
         self.points = _f64(native.points(), -1, d)
         self.cells = np.frombuffer(native.cells(), dtype="<i8").reshape(-1, d + 1)
         self.displacement = _f64(native.displacement(), -1, d)
         self.reactions = _f64(native.reactions(), -1, d)
+        self.body = np.frombuffer(native.body(), dtype="<i8")
         fields = {name: (k, b) for name, k, b in native.cell_fields()}
         self.strain = _f64(fields["strain"][1], -1, 3, 3)
         self.stress = _f64(fields["stress"][1], -1, 3, 3)
@@ -130,6 +148,9 @@ class Result:
         self.points = mesh.points
         self.displacement = expand(self.displacement)
         self.reactions = expand(self.reactions)
+        body = np.full(n, -1, dtype=np.int64)
+        body[node_map] = self.body
+        self.body = body
         self.cells = node_map[self.cells]
         self.contact["node"] = node_map[self.contact["node"]]
 

@@ -89,7 +89,7 @@ impl fmt::Display for NormalLaw {
                 s(c.c_nu)
             ),
             NormalLaw::Signorini => {
-                write!(f, "Signorini condition u_ν ≤ g (rigid foundation)")
+                write!(f, "Signorini condition u_ν ≤ g (no penetration)")
             }
             NormalLaw::Custom(law) => write!(
                 f,

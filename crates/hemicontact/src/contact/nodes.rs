@@ -428,10 +428,11 @@ fn obstacle_points(
 }
 
 /// Appends the points of the slave boundary `b` paired with the master part `master`: one
-/// per node of `incidence` (sorted (node, facet) pairs) not `excluded` and not separated
-/// from the master surface, weighted by all its facets, with the normal, gap (in the
-/// master's gap unit), facet nodes
-/// and shape functions of its closest-point projection ([`super::pairing::pair`]).
+/// per node of `incidence` (sorted (node, facet) pairs) not `excluded`, not a node of the
+/// master part too (a crack's tip, which joins its two faces) and not separated from the
+/// master surface, weighted by all its facets, with the normal, gap (in the master's gap
+/// unit), facet nodes and shape functions of its closest-point projection
+/// ([`super::pairing::pair`]).
 fn paired_points(
     out: &mut ContactNodes,
     mesh: &Mesh,
@@ -444,12 +445,20 @@ fn paired_points(
     use super::pairing::{pair, Pairing};
     let d = mesh.dim();
     let master_facets: Vec<usize> = mesh.part_facets(master.part).collect();
+    // A node of both parts (the tip of a crack whose two faces are the parts) joins them:
+    // no contact point there.
+    let mut on_master = vec![false; mesh.n_nodes()];
+    for &f in &master_facets {
+        for &v in mesh.facet(f) {
+            on_master[v as usize] = true;
+        }
+    }
     let n_before = out.node.len();
     out.master.resize(n_before, [u32::MAX; 3]);
     out.master_shape.resize(n_before, [0.0; 3]);
     for around in incidence.chunk_by(|a, b| a.0 == b.0) {
         let v = around[0].0;
-        if excluded[v as usize] {
+        if excluded[v as usize] || on_master[v as usize] {
             continue;
         }
         let projection = match pair(mesh, &master_facets, v) {

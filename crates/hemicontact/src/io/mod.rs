@@ -6,6 +6,7 @@
 //! place as a unit).
 
 pub mod atomic;
+pub mod bodies;
 pub mod contact_totals;
 pub mod csv;
 pub mod msh;

@@ -122,6 +122,9 @@ pub struct Summary {
     /// entries: resultant interface force, counts, contact length or area, peak pressure
     /// ([`super::contact_totals::contact_totals`]).
     pub contact_totals: Vec<super::contact_totals::ContactTotals>,
+    /// The forces on each body of the mesh (its connected components, by smallest node):
+    /// loads, reactions and interface forces, and their balance ([`super::bodies`]).
+    pub bodies: Vec<super::bodies::BodySummary>,
     /// Number of cells where the locking penalty acts (Q(ε) > 0).
     pub locked_cells: usize,
     /// Largest |tr ε| over the cells.
@@ -214,6 +217,7 @@ impl Summary {
             contact_stick: cert.n_stick,
             contact_slip: cert.n_slip,
             contact_totals: super::contact_totals::contact_totals(problem, &solution.contact),
+            bodies: super::bodies::bodies(problem, solution),
             locked_cells,
             max_abs_trace_strain,
             uniqueness: crate::solver::uniqueness::evaluate(problem, settings),

@@ -1,7 +1,9 @@
 //! The interface along each contact part Γ_C of a 2D solution: contact pressure p, the
 //! magnitude of the friction traction ‖σ_τ‖ and the friction bound F (Pa) against the arc
 //! length s (m) along the part, with a band showing each point's state (separated, contact
-//! without friction, stick, slip). One panel per contact part, side by side.
+//! without friction, stick, slip). One panel per contact part, side by side. For a contact
+//! pair, the panel also shows the pressure on the master side ([`master_pressure`]), at
+//! the master nodes along the slave side: action = reaction, seen from both bodies.
 //!
 //! The values are the contact results of the solution (the columns `pressure`, `bound` and
 //! the friction traction of `contact.csv`). A part is walked along its boundary edges from
@@ -19,6 +21,7 @@ use std::collections::HashMap;
 const DARK: Rgb = [30, 30, 30];
 const BLUE: Rgb = [31, 119, 180];
 const ORANGE: Rgb = [230, 120, 20];
+const GREY: Rgb = [120, 120, 120];
 
 /// The state of a contact point as the band shows it, with its colour and name.
 pub fn state_of(c: &ContactResult) -> (Rgb, &'static str) {
@@ -133,6 +136,94 @@ pub fn traction_floor(solution: &Solution) -> f64 {
         .map_or(0.0, |s| 1e-9 * s.stress.abs())
 }
 
+/// The pressure on the master side of a pair (contact boundary `b` with `against`), at
+/// the master part's nodes that lie along the slave side: `(s, p_m)` with s the arc length
+/// of the node's closest point on the slave chain `al` and
+/// `p_m = Σ_i N_{i,m} p_i w_i / w_m`, the slave points' normal forces spread onto the
+/// master node m with the shape functions N_{i,m} of their projections, over m's lumped
+/// weight `w_m` on the master part. Empty for a boundary without a pair.
+pub fn master_pressure(
+    problem: &Problem,
+    solution: &Solution,
+    b: usize,
+    al: &Along,
+) -> Vec<(f64, f64)> {
+    let Some(master) = problem.contact[b].against else {
+        return Vec::new();
+    };
+    let Ok(points) = problem.contact_nodes() else {
+        return Vec::new();
+    };
+    let mesh = &problem.mesh;
+    let d = mesh.dim();
+    let index: HashMap<(u32, usize), usize> = (0..points.len())
+        .map(|i| ((points.node[i], points.boundary[i] as usize), i))
+        .collect();
+    let mut force: HashMap<u32, f64> = HashMap::new();
+    for &k in &al.rows {
+        let c = &solution.contact[k];
+        let Some(&i) = index.get(&(c.node, c.boundary)) else {
+            continue;
+        };
+        let (len, nodes, coef) = points.stencil(d, i);
+        for a in 1..len {
+            *force.entry(nodes[a]).or_default() -= coef[a] * c.pressure * c.weight;
+        }
+    }
+    let mut weight: HashMap<u32, f64> = HashMap::new();
+    for f in mesh.part_facets(master.part) {
+        let (measure, _) = mesh.facet_measure_normal(f);
+        for &v in mesh.facet(f) {
+            *weight.entry(v).or_default() += measure / d as f64;
+        }
+    }
+    // The slave chain as a polyline in arc length.
+    let xy = |n: u32| {
+        let p = mesh.node(n as usize);
+        [p[0], p.get(1).copied().unwrap_or(0.0)]
+    };
+    let chain: Vec<([f64; 2], f64)> = al
+        .rows
+        .iter()
+        .zip(&al.s)
+        .map(|(&k, &s)| (xy(solution.contact[k].node), s))
+        .collect();
+    if chain.len() < 2 {
+        return Vec::new();
+    }
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    for v in mesh.part_nodes(master.part) {
+        let x = xy(v);
+        // The closest point on the chain; nodes beyond its ends are not along it.
+        let mut best: Option<(f64, f64)> = None;
+        for w in chain.windows(2) {
+            let ((a, sa), (b, sb)) = (w[0], w[1]);
+            let e = [b[0] - a[0], b[1] - a[1]];
+            let len2 = e[0] * e[0] + e[1] * e[1];
+            if len2 == 0.0 {
+                continue;
+            }
+            let t = ((x[0] - a[0]) * e[0] + (x[1] - a[1]) * e[1]) / len2;
+            if !(-1e-9..=1.0 + 1e-9).contains(&t) {
+                continue;
+            }
+            let t = t.clamp(0.0, 1.0);
+            let dist = (x[0] - a[0] - t * e[0]).hypot(x[1] - a[1] - t * e[1]);
+            if best.is_none_or(|(bd, _)| dist < bd) {
+                best = Some((dist, sa + t * (sb - sa)));
+            }
+        }
+        let (Some((_, s)), Some(&w)) = (best, weight.get(&v)) else {
+            continue;
+        };
+        if w > 0.0 {
+            out.push((s, force.get(&v).copied().unwrap_or(0.0) / w));
+        }
+    }
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    out
+}
+
 /// Magnitude of the friction traction ‖σ_τ‖ (Pa) of a contact point.
 fn friction_magnitude(c: &ContactResult) -> f64 {
     let t = c.friction_traction;
@@ -188,7 +279,15 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
     let p: Vec<f64> = pts.iter().map(|c| clean(c.pressure)).collect();
     let ft: Vec<f64> = pts.iter().map(|c| clean(friction_magnitude(c))).collect();
     let fb: Vec<f64> = pts.iter().map(|c| clean(c.bound)).collect();
-    let top = p.iter().chain(&ft).chain(&fb).copied().fold(0.0, f64::max);
+    let master = master_pressure(problem, solution, b, &al);
+    let pm: Vec<f64> = master.iter().map(|m| clean(m.1)).collect();
+    let top = p
+        .iter()
+        .chain(&ft)
+        .chain(&fb)
+        .chain(&pm)
+        .copied()
+        .fold(0.0, f64::max);
     let empty = top <= 0.0;
     let y_hi = if empty { 1.0 } else { 1.08 * top };
     let (factor, unit) = si_prefix(if empty { 1.0 } else { top }, "Pa");
@@ -221,6 +320,22 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
             "friction bound F",
         ),
     ];
+    if let (false, Some(m)) = (master.is_empty(), problem.contact[b].against) {
+        entries.insert(
+            1,
+            Entry::new(
+                Swatch::Line {
+                    color: GREY,
+                    width: 1.5,
+                    dashed: true,
+                },
+                format!(
+                    "pressure on the master side {}",
+                    problem.mesh.part_names()[m.part]
+                ),
+            ),
+        );
+    }
     let mut states: Vec<(Rgb, &str)> = Vec::new();
     for c in &pts {
         let st = state_of(c);
@@ -322,6 +437,30 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
             center: q,
             radius: 2.0,
             fill: DARK,
+        });
+    }
+    if !master.is_empty() {
+        let points: Vec<[f64; 2]> = master
+            .iter()
+            .zip(&pm)
+            .map(|(m, v)| [xa.px(m.0), ya.px(*v)])
+            .collect();
+        for q in &points {
+            prims.push(Prim::Polygon {
+                points: vec![
+                    [q[0] - 2.5, q[1] - 2.5],
+                    [q[0] + 2.5, q[1] - 2.5],
+                    [q[0] + 2.5, q[1] + 2.5],
+                    [q[0] - 2.5, q[1] + 2.5],
+                ],
+                fill: GREY,
+            });
+        }
+        prims.push(Prim::Polyline {
+            points,
+            color: GREY,
+            width: 1.5,
+            dashed: true,
         });
     }
     prims.push(Prim::Polyline {

@@ -183,7 +183,7 @@ pub(super) fn assemble(s: Sections, file: &str) -> Result<GmshMesh> {
 
     let cells = read_cells(&src, d, &blocks, &mut notes)?;
     let parts = boundary_parts(&src, d, &cells.cells, &blocks, &mut notes)?;
-    let (coords, node_tags, new_index) = used_nodes(&src, d, &cells.cells)?;
+    let (coords, node_tags, new_index) = used_nodes(&src, d, &cells.cells, &parts, &mut notes)?;
     let dropped = nodes.tags.len() - node_tags.len();
     if dropped > 0 {
         notes.push(format!("{dropped} nodes not used by any cell were dropped"));
@@ -281,11 +281,21 @@ fn bodies_of(d: usize, cells: &[u32], n: usize) -> Vec<u32> {
 /// coordinates (d each), their tags, and the new index of each node of the file (`u32::MAX`
 /// for those dropped).
 ///
+/// Nodes of different bodies may coincide (two bodies meshed apart that touch), and so may
+/// two nodes of one body on coincident facets of two different named boundary parts (the
+/// two faces of a crack, which a note counts).
+///
 /// # Errors
-/// Two used nodes of one body at the same point: an unmerged geometry (the mesh would have
-/// a crack there, its two faces becoming boundary facets). Nodes of different bodies may
-/// coincide (two bodies meshed apart that touch).
-fn used_nodes(src: &Source, d: usize, cells: &[u32]) -> Result<(Vec<f64>, Vec<u64>, Vec<u32>)> {
+/// Two used nodes of one body at the same point that are not on coincident facets of two
+/// different named boundary parts: an unmerged geometry (the mesh would have a crack there,
+/// its two faces becoming boundary facets that no pair of physical groups names).
+fn used_nodes(
+    src: &Source,
+    d: usize,
+    cells: &[u32],
+    parts: &super::parts::BoundaryParts,
+    notes: &mut Vec<String>,
+) -> Result<(Vec<f64>, Vec<u64>, Vec<u32>)> {
     let nodes = src.nodes;
     let mut new_index = vec![u32::MAX; nodes.tags.len()];
     for &v in cells {
@@ -323,27 +333,86 @@ fn used_nodes(src: &Source, d: usize, cells: &[u32]) -> Result<(Vec<f64>, Vec<u6
         .map(|(i, _)| i)
         .collect();
     let same_body = |a: u32, b: u32| body[file_index[a as usize]] == body[file_index[b as usize]];
-    let duplicate = order
+    // The facets of named boundary parts (not `untagged`) at each file node.
+    let mut named: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (f, &p) in parts.facet_part.iter().enumerate() {
+        if parts.part_names[p as usize] != super::UNTAGGED {
+            for &v in &parts.facets[f * d..(f + 1) * d] {
+                named.entry(v).or_default().push(f);
+            }
+        }
+    }
+    // The points of facet f, sorted: two facets with the same points lie on each other.
+    let points_of = |f: usize| {
+        let mut x: Vec<Vec<u64>> = parts.facets[f * d..(f + 1) * d]
+            .iter()
+            .map(|&v| {
+                nodes.coords[v as usize][..d]
+                    .iter()
+                    .map(|c| c.to_bits())
+                    .collect()
+            })
+            .collect();
+        x.sort_unstable();
+        x
+    };
+    // Two faces of a crack: the two nodes on facets of two different named parts that lie
+    // on each other (not merely two parts meeting at an unmerged corner).
+    let crack = |a: u32, b: u32| -> Option<(u16, u16)> {
+        let (fa, fb) = (
+            named.get(&(file_index[a as usize] as u32))?,
+            named.get(&(file_index[b as usize] as u32))?,
+        );
+        fa.iter().find_map(|&f| {
+            let p = parts.facet_part[f];
+            fb.iter()
+                .filter(|&&g| parts.facet_part[g] != p)
+                .find(|&&g| points_of(f) == points_of(g))
+                .map(|&g| {
+                    let q = parts.facet_part[g];
+                    (p.min(q), p.max(q))
+                })
+        })
+    };
+    let mut cracks: Vec<((u16, u16), usize)> = Vec::new();
+    let mut duplicate = None;
+    for run in order
         .chunk_by(|&a, &b| key(a) == key(b))
         .filter(|run| run.len() > 1)
-        .find_map(|run| {
-            run.iter().enumerate().find_map(|(i, &a)| {
-                run[i + 1..]
-                    .iter()
-                    .find(|&&b| same_body(a, b))
-                    .map(|&b| [a.min(b), a.max(b)])
-            })
-        });
+    {
+        for (i, &a) in run.iter().enumerate() {
+            for &b in run[i + 1..].iter().filter(|&&b| same_body(a, b)) {
+                match crack(a, b) {
+                    Some(faces) => match cracks.iter_mut().find(|c| c.0 == faces) {
+                        Some(c) => c.1 += 1,
+                        None => cracks.push((faces, 1)),
+                    },
+                    None => {
+                        duplicate.get_or_insert([a.min(b), a.max(b)]);
+                    }
+                }
+            }
+        }
+    }
     if let Some(w) = duplicate {
         return Err(src.whole(format!(
             "nodes {} and {} of one body are at the same point {:?} (duplicate nodes: the \
              geometry is not merged, which would cut the body; merge duplicates in Gmsh, e.g. \
              with Geometry.Tolerance / `Coherence;`; nodes of two different bodies may \
-             coincide)",
+             coincide, and so may the nodes of a crack's two faces when each face is a \
+             physical group of its own)",
             node_tags[w[0] as usize],
             node_tags[w[1] as usize],
             key(w[0])
         )));
+    }
+    for ((p, q), n) in cracks {
+        notes.push(format!(
+            "{n} pairs of coincident nodes of one body lie on the boundary parts `{}` and \
+             `{}`: the body is cut there (a crack), its two faces free surfaces unless a \
+             `[[contact]]` pair joins them (`against`)",
+            parts.part_names[p as usize], parts.part_names[q as usize]
+        ));
     }
     Ok((coords, node_tags, new_index))
 }
