@@ -209,6 +209,18 @@ fn two_cylinders_half_width_and_peak_pressure_against_hertz() {
     assert!((peak / p0 - 1.0).abs() <= 0.05, "peak {peak} vs Hertz {p0}");
 }
 
+/// Cattaneo's (Mindlin's in 3D) tangential traction at the distance r ≤ a from the centre:
+/// `μp₀ √(1 − r²/a²)` in the slip zone c ≤ r ≤ a, less `(c/a) μp₀ √(1 − r²/c²)` in the stick
+/// zone r < c (Johnson, §7.1), with `mu_p0` = μ p₀ (Pa).
+fn cattaneo(r: f64, a: f64, c: f64, mu_p0: f64) -> f64 {
+    let slip = mu_p0 * (1.0 - r * r / (a * a)).sqrt();
+    if r < c {
+        slip - (c / a) * mu_p0 * (1.0 - r * r / (c * c)).sqrt()
+    } else {
+        slip
+    }
+}
+
 /// The full width `[−1, 1]` of a body from its half `[0, 1]` ([`body`]): the half mirrored
 /// about x = 0 (cells reoriented), the nodes on x = 0 shared. Parts `bottom`, `top` (both
 /// halves) and `sides` (x = ±1).
@@ -366,12 +378,7 @@ fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
         if (xi.abs() - c).abs() <= 1.5 * h || xi.abs() >= a {
             continue;
         }
-        let slip_part = mu * p0 * (1.0 - xi * xi / (a * a)).sqrt();
-        let exact = if xi.abs() < c {
-            slip_part - (c / a) * mu * p0 * (1.0 - xi * xi / (c * c)).sqrt()
-        } else {
-            slip_part
-        };
+        let exact = cattaneo(xi.abs(), a, c, mu * p0);
         let computed = c_pt.friction_traction[0].abs();
         worst = worst.max((computed - exact).abs() / (mu * p0));
     }
@@ -745,12 +752,7 @@ fn cattaneo_mindlin_stick_zone_and_traction_of_two_spheres() {
         if (rho - c).abs() <= 1.5 * h || rho >= a {
             continue;
         }
-        let slip_part = mu * p0 * (1.0 - rho * rho / (a * a)).sqrt();
-        let exact = if rho < c {
-            slip_part - (c / a) * mu * p0 * (1.0 - rho * rho / (c * c)).sqrt()
-        } else {
-            slip_part
-        };
+        let exact = cattaneo(rho, a, c, mu * p0);
         let computed = c_pt.friction_traction[0].abs();
         let err = (computed - exact).abs() / (mu * p0);
         compared += 1;

@@ -427,6 +427,23 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
 /// Two bodies meshed apart in Gmsh whose interface nodes coincide: the reader keeps the
 /// coincident nodes of different bodies (it refuses them inside one body), and the pair
 /// transmits the uniform pressure exactly.
+/// The largest error of a 2D solution against uniform compression by `p` (ν = 0,
+/// `u = (0, −p y/E)`, relative to δ) and of its contact pressures against p (relative).
+fn compression_error(mesh: &Mesh, s: &hemicontact::solver::Solution, p: f64) -> f64 {
+    let mut worst = s
+        .contact
+        .iter()
+        .map(|c| (c.pressure - p).abs() / p)
+        .fold(0.0f64, f64::max);
+    for v in 0..mesh.n_nodes() {
+        let exact = -p / E * mesh.node(v)[1];
+        worst = worst
+            .max((s.u[2 * v + 1] - exact).abs() / DELTA)
+            .max(s.u[2 * v].abs() / DELTA);
+    }
+    worst
+}
+
 #[test]
 fn a_gmsh_mesh_of_two_bodies_with_coincident_interface_nodes_passes_the_patch_test() {
     let path =
@@ -452,17 +469,7 @@ fn a_gmsh_mesh_of_two_bodies_with_coincident_interface_nodes_passes_the_patch_te
     assert!(s.report.converged && s.report.certificate.passes());
     let p = E * DELTA / H;
     let mesh = problem.mesh();
-    let mut worst = s
-        .contact
-        .iter()
-        .map(|c| (c.pressure - p).abs() / p)
-        .fold(0.0f64, f64::max);
-    for v in 0..mesh.n_nodes() {
-        let exact = -p / E * mesh.node(v)[1];
-        worst = worst
-            .max((s.u[2 * v + 1] - exact).abs() / DELTA)
-            .max(s.u[2 * v].abs() / DELTA);
-    }
+    let worst = compression_error(mesh, &s, p);
     println!(
         "two-blocks.msh: {} points, largest relative error {worst:.1e}",
         s.contact.len()
@@ -723,17 +730,7 @@ fn a_crack_closed_by_compression_transmits_the_pressure_exactly() {
         s.report.message
     );
     let p = E * DELTA / H;
-    let mut worst = s
-        .contact
-        .iter()
-        .map(|c| (c.pressure - p).abs() / p)
-        .fold(0.0f64, f64::max);
-    for v in 0..mesh.n_nodes() {
-        let exact = -p / E * mesh.node(v)[1];
-        worst = worst
-            .max((s.u[2 * v + 1] - exact).abs() / DELTA)
-            .max(s.u[2 * v].abs() / DELTA);
-    }
+    let worst = compression_error(&mesh, &s, p);
     println!(
         "crack.msh: {} points ({} nodes on the upper face, 2 tips), largest relative error {worst:.1e}",
         s.contact.len(),
