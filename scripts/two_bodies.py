@@ -59,7 +59,8 @@ printed), ``pressure-cylinders.png``, ``pressure-spheres.png``, ``cattaneo-mindl
 and ``cattaneo-mindlin-spheres.png`` (of the last level) to the output folder. With
 ``--write-meshes`` it writes instead the meshes of the committed scenarios
 (``scenarios/two-cylinders.toml`` at n = 32, ``scenarios/cattaneo-mindlin.toml`` at
-n = 32) as Gmsh 4.1 ASCII files to ``scenarios/meshes/``.
+n = 32, ``scenarios/two-spheres.toml`` at n = 8) as Gmsh 4.1 ASCII files to
+``scenarios/meshes/``.
 """
 
 import argparse
@@ -85,7 +86,7 @@ CATTANEO = {"radius": 20.0, "young": 10.0, "poisson": 0.3, "mu": 0.3, "q": 0.002
 CATTANEO_SPHERES = {"radius": 20.0, "young": 10.0, "poisson": 0.3, "mu": 0.3, "a": 0.1,
                     "shear": 1.8e-4}
 # The levels of the committed scenario files (their meshes: --write-meshes).
-COMMITTED = {"two-cylinders": 32, "cattaneo-mindlin": 32}
+COMMITTED = {"two-cylinders": 32, "cattaneo-mindlin": 32, "two-spheres": 8}
 
 
 def grading_2d(n):
@@ -272,14 +273,16 @@ def to_mesh(arrays):
 
 
 def write_msh(arrays, path):
-    """Writes (points, cells, facets, regions) of a 2D two-body mesh as a Gmsh 4.1 ASCII
-    file: one discrete surface per region (physical surface of the region's name), one
-    discrete curve per boundary part (physical line of the part's name). Node tags are the
-    indices plus one, in order, so the file's nodes are the mesh's."""
+    """Writes (points, cells, facets, regions) of a two-body mesh as a Gmsh 4.1 ASCII file:
+    one discrete surface (volume in 3D) per region, a physical group of the region's name,
+    one discrete curve (surface) per boundary part, a physical group of the part's name.
+    Node tags are the indices plus one, in order, so the file's nodes are the mesh's."""
     import gmsh
 
     points, cells, facets, regions = arrays
-    xyz = np.column_stack([points, np.zeros(len(points))])
+    dim = points.shape[1]
+    xyz = points if dim == 3 else np.column_stack([points, np.zeros(len(points))])
+    cell_type, facet_type = (2, 1) if dim == 2 else (4, 2)
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
@@ -288,14 +291,16 @@ def write_msh(arrays, path):
             body_cells = cells[own]
             nodes = np.unique(body_cells)
             assert np.array_equal(nodes, np.arange(nodes[0], nodes[-1] + 1)), "bodies apart"
-            gmsh.model.addDiscreteEntity(2, tag)
-            gmsh.model.mesh.addNodes(2, tag, (nodes + 1).tolist(), xyz[nodes].ravel().tolist())
-            gmsh.model.mesh.addElementsByType(tag, 2, [], (body_cells + 1).ravel().tolist())
-            gmsh.model.addPhysicalGroup(2, [tag], name=name)
+            gmsh.model.addDiscreteEntity(dim, tag)
+            gmsh.model.mesh.addNodes(dim, tag, (nodes + 1).tolist(), xyz[nodes].ravel().tolist())
+            gmsh.model.mesh.addElementsByType(
+                tag, cell_type, [], (body_cells + 1).ravel().tolist()
+            )
+            gmsh.model.addPhysicalGroup(dim, [tag], name=name)
         for tag, (name, lines) in enumerate(facets.items(), start=1):
-            gmsh.model.addDiscreteEntity(1, tag)
-            gmsh.model.mesh.addElementsByType(tag, 1, [], (lines + 1).ravel().tolist())
-            gmsh.model.addPhysicalGroup(1, [tag], name=name)
+            gmsh.model.addDiscreteEntity(dim - 1, tag)
+            gmsh.model.mesh.addElementsByType(tag, facet_type, [], (lines + 1).ravel().tolist())
+            gmsh.model.addPhysicalGroup(dim - 1, [tag], name=name)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
         gmsh.option.setNumber("Mesh.Binary", 0)
         gmsh.write(str(path))
@@ -870,7 +875,12 @@ def run_cattaneo_spheres(levels, out):
 def write_meshes():
     """The meshes of the committed scenarios, written to scenarios/meshes/."""
     folder = ROOT / "scenarios" / "meshes"
-    for stem, build in (("two-cylinders", cylinders_mesh), ("cattaneo-mindlin", cattaneo_mesh)):
+    meshes = (
+        ("two-cylinders", cylinders_mesh),
+        ("cattaneo-mindlin", cattaneo_mesh),
+        ("two-spheres", spheres_mesh),
+    )
+    for stem, build in meshes:
         path = folder / f"{stem}.msh"
         write_msh(build(COMMITTED[stem]), path)
         print(f"wrote {path.relative_to(ROOT)} (n = {COMMITTED[stem]}, "

@@ -85,7 +85,7 @@ fn agrees_with_direct(file: &str) {
 }
 
 /// The scenarios compared below: every file of `scenarios/`.
-const SCENARIOS: [&str; 17] = [
+const SCENARIOS: [&str; 18] = [
     "cattaneo-mindlin.toml",
     "fault.toml",
     "half-disc.toml",
@@ -103,6 +103,7 @@ const SCENARIOS: [&str; 17] = [
     "punch-on-block.toml",
     "sliding-indenter.toml",
     "two-cylinders.toml",
+    "two-spheres.toml",
 ];
 
 #[test]
@@ -143,6 +144,7 @@ agreement! {
     paper3d => "paper3d.toml",
     sliding_indenter => "sliding-indenter.toml",
     two_cylinders => "two-cylinders.toml",
+    two_spheres => "two-spheres.toml",
 }
 
 /// `scenarios/paper3d.toml` at a small resolution with `[solver.petsc] options`.
