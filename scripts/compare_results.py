@@ -233,7 +233,9 @@ def compare_summary(result, rel, base, head):
         }:
             # The same scenario file name, run from each revision's own folder.
             continue
-        if not vb and any(group == f or group.startswith(f + ".") for f in NEW_FIELDS):
+        if not vb and any(
+            group == f or group.startswith((f + ".", f + "[")) for f in NEW_FIELDS
+        ):
             if group not in result.added:
                 result.added.append(group)
             continue

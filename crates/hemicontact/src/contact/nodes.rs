@@ -432,7 +432,7 @@ fn obstacle_points(
 /// master part too (a crack's tip, which joins its two faces) and not separated from the
 /// master surface, weighted by all its facets, with the normal, gap (in the master's gap
 /// unit), facet nodes and shape functions of its closest-point projection
-/// ([`super::pairing::pair`]).
+/// ([`super::pairing::MasterSurface::pair`]).
 fn paired_points(
     out: &mut ContactNodes,
     mesh: &Mesh,
@@ -442,7 +442,7 @@ fn paired_points(
     incidence: &[(u32, u32)],
     excluded: &[bool],
 ) -> crate::Result<()> {
-    use super::pairing::{pair, Pairing};
+    use super::pairing::{MasterSurface, Pairing};
     let d = mesh.dim();
     let master_facets: Vec<usize> = mesh.part_facets(master.part).collect();
     // A node of both parts (the tip of a crack whose two faces are the parts) joins them:
@@ -453,6 +453,7 @@ fn paired_points(
             on_master[v as usize] = true;
         }
     }
+    let surface = MasterSurface::new(mesh, &master_facets);
     let n_before = out.node.len();
     out.master.resize(n_before, [u32::MAX; 3]);
     out.master_shape.resize(n_before, [0.0; 3]);
@@ -461,7 +462,7 @@ fn paired_points(
         if excluded[v as usize] || on_master[v as usize] {
             continue;
         }
-        let projection = match pair(mesh, &master_facets, v) {
+        let projection = match surface.pair(v) {
             Ok(Pairing::Paired(p)) => p,
             Ok(Pairing::Separated) => continue,
             Err(message) => {

@@ -143,40 +143,233 @@ fn point_of(mesh: &Mesh, f: usize, shape: &[f64; 3]) -> [f64; 3] {
     c
 }
 
+/// The master facets of a pair, with a uniform grid over their bounding boxes, built once
+/// per contact boundary: a slave node's candidate facets are found by searching the grid
+/// outwards from the node's cell until no unexamined facet can be nearer than the nearest
+/// one onto which it projects, so that pairing n slave nodes costs about n times the
+/// facets near a node rather than n times all of them. The outcome is that of examining
+/// every facet (see [`MasterSurface::pair`]).
+#[derive(Clone, Debug)]
+pub struct MasterSurface<'a> {
+    mesh: &'a Mesh,
+    /// The master facets (indices into the mesh's facets).
+    facets: Vec<usize>,
+    /// The largest facet size (the length of a 2D facet, √area of a 3D one) (m): the scale
+    /// of the tolerances.
+    size: f64,
+    /// The grid's lower corner (m), cell size (m) and cells per axis.
+    lo: [f64; 3],
+    cell: f64,
+    dims: [usize; 3],
+    /// The facets (positions in `facets`) of each grid cell, in compressed rows.
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+/// Rings of grid cells searched around a slave node before every facet is examined
+/// instead (a node beyond the master surface's edge or far from it has no near facet to
+/// stop the search).
+const RINGS: i64 = 3;
+
+impl<'a> MasterSurface<'a> {
+    /// The master surface of the facets `master` of `mesh` (indices into its facets).
+    pub fn new(mesh: &'a Mesh, master: &[usize]) -> Self {
+        let d = mesh.dim();
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        let mut size = 0.0f64;
+        let mut mean = 0.0;
+        let boxes: Vec<([f64; 3], [f64; 3])> = master
+            .iter()
+            .map(|&f| {
+                size = size.max(mesh.facet_measure_normal(f).0.powf(1.0 / (d - 1) as f64));
+                let mut b = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+                for &v in mesh.facet(f) {
+                    for (k, &x) in mesh.node(v as usize).iter().enumerate() {
+                        b.0[k] = b.0[k].min(x);
+                        b.1[k] = b.1[k].max(x);
+                    }
+                }
+                for k in 0..d {
+                    lo[k] = lo[k].min(b.0[k]);
+                    hi[k] = hi[k].max(b.1[k]);
+                    mean += (b.1[k] - b.0[k]) / (d * master.len()) as f64;
+                }
+                b
+            })
+            .collect();
+        if master.is_empty() {
+            lo = [0.0; 3];
+            hi = [0.0; 3];
+        }
+        // Cells about the mean facet extent, no more than a few per facet.
+        let extent = (0..d).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        let mut cell = if mean > 0.0 { mean } else { extent.max(1.0) };
+        let count = |cell: f64| -> ([usize; 3], usize) {
+            let mut dims = [1usize; 3];
+            for k in 0..d {
+                dims[k] = (((hi[k] - lo[k]) / cell).floor() as usize + 1).min(1 << 20);
+            }
+            (dims, dims.iter().product())
+        };
+        while count(cell).1 > 8 * master.len() + 64 {
+            cell *= 2.0;
+        }
+        let dims = count(cell).0;
+        let index = |x: f64, k: usize| (((x - lo[k]) / cell).floor() as usize).min(dims[k] - 1);
+        let flat = |i: [usize; 3]| (i[2] * dims[1] + i[1]) * dims[0] + i[0];
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); count(cell).1];
+        for (pos, b) in boxes.iter().enumerate() {
+            let mut from = [0usize; 3];
+            let mut to = [0usize; 3];
+            for k in 0..d {
+                from[k] = index(b.0[k], k);
+                to[k] = index(b.1[k], k);
+            }
+            for i2 in from[2]..=to[2] {
+                for i1 in from[1]..=to[1] {
+                    for i0 in from[0]..=to[0] {
+                        lists[flat([i0, i1, i2])].push(pos as u32);
+                    }
+                }
+            }
+        }
+        let mut start = Vec::with_capacity(lists.len() + 1);
+        let mut items = Vec::new();
+        start.push(0);
+        for l in &lists {
+            items.extend_from_slice(l);
+            start.push(items.len() as u32);
+        }
+        MasterSurface {
+            mesh,
+            facets: master.to_vec(),
+            size,
+            lo,
+            cell,
+            dims,
+            start,
+            items,
+        }
+    }
+
+    /// The candidate of facet position `pos` for the slave node at `x`.
+    fn candidate(&self, pos: usize, x: &[f64; 3]) -> Candidate {
+        let f = self.facets[pos];
+        let (shape, inside) = closest_on_facet(self.mesh, f, x);
+        let point = point_of(self.mesh, f, &shape);
+        Candidate {
+            facet: f,
+            shape,
+            inside,
+            point,
+            distance: (0..3)
+                .map(|k| (x[k] - point[k]).powi(2))
+                .sum::<f64>()
+                .sqrt(),
+        }
+    }
+
+    /// The candidates of the slave node at `x` that decide its pairing: every facet within
+    /// the distance of the nearest one onto which x projects (plus the tolerance `tol`),
+    /// found ring by ring in the grid; every facet when no ring within [`RINGS`] holds such
+    /// a facet.
+    fn candidates(&self, x: &[f64; 3], tol: f64) -> Vec<Candidate> {
+        let d = self.mesh.dim();
+        let mut c = [0i64; 3];
+        for k in 0..d {
+            c[k] = ((x[k] - self.lo[k]) / self.cell).floor() as i64;
+        }
+        let mut seen = std::collections::HashSet::new();
+        let mut out: Vec<(u32, Candidate)> = Vec::new();
+        for r in 0..=RINGS {
+            // The cells of the block |i − c| ≤ r (within the grid) on its shell.
+            let mut from = [0i64; 3];
+            let mut to = [0i64; 3];
+            let mut whole = true;
+            for k in 0..3 {
+                let n = self.dims[k] as i64;
+                from[k] = (c[k] - r).max(0);
+                to[k] = (c[k] + r).min(n - 1);
+                whole &= c[k] - r <= 0 && c[k] + r >= n - 1;
+            }
+            for i2 in from[2]..=to[2] {
+                for i1 in from[1]..=to[1] {
+                    for i0 in from[0]..=to[0] {
+                        let i = [i0, i1, i2];
+                        if (0..d).all(|k| (i[k] - c[k]).abs() < r) {
+                            continue;
+                        }
+                        let flat = ((i2 as usize * self.dims[1] + i1 as usize) * self.dims[0])
+                            + i0 as usize;
+                        let (a, b) = (self.start[flat] as usize, self.start[flat + 1] as usize);
+                        for &pos in &self.items[a..b] {
+                            if seen.insert(pos) {
+                                out.push((pos, self.candidate(pos as usize, x)));
+                            }
+                        }
+                    }
+                }
+            }
+            // No unexamined facet is nearer than r cells.
+            let reach = r as f64 * self.cell;
+            let nearest_inside = out
+                .iter()
+                .filter(|c| c.1.inside)
+                .map(|c| c.1.distance)
+                .fold(f64::INFINITY, f64::min);
+            if whole || nearest_inside + 2.0 * tol < reach {
+                // In the facets' order, as a scan of every facet would list them.
+                out.sort_unstable_by_key(|c| c.0);
+                return out.into_iter().map(|c| c.1).collect();
+            }
+        }
+        (0..self.facets.len())
+            .map(|pos| self.candidate(pos, x))
+            .collect()
+    }
+
+    /// Pairs the node `slave` of the mesh with its closest point on the master surface;
+    /// see the module documentation.
+    ///
+    /// # Errors
+    /// The reason, in words naming the node, when two master facets are equally near with
+    /// distinct closest points (an ambiguous pairing), or when the surface has no facets.
+    pub fn pair(&self, slave: u32) -> std::result::Result<Pairing, String> {
+        let mesh = self.mesh;
+        let d = mesh.dim();
+        let mut x = [0.0; 3];
+        x[..d].copy_from_slice(mesh.node(slave as usize));
+        if self.facets.is_empty() {
+            return Err(format!("node {slave}: the master part has no facets"));
+        }
+        let tol = TOLERANCE * self.size.max(f64::MIN_POSITIVE);
+        let candidates = self.candidates(&x, tol);
+        decide(mesh, slave, &x, &candidates, tol)
+    }
+}
+
 /// Pairs the node `slave` of `mesh` with its closest point on the master facets `master`
-/// (indices into the mesh's facets); see the module documentation.
+/// (indices into the mesh's facets); see the module documentation. Builds the
+/// [`MasterSurface`] for this one node: pair many nodes through one surface instead.
 ///
 /// # Errors
-/// The reason, in words naming the node, when two master facets are equally near with
-/// distinct closest points (an ambiguous pairing), or when `master` is empty.
+/// Those of [`MasterSurface::pair`].
 pub fn pair(mesh: &Mesh, master: &[usize], slave: u32) -> std::result::Result<Pairing, String> {
-    let d = mesh.dim();
-    let mut x = [0.0; 3];
-    x[..d].copy_from_slice(mesh.node(slave as usize));
-    if master.is_empty() {
-        return Err(format!("node {slave}: the master part has no facets"));
-    }
-    let dist = |c: &[f64; 3]| ((0..3).map(|k| (x[k] - c[k]) * (x[k] - c[k])).sum::<f64>()).sqrt();
-    // Every facet's closest point; the size of the master facets for the tolerances.
-    let mut size = 0.0f64;
-    let candidates: Vec<Candidate> = master
-        .iter()
-        .map(|&f| {
-            size = size.max(mesh.facet_measure_normal(f).0.powf(1.0 / (d - 1) as f64));
-            let (shape, inside) = closest_on_facet(mesh, f, &x);
-            let point = point_of(mesh, f, &shape);
-            Candidate {
-                facet: f,
-                shape,
-                inside,
-                point,
-                distance: dist(&point),
-            }
-        })
-        .collect();
+    MasterSurface::new(mesh, master).pair(slave)
+}
+
+/// The pairing of the slave node `slave` at `x` from its candidate facets (those that
+/// decide it: [`MasterSurface::candidates`]), `tol` the tolerance of distances and points.
+fn decide(
+    mesh: &Mesh,
+    slave: u32,
+    x: &[f64; 3],
+    candidates: &[Candidate],
+    tol: f64,
+) -> std::result::Result<Pairing, String> {
     let apart =
         |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
-    let tol = TOLERANCE * size.max(f64::MIN_POSITIVE);
     let nearest = |inside_only: bool| {
         candidates
             .iter()
@@ -217,7 +410,7 @@ pub fn pair(mesh: &Mesh, master: &[usize], slave: u32) -> std::result::Result<Pa
             ));
         }
         let (_, n) = mesh.facet_measure_normal(best.facet);
-        return Ok(Pairing::Paired(projection(mesh, best, n, &x)));
+        return Ok(Pairing::Paired(projection(mesh, best, n, x)));
     }
     // No orthogonal projection: above a corner shared by master facets, or beyond the edge.
     let Some(best) = nearest(false) else {
@@ -242,7 +435,7 @@ pub fn pair(mesh: &Mesh, master: &[usize], slave: u32) -> std::result::Result<Pa
         return Ok(Pairing::Separated);
     }
     let n = n.map(|v| v / len);
-    Ok(Pairing::Paired(projection(mesh, best, n, &x)))
+    Ok(Pairing::Paired(projection(mesh, best, n, x)))
 }
 
 /// The projection of the slave node at `x` on its closest point `c`, with the master
@@ -414,5 +607,75 @@ mod tests {
                 n_of(v)
             );
         }
+    }
+
+    /// The grid search decides every slave node as examining every facet does: a curved
+    /// 3D master surface (a box's top lifted onto a sphere) under a finer, shifted and
+    /// wider slave surface (some of its nodes beyond the master's edge, some above it far
+    /// from its facets), each slave node paired through [`MasterSurface::pair`] and through
+    /// [`decide`] over all facets.
+    #[test]
+    fn the_grid_search_pairs_as_the_scan_of_every_facet() {
+        use crate::mesh::generate::{cuboid, BoxSpec, CutPattern};
+        let block = |origin: [f64; 3], size: [f64; 3], n: usize| {
+            cuboid(&BoxSpec {
+                origin,
+                size,
+                n: [n, n, 2],
+                pattern: CutPattern::Uniform,
+                progression: [1.0; 3],
+            })
+            .unwrap()
+        };
+        let lower = block([0.0, 0.0, -0.5], [1.0, 1.0, 0.5], 7);
+        let upper = block([-0.2, -0.1, 0.05], [1.5, 1.3, 0.5], 11);
+        let offset = lower.n_nodes() as u32;
+        let mut coords = lower.coords().to_vec();
+        for x in coords.chunks_exact_mut(3) {
+            x[2] -= 0.1 * (x[0] * x[0] + x[1] * x[1]) * (1.0 + 2.0 * x[2]);
+        }
+        coords.extend_from_slice(upper.coords());
+        let mut cells = lower.cells().to_vec();
+        cells.extend(upper.cells().iter().map(|&v| v + offset));
+        let part = |m: &Mesh, name: &str, shift: u32| -> Vec<u32> {
+            let p = m.part_index(name).unwrap();
+            m.part_facets(p)
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .collect()
+        };
+        let mesh = Mesh::from_parts(
+            3,
+            coords,
+            cells,
+            &[
+                ("lower_top".into(), part(&lower, "top", 0)),
+                ("upper_bottom".into(), part(&upper, "bottom", offset)),
+            ],
+        )
+        .unwrap();
+        let master = facets_of(&mesh, "lower_top");
+        let surface = MasterSurface::new(&mesh, &master);
+        let slaves = mesh.part_nodes(mesh.part_index("upper_bottom").unwrap());
+        let (mut paired, mut separated) = (0, 0);
+        for &v in &slaves {
+            let mut x = [0.0; 3];
+            x.copy_from_slice(mesh.node(v as usize));
+            let tol = TOLERANCE * surface.size;
+            let all: Vec<Candidate> = (0..master.len())
+                .map(|pos| surface.candidate(pos, &x))
+                .collect();
+            let scan = decide(&mesh, v, &x, &all, tol);
+            let grid = surface.pair(v);
+            assert_eq!(grid, scan, "node {v}");
+            match grid {
+                Ok(Pairing::Paired(_)) => paired += 1,
+                _ => separated += 1,
+            }
+        }
+        // Both outcomes were exercised.
+        assert!(
+            paired > 50 && separated > 10,
+            "{paired} paired, {separated} separated"
+        );
     }
 }
