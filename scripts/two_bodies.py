@@ -59,8 +59,8 @@ printed), ``pressure-cylinders.png``, ``pressure-spheres.png``, ``cattaneo-mindl
 and ``cattaneo-mindlin-spheres.png`` (of the last level) to the output folder. With
 ``--write-meshes`` it writes instead the meshes of the committed scenarios
 (``scenarios/two-cylinders.toml`` at n = 32, ``scenarios/cattaneo-mindlin.toml`` at
-n = 32, ``scenarios/two-spheres.toml`` at n = 8) as Gmsh 4.1 ASCII files to
-``scenarios/meshes/``.
+n = 32, ``scenarios/two-spheres.toml`` at n = 8, ``scenarios/cattaneo-spheres.toml`` at
+n = 6) as Gmsh 4.1 ASCII files to ``scenarios/meshes/``.
 """
 
 import argparse
@@ -86,7 +86,8 @@ CATTANEO = {"radius": 20.0, "young": 10.0, "poisson": 0.3, "mu": 0.3, "q": 0.002
 CATTANEO_SPHERES = {"radius": 20.0, "young": 10.0, "poisson": 0.3, "mu": 0.3, "a": 0.1,
                     "shear": 1.8e-4}
 # The levels of the committed scenario files (their meshes: --write-meshes).
-COMMITTED = {"two-cylinders": 32, "cattaneo-mindlin": 32, "two-spheres": 8}
+COMMITTED = {"two-cylinders": 32, "cattaneo-mindlin": 32, "two-spheres": 8,
+             "cattaneo-spheres": 6}
 
 
 def grading_2d(n):
@@ -879,6 +880,7 @@ def write_meshes():
         ("two-cylinders", cylinders_mesh),
         ("cattaneo-mindlin", cattaneo_mesh),
         ("two-spheres", spheres_mesh),
+        ("cattaneo-spheres", cattaneo_spheres_mesh),
     )
     for stem, build in meshes:
         path = folder / f"{stem}.msh"

@@ -363,6 +363,7 @@ fn each_entry_is_counted_by_one_process() {
                     ids.clone(),
                     &part_dofs,
                     own.clone(),
+                    own.len(),
                     sizes,
                     Processes::current(),
                 );
@@ -432,5 +433,190 @@ fn each_entry_is_counted_by_one_process() {
             }
             assert!((dots - dot).abs() <= 1e-13 * dot);
         }
+    }
+}
+
+/// Contact between two bodies on a part of the mesh: a process holds the pairs of its own
+/// slave nodes and, as *ghost points*, the pairs whose slave node is another's but whose
+/// master facet has a node of its own; their other nodes are ghost nodes of its part,
+/// brought in by the pairs' couplings. Then the part's contact assembly gives its own
+/// nodes' gradient and its own rows of the Hessian of the whole, and the energies of the
+/// points each counts add up to the whole energy. Checked on the punch on a block (exact
+/// Coulomb friction between non-matching meshes) for two partitions that cut the pairs
+/// (scattered nodes, and the slave nodes apart from all others; 3 parts each), at a
+/// displacement that presses some points and separates others.
+#[test]
+fn a_part_assembles_its_rows_of_the_contact_pairs() {
+    use hemicontact::assembly::contact::{contact_slots, ContactAssembler, ContactData};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let problem = Scenario::from_file(&root.join("scenarios/punch-on-block.toml"))
+        .unwrap()
+        .into_problem()
+        .unwrap();
+    let mesh = problem.mesh();
+    let d = mesh.dim();
+    let contact = problem.contact_nodes().unwrap();
+    assert!(contact.has_pairs() && contact.len() > 20);
+    let n = contact.len();
+    // The point data, different at every point: bounds, linear terms, multipliers.
+    let wave = |i: usize, a: f64| 1.0 + 0.5 * (a * i as f64).sin();
+    let bound: Vec<f64> = (0..n).map(|i| 1e3 * wave(i, 1.3)).collect();
+    let linear: Vec<[f64; 2]> = (0..n).map(|i| [30.0 * wave(i, 0.7), 0.0]).collect();
+    let pressure: Vec<f64> = (0..n).map(|i| 2e3 * wave(i, 2.1)).collect();
+    let traction: Vec<[f64; 2]> = (0..n).map(|i| [1e2 * wave(i, 0.4), 0.0]).collect();
+    let stiffness: Vec<f64> = (0..n).map(|i| 1e7 * wave(i, 0.9)).collect();
+    let penalty: Vec<f64> = (0..n).map(|i| 1e8 * wave(i, 1.7)).collect();
+    // The punch pushed into the block and sheared, unevenly.
+    let u: Vec<f64> = (0..d * mesh.n_nodes())
+        .map(|k| {
+            let x = mesh.node(k / d);
+            let v = (k / d) as u32;
+            let punch = if x[1] > 0.5 + 1e-9 || contact.node.contains(&v) {
+                1.0
+            } else {
+                0.0
+            };
+            1e-4 * (0.3 * (7.0 * x[0]).sin() + punch * [0.5, (23.0 * x[0]).sin()][k % d])
+        })
+        .collect();
+    let coupled = mesh.clone().with_couplings(contact.couplings(d));
+    let dofs = problem.dof_map();
+    let pattern = SystemPattern::new(&coupled, &dofs).unwrap();
+    let slots = contact_slots(&contact, d, dofs.equations(), &pattern);
+    let data = ContactData {
+        bound: &bound,
+        linear: &linear,
+        pressure: &pressure,
+        traction: &traction,
+    };
+    let (mut g, mut h) = (vec![0.0; u.len()], vec![0.0; pattern.nnz()]);
+    let whole = ContactAssembler {
+        dim: d,
+        nodes: &contact,
+        boundaries: problem.contact(),
+        stiffness: &stiffness,
+        penalty: &penalty,
+        responses: &[],
+    };
+    let e = whole.assemble(&u, &data, &mut g, Some((&mut h, &slots)));
+    let (gs, hs) = (
+        g.iter().fold(0.0f64, |m, x| m.max(x.abs())),
+        h.iter().fold(0.0f64, |m, x| m.max(x.abs())),
+    );
+    assert!(e > 0.0 && gs > 0.0 && hs > 0.0);
+    let pressed = (0..n)
+        .filter(|&i| whole.state(&u, i, &data).pressure > 0.0)
+        .count();
+    assert!(
+        pressed > 0 && pressed < n,
+        "{pressed} of {n} points pressed"
+    );
+    let parts = 3;
+    let scattered: Vec<u32> = (0..mesh.n_nodes()).map(|v| (v * 7 % 3) as u32).collect();
+    // The punch's contact nodes on one process, the rest shared by the other two: every
+    // pair is cut.
+    let apart: Vec<u32> = (0..mesh.n_nodes() as u32)
+        .map(|v| match contact.node.contains(&v) {
+            true => 0,
+            false => 1 + v % 2,
+        })
+        .collect();
+    for partition in [
+        Partition::from_ranks(scattered, parts),
+        Partition::from_ranks(apart, parts),
+    ] {
+        let (mut energy, mut ghosts, mut counted) = (0.0, 0, vec![0; n]);
+        for rank in 0..parts {
+            let sub = Subdomain::new(&coupled, partition.clone(), rank);
+            let (part, ids) = sub.local_mesh(&coupled).unwrap();
+            let own = sub.nodes().len();
+            let mut local_of = vec![u32::MAX; mesh.n_nodes()];
+            for (l, &v) in ids.iter().enumerate() {
+                local_of[v as usize] = l as u32;
+            }
+            let (points, n_own) = sub.contact_points(&contact, d);
+            ghosts += points.len() - n_own;
+            for &i in &points[..n_own] {
+                counted[i as usize] += 1;
+            }
+            // Every node of every held point's stencil is in the part.
+            let held = contact.restricted(&points, points.len() - n_own, |v| {
+                assert_ne!(
+                    local_of[v as usize],
+                    u32::MAX,
+                    "node {v} not in part {rank}"
+                );
+                local_of[v as usize]
+            });
+            assert_eq!(held.owned(), n_own);
+            let part = part.with_couplings(held.couplings(d));
+            let part_dofs = dofs.restricted(&ids);
+            let part_pattern = SystemPattern::new(&part, &part_dofs).unwrap();
+            let part_slots = contact_slots(&held, d, part_dofs.equations(), &part_pattern);
+            let pick =
+                |all: &[f64]| -> Vec<f64> { points.iter().map(|&i| all[i as usize]).collect() };
+            let pick2 = |all: &[[f64; 2]]| -> Vec<[f64; 2]> {
+                points.iter().map(|&i| all[i as usize]).collect()
+            };
+            let (b, l, p, t) = (
+                pick(&bound),
+                pick2(&linear),
+                pick(&pressure),
+                pick2(&traction),
+            );
+            let (k, r) = (pick(&stiffness), pick(&penalty));
+            let part_data = ContactData {
+                bound: &b,
+                linear: &l,
+                pressure: &p,
+                traction: &t,
+            };
+            let u_part: Vec<f64> = (0..d * ids.len())
+                .map(|k| u[d * ids[k / d] as usize + k % d])
+                .collect();
+            let (mut gp, mut hp) = (vec![0.0; u_part.len()], vec![0.0; part_pattern.nnz()]);
+            energy += ContactAssembler {
+                nodes: &held,
+                stiffness: &k,
+                penalty: &r,
+                ..whole
+            }
+            .assemble(&u_part, &part_data, &mut gp, Some((&mut hp, &part_slots)));
+            for lv in 0..own {
+                for c in 0..d {
+                    let diff = (g[d * ids[lv] as usize + c] - gp[d * lv + c]).abs();
+                    assert!(diff <= 1e-13 * gs, "gradient at node {}: {diff:e}", ids[lv]);
+                }
+            }
+            // Every entry of an own row, found by its (row, column) in the whole pattern.
+            let mut whole_eq = vec![0usize; part_pattern.n()];
+            for (dof, &eq) in part_dofs.equations().iter().enumerate() {
+                if eq != u32::MAX {
+                    whole_eq[eq as usize] =
+                        dofs.equation(d * ids[dof / d] as usize + dof % d) as usize;
+                }
+            }
+            let own_eqs = part_dofs.equations()[..d * own]
+                .iter()
+                .filter(|&&eq| eq != u32::MAX)
+                .count();
+            let (cp, ri) = (part_pattern.col_ptr(), part_pattern.row_idx());
+            for j in 0..part_pattern.n() {
+                for s in cp[j]..cp[j + 1] {
+                    if ri[s] < own_eqs || j < own_eqs {
+                        let (a, b) = (whole_eq[ri[s]], whole_eq[j]);
+                        let at = pattern.find(a.min(b), a.max(b)).unwrap();
+                        let diff = (h[at] - hp[s]).abs();
+                        assert!(diff <= 1e-13 * hs, "Hessian entry ({a}, {b}): {diff:e}");
+                    }
+                }
+            }
+        }
+        assert!(counted.iter().all(|&c| c == 1), "each point counted once");
+        assert!(ghosts > 0, "the partition cuts no pair");
+        assert!(
+            (energy - e).abs() <= 1e-13 * e.abs(),
+            "{energy} against {e}"
+        );
     }
 }

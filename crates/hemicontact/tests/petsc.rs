@@ -85,8 +85,9 @@ fn agrees_with_direct(file: &str) {
 }
 
 /// The scenarios compared below: every file of `scenarios/`.
-const SCENARIOS: [&str; 18] = [
+const SCENARIOS: [&str; 19] = [
     "cattaneo-mindlin.toml",
+    "cattaneo-spheres.toml",
     "fault.toml",
     "half-disc.toml",
     "hertz2d.toml",
@@ -128,6 +129,7 @@ macro_rules! agreement {
 
 agreement! {
     cattaneo_mindlin => "cattaneo-mindlin.toml",
+    cattaneo_spheres => "cattaneo-spheres.toml",
     fault => "fault.toml",
     half_disc => "half-disc.toml",
     hertz2d => "hertz2d.toml",

@@ -271,8 +271,9 @@ impl<'a> ContactAssembler<'a> {
         Ok(data)
     }
 
-    /// Contact energy at `u` (the responses of user-defined compliance laws, if any, must
-    /// be those at `u`); adds its gradient to `grad` (all DOFs, DOF order) and, if
+    /// Contact energy at `u` of the points counted here ([`ContactNodes::owned`]; the
+    /// responses of user-defined compliance laws, if any, must be those at `u`); adds the
+    /// gradient of every point to `grad` (all DOFs, DOF order) and, if
     /// `hess` is given, its Hessian to the upper-triangular values using the per-point node
     /// block slots `slots` (see [`contact_slots`]).
     pub fn assemble(
@@ -287,9 +288,14 @@ impl<'a> ContactAssembler<'a> {
         let mut hess = hess;
         let paired = self.nodes.has_pairs();
         let stride = slot_stride(d, paired);
+        // A process's ghost points (the last ones) complete its rows; their energy is
+        // their slave node's owner's.
+        let owned = self.nodes.owned();
         for i in 0..self.nodes.len() {
             let term = self.point(u, frozen, i);
-            energy += term.energy;
+            if i < owned {
+                energy += term.energy;
+            }
             if paired {
                 let (n, nodes, coef) = self.nodes.stencil(d, i);
                 for a in 0..n {

@@ -109,6 +109,12 @@ pub struct ContactNodes {
     /// ≥ 0, summing to 1), zero at a point facing a foundation or an obstacle; empty with
     /// [`ContactNodes::master`].
     pub master_shape: Vec<[f64; 3]>,
+    /// How many of the last points are *ghost* points of a process's part: points of
+    /// contact pairs whose slave node another process owns but whose master facet has a
+    /// node of this one ([`ContactNodes::restricted`]). Their terms are assembled again here
+    /// so that the rows of this process's master nodes are complete, but they are counted
+    /// (energy, residuals, results) by the slave node's owner only. Zero on one process.
+    pub ghosts: usize,
 }
 
 /// Angle between facet normals above which one contact boundary is split at a node into
@@ -260,10 +266,23 @@ impl ContactNodes {
         self.node.len()
     }
 
+    /// Number of the points counted here: the first ones, all but the ghost points of a
+    /// process's part ([`ContactNodes::ghosts`]); [`ContactNodes::len`] on one process.
+    /// Every per-point result, residual, count and sum runs over these.
+    pub fn owned(&self) -> usize {
+        self.node.len() - self.ghosts
+    }
+
     /// The points `points` of these (indices, in the order given) with the mesh node `v` of
-    /// each renumbered `local(v)`: a process's own contact points on its part of the mesh
+    /// each renumbered `local(v)`, the last `ghosts` of them ghost points
+    /// ([`ContactNodes::ghosts`]): a process's contact points on its part of the mesh
     /// ([`crate::parallel::Subdomain::local_mesh`]), every datum copied bit for bit.
-    pub(crate) fn restricted(&self, points: &[u32], local: impl Fn(u32) -> u32) -> ContactNodes {
+    pub fn restricted(
+        &self,
+        points: &[u32],
+        ghosts: usize,
+        local: impl Fn(u32) -> u32,
+    ) -> ContactNodes {
         fn pick<T: Copy>(all: &[T], points: &[u32]) -> Vec<T> {
             if all.is_empty() {
                 return Vec::new();
@@ -289,6 +308,7 @@ impl ContactNodes {
                 .map(|m: [u32; 3]| m.map(|v| if v == u32::MAX { v } else { local(v) }))
                 .collect(),
             master_shape: pick(&self.master_shape, points),
+            ghosts,
         }
     }
 

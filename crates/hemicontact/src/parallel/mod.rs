@@ -446,8 +446,11 @@ impl Subdomain {
     }
 
     /// The nodes this rank holds: its own ([`Subdomain::nodes`]), then the other nodes of
-    /// its cells (its *ghost* nodes), each in increasing order. In that order they number
-    /// the nodes of its part of the mesh ([`Subdomain::local_mesh`]).
+    /// its cells and the nodes its own ones are coupled to outside the cells (the slave
+    /// node or the master facet's nodes of a contact pair, [`crate::mesh::Mesh::couplings`]):
+    /// its *ghost* nodes, each in increasing order. In that order they number the nodes of
+    /// its part of the mesh ([`Subdomain::local_mesh`]); every column of its own rows is
+    /// among them.
     pub fn local_nodes(&self, mesh: &crate::mesh::Mesh) -> Vec<u32> {
         let mut nodes = self.nodes().to_vec();
         let mut seen = vec![false; mesh.n_nodes()];
@@ -463,9 +466,44 @@ impl Subdomain {
                 }
             }
         }
+        let own = |v: u32| self.partition.rank_of[v as usize] as usize == self.rank;
+        for &[a, b] in mesh.couplings() {
+            for (x, y) in [(a, b), (b, a)] {
+                if own(x) && !seen[y as usize] {
+                    seen[y as usize] = true;
+                    ghosts.push(y);
+                }
+            }
+        }
         ghosts.sort_unstable();
         nodes.extend(ghosts);
         nodes
+    }
+
+    /// The contact points this rank holds, by their numbers among `contact` (the whole
+    /// problem's, in dimension `dim`): its own (those of its own nodes), then its *ghost*
+    /// points (of contact pairs whose slave node is another rank's but whose master facet
+    /// has a node of its own), each in increasing order; and the number of its own. A
+    /// ghost point is assembled again here so that the rows of its master nodes are
+    /// complete, as a ghost cell is; its other nodes are ghost nodes of the part when the
+    /// mesh carries the pairs' couplings ([`Subdomain::local_nodes`]).
+    pub fn contact_points(
+        &self,
+        contact: &crate::contact::ContactNodes,
+        dim: usize,
+    ) -> (Vec<u32>, usize) {
+        let own = |v: u32| self.partition.rank_of[v as usize] as usize == self.rank;
+        let all = 0..contact.len() as u32;
+        let mut points: Vec<u32> = all
+            .clone()
+            .filter(|&i| own(contact.node[i as usize]))
+            .collect();
+        let n_own = points.len();
+        points.extend(all.filter(|&i| {
+            let (n, stencil, _) = contact.stencil(dim, i as usize);
+            !own(stencil[0]) && stencil[1..n].iter().any(|&v| own(v))
+        }));
+        (points, n_own)
     }
 
     /// This rank's part of `mesh`: its cells ([`Subdomain::cells`], owned first) over its

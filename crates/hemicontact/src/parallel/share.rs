@@ -3,11 +3,11 @@
 //!
 //! Every global quantity the outer loop, Newton and the certificate decide on (a norm, a
 //! dot product, a largest residual) is computed in two steps: each process reduces the
-//! entries it *counts* ([`Share::counts_dof`], [`Share::counts_cell`], …; every contact point it holds), then
+//! entries it *counts* ([`Share::counts_dof`], [`Share::counts_cell`], …), then
 //! [`Share::sum`] or [`Share::max`] completes the partial results over the processes. On
 //! several processes the solver's arrays are those of the process's part of the mesh, and
-//! it counts a prefix of each: its own nodes, their DOFs and equations, its contact points
-//! (it holds its own only) and its owned cells ([`crate::parallel::Subdomain`]), so every
+//! it counts a prefix of each: its own nodes, their DOFs and equations, its own contact
+//! points (those of its own nodes, before its ghost points) and its owned cells ([`crate::parallel::Subdomain`]), so every
 //! entry of the whole problem is counted by exactly one process. On one process (and
 //! whenever a process holds and solves the whole system alone) it counts everything and
 //! the completions do nothing, so the serial solve adds the same numbers in the same order
@@ -27,8 +27,9 @@ use std::sync::OnceLock;
 ///
 /// On several processes the solver's arrays are those of the process's part of the mesh
 /// ([`Subdomain::local_mesh`]): its own nodes first, then its ghost nodes; the DOFs and
-/// equations of its own nodes first; its own contact points only; its owned cells first,
-/// then its ghost cells. What it counts is therefore a prefix of each.
+/// equations of its own nodes first; its own contact points first, then its ghost points
+/// ([`crate::contact::ContactNodes::ghosts`]); its owned cells first, then its ghost cells.
+/// What it counts is therefore a prefix of each.
 #[derive(Clone, Debug)]
 pub struct Share {
     /// The processes that complete a partial result; `None`: this process counts every
@@ -42,6 +43,8 @@ pub struct Share {
     own_equations: usize,
     /// Number of cells counted here (owned): the first ones of the part.
     own_cells: usize,
+    /// Number of contact points counted here (those of its own nodes): the first ones.
+    own_points: usize,
     /// The whole mesh's number of every node of the part.
     node_ids: Vec<u32>,
     /// The whole problem's number of every contact point of the part.
@@ -72,6 +75,7 @@ impl Share {
         own_nodes: usize::MAX,
         own_equations: usize::MAX,
         own_cells: usize::MAX,
+        own_points: usize::MAX,
         node_ids: Vec::new(),
         point_ids: Vec::new(),
         cell_ids: Vec::new(),
@@ -85,15 +89,18 @@ impl Share {
 
     /// What the process of `sub` counts of its part of a mesh of dimension `dim`: the part's
     /// nodes are `nodes` (their whole numbers, its own first), its DOF map `dofs`
-    /// ([`DofMap::restricted`]), its contact points the whole problem's `points` (all its
-    /// own), its cells `sub.cells` (owned first); the whole problem has `whole` nodes,
-    /// contact points and cells. Completed over `processes`.
+    /// ([`DofMap::restricted`]), its contact points the whole problem's `points` (its own
+    /// `own_points` first, then its ghost points), its cells `sub.cells` (owned first); the
+    /// whole problem has `whole` nodes, contact points and cells. Completed over
+    /// `processes`.
+    #[allow(clippy::too_many_arguments)]
     pub fn of(
         dim: usize,
         sub: &Subdomain,
         nodes: Vec<u32>,
         dofs: &DofMap,
         points: Vec<u32>,
+        own_points: usize,
         whole: [usize; 3],
         processes: Processes,
     ) -> Share {
@@ -108,6 +115,7 @@ impl Share {
             own_nodes,
             own_equations,
             own_cells: sub.owned,
+            own_points,
             node_ids: nodes,
             point_ids: points,
             cell_ids: sub.cells.clone(),
@@ -137,6 +145,12 @@ impl Share {
     #[inline]
     pub fn counts_equation(&self, e: usize) -> bool {
         e < self.own_equations
+    }
+
+    /// Whether contact point `i` (of the part) is counted here.
+    #[inline]
+    pub fn counts_point(&self, i: usize) -> bool {
+        i < self.own_points
     }
 
     /// Whether cell `c` (of the part) is counted here.
@@ -184,7 +198,7 @@ impl Share {
         }
         let (ids, counted, n) = match of {
             Entries::Nodes => (&self.node_ids, self.own_nodes, self.whole[0]),
-            Entries::Points => (&self.point_ids, self.point_ids.len(), self.whole[1]),
+            Entries::Points => (&self.point_ids, self.own_points, self.whole[1]),
             Entries::Cells => (&self.cell_ids, self.own_cells, self.whole[2]),
         };
         let counted = counted.min(part.len() / width);

@@ -380,6 +380,9 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     } = *inp;
     let d = ca.dim;
     let m = d - 1;
+    // The points this process counts (all on one process; its ghost points' slave nodes,
+    // and so their equilibrium forces, are another's).
+    let owned = ca.nodes.owned();
     // Between two bodies, the force on a slave point acts back on its master facet's nodes
     // (action = reaction): the model force of each pair, spread with −N_j, joins `∇W − f`
     // there, so that the master body's equilibrium below checks that it balances.
@@ -429,7 +432,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     // The other points on the node of point i (points are ordered by boundary, so they are
     // found through a node → points map).
     let mut by_node: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
-    for (i, &v) in ca.nodes.node.iter().enumerate() {
+    for (i, &v) in ca.nodes.node[..owned].iter().enumerate() {
         by_node.entry(v).or_default().push(i);
     }
     let shared = |i: usize| -> Vec<usize> {
@@ -439,8 +442,8 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             .unwrap_or_default()
     };
     let mut exact_any = false;
-    let mut results = Vec::with_capacity(ca.nodes.len());
-    for i in 0..ca.nodes.len() {
+    let mut results = Vec::with_capacity(owned);
+    for i in 0..owned {
         let s = ca.state(u, i, &frozen);
         let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
         // The friction bound F at this state (not frozen).

@@ -160,7 +160,8 @@ impl ConvexEnergy for ConvexProblem<'_> {
             super::local_scales::Bodies::worst(&self.body_residual, &self.eval.body_scale);
         let d = self.problem.mesh.dim();
         let (eval, dofs, share) = (&*self.eval, &self.system.dofs, self.system.share());
-        for (i, &v) in self.system.contact.node.iter().enumerate() {
+        let owned = self.system.contact.owned();
+        for (i, &v) in self.system.contact.node[..owned].iter().enumerate() {
             let v = v as usize;
             let r = (0..d)
                 .filter(|&k| !dofs.is_fixed(d * v + k))

@@ -89,7 +89,7 @@ impl Frozen {
         let (z, g) = (&self.friction, &image.friction);
         let share = system.share();
         let mut fp = 0.0f64;
-        for i in 0..z.bound.len() {
+        for i in 0..system.contact.owned() {
             let mut diff = (g.bound[i] - z.bound[i]).powi(2);
             for a in 0..2 {
                 diff += (g.linear[i][a] - z.linear[i][a]).powi(2);
@@ -167,13 +167,19 @@ impl Frozen {
     }
 
     /// The entries of [`Frozen::flatten`]'s vector for `n` contact points and `n_cells`
-    /// locking multipliers that `share` counts: those of its contact points (all it holds)
-    /// and of its owned cells (empty when it counts everything).
+    /// locking multipliers that `share` counts: those of its own contact points (not its
+    /// ghost points) and of its owned cells (empty when it counts everything).
     pub fn counted(share: &Share, n: usize, n_cells: usize) -> Vec<bool> {
         if !share.is_split() {
             return Vec::new();
         }
-        let mut counts = vec![true; 6 * n];
+        // The layout of `flatten`: F (1 per point), b (2), λ (1), τ (2).
+        let mut counts = Vec::with_capacity(6 * n + n_cells);
+        for width in [1, 2, 1, 2] {
+            for i in 0..n {
+                counts.extend(std::iter::repeat_n(share.counts_point(i), width));
+            }
+        }
         counts.extend((0..n_cells).map(|c| share.counts_cell(c)));
         counts
     }

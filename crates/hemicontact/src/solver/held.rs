@@ -150,7 +150,7 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         let mut rows = Vec::new();
         let mut gaps = Vec::new();
         let mut tresca = false;
-        for i in 0..contact.len() {
+        for i in 0..contact.owned() {
             let v = contact.node[i] as usize;
             if rigid.body_of[v] as usize != b {
                 continue;
@@ -546,7 +546,7 @@ impl Sliding {
             // The load along the unit direction is its norm `along` (f·r = F·direction).
             let load = along / per_unit;
             let mut points = Vec::new();
-            for i in 0..system.contact.len() {
+            for i in 0..system.contact.owned() {
                 let v = system.contact.node[i] as usize;
                 let boundary = &problem.contact[system.contact.boundary[i] as usize];
                 if rigid.body_of[v] as usize != b || boundary.friction.is_none() {

@@ -111,7 +111,8 @@ impl Multipliers {
         share: &Share,
     ) -> f64 {
         let mut fp = 0.0f64;
-        for i in 0..self.pressure.len() {
+        // The points `share` counts: the first ones (`scale` has those only).
+        for i in (0..self.pressure.len()).take_while(|&i| share.counts_point(i)) {
             let slip_scale = scale[i] / (weight[i] * stiffness[i]);
             let r = penalties.contact()[i] * slip_scale;
             let dt = ((next.traction[i][0] - self.traction[i][0]).powi(2)
@@ -158,7 +159,7 @@ impl Multipliers {
         };
         let (mut max_pressure, mut min_pressure) = (0.0f64, f64::INFINITY);
         let mut n_points = 0;
-        for i in (0..ca.nodes.len()).filter(|&i| exact(i)) {
+        for i in (0..ca.nodes.owned()).filter(|&i| exact(i)) {
             let gap = ca.nodes.gap[i];
             let (u_nu, _) = ca.nodes.kinematics(ca.dim, u, i);
             let p = self.pressure[i];

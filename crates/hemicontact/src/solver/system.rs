@@ -238,23 +238,13 @@ impl System {
         // Several processes with the distributed solver: the nodes split among them
         // (PETSc's rows and the cells each assembles follow the split), each holding the
         // cells around its own nodes (only that solver can take partial matrices), their
-        // nodes, its own contact points and every array of the solve on that part alone.
+        // nodes, its contact points and every array of the solve on that part alone.
         // Otherwise every process holds the whole system.
         let processes = Processes::current();
         let distributed = split
             && processes.size() > 1
             && kind.resolve(d, dofs.n_free()) == super::LinearSolver::Petsc;
         let contact = problem.contact_nodes()?;
-        if distributed && contact.has_pairs() {
-            let k = problem.contact.iter().position(|c| c.against.is_some());
-            return Err(crate::Error::Invalid {
-                field: format!("contact[{}].against", k.unwrap_or(0)),
-                value: format!("a contact pair on {} processes", processes.size()),
-                allowed: "one process: contact between two bodies is solved on one process \
-                          (run without mpirun; threads still apply)"
-                    .into(),
-            });
-        }
         let continuation = Continuation::new(problem, &settings.constraints, &contact);
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact);
         let f_ext = problem.external_forces();
@@ -266,26 +256,33 @@ impl System {
             contact_points: contact.len(),
         };
         // On several processes, this process's part of all that: its subdomain, the part's
-        // mesh and the whole numbers of its nodes, and its own contact points.
+        // mesh and the whole numbers of its nodes, and its contact points: its own (those of
+        // its own nodes), then its ghost points (pairs whose slave node is another's but
+        // whose master facet has a node of its own, assembled again so that that node's rows
+        // are complete). The pairs' couplings join the node graph that is split, which keeps
+        // most pairs inside one part, and bring their other nodes into the part as ghosts.
         let mut part = None;
         let (dofs, contact, contact_stiffness, continuation, f_ext, rigid, bodies) = if distributed
         {
-            let partition = Partition::of(&problem.mesh, &processes)?;
-            let sub = Subdomain::new(&problem.mesh, partition, processes.rank());
-            let (mesh, nodes) = sub.local_mesh(&problem.mesh)?;
-            let own = sub.nodes().len();
+            let coupled;
+            let whole_mesh = if contact.has_pairs() {
+                coupled = problem.mesh.clone().with_couplings(contact.couplings(d));
+                &coupled
+            } else {
+                &problem.mesh
+            };
+            let partition = Partition::of(whole_mesh, &processes)?;
+            let sub = Subdomain::new(whole_mesh, partition, processes.rank());
+            let (mesh, nodes) = sub.local_mesh(whole_mesh)?;
             let mut local_of = vec![u32::MAX; problem.mesh.n_nodes()];
             for (l, &v) in nodes.iter().enumerate() {
                 local_of[v as usize] = l as u32;
             }
-            // Its own contact points, in the whole problem's order.
-            let points: Vec<u32> = (0..contact.len() as u32)
-                .filter(|&i| (local_of[contact.node[i as usize] as usize] as usize) < own)
-                .collect();
+            let (points, own_points) = sub.contact_points(&contact, d);
             let pick = |all: &[f64]| points.iter().map(|&i| all[i as usize]).collect();
             let restricted = (
                 dofs.restricted(&nodes),
-                contact.restricted(&points, |v| local_of[v as usize]),
+                contact.restricted(&points, points.len() - own_points, |v| local_of[v as usize]),
                 pick(&contact_stiffness),
                 continuation.restricted(&points),
                 nodes
@@ -376,7 +373,8 @@ impl System {
                     whole_counts.contact_points,
                     problem.mesh.n_cells(),
                 ];
-                let share = Share::of(d, &sub, nodes, &dofs, points, whole, processes);
+                let own_points = contact.owned();
+                let share = Share::of(d, &sub, nodes, &dofs, points, own_points, whole, processes);
                 let part_problem = Problem {
                     mesh,
                     materials: problem.materials.clone(),
@@ -472,7 +470,8 @@ impl System {
         }
     }
 
-    /// The local scales of every contact point at `u` for the frozen quantities `frozen`
+    /// The local scales of every contact point counted here ([`ContactNodes::owned`]) at `u`
+    /// for the frozen quantities `frozen`
     /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
     /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
     /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
@@ -487,7 +486,7 @@ impl System {
         force: &mut Vec<f64>,
         floor: &mut Vec<f64>,
     ) {
-        let n = self.contact.len();
+        let n = self.contact.owned();
         let bulk = BulkAssembler {
             ideal: ideal_locking(&self.continuation.penalties, problem, frozen),
             ..BulkAssembler::of(problem, &problem.mesh)
@@ -562,7 +561,8 @@ impl System {
     ///
     /// On several processes, `problem` and `u` are this process's part
     /// ([`System::for_solve`]): it assembles the cells of its part (counting the energy of
-    /// those it owns) and its contact points, so the gradients are complete at its own
+    /// those it owns) and its contact points (counting the energy of its own; its ghost
+    /// points complete its master nodes' rows), so the gradients are complete at its own
     /// nodes; their entries at its ghost nodes are set to NaN (partial there, never read).
     /// The energies and the work of the loads are summed over the processes
     /// ([`Processes::sum`] of three numbers, the one exchange of an evaluation).
@@ -622,9 +622,11 @@ impl System {
         let mut e = [e_bulk, e_contact, work];
         share.sum(&mut e);
         let [e_bulk, e_contact, work] = e;
-        if hessian && !self.rigid_slots.is_empty() {
+        if hessian && self.rigid.any_free() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
-            // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`.
+            // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`. Decided on the whole
+            // problem's bodies: a process without a node of them still takes part in the
+            // maximum.
             if out.rigid_shift == 0.0 {
                 let mut max = [self
                     .rigid_slots
