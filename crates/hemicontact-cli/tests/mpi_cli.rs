@@ -352,6 +352,58 @@ fn cattaneo_spheres_across_processes() {
     agrees_across_processes("cattaneo-spheres.toml");
 }
 
+/// A free body as the master side of a pair: the two cylinders with the sides swapped (the
+/// upper body's vertical translation carried by the pair through its master points), and
+/// a block held by friction alone as the master side of a held block (Gmsh, matching
+/// meshes: the relief of the first iteration spread onto the master facets' nodes).
+#[test]
+fn a_free_master_body_across_processes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scenarios = repo_root().join("scenarios");
+    let swapped = std::fs::read_to_string(scenarios.join("two-cylinders.toml"))
+        .unwrap()
+        .replace(
+            "file = \"meshes/",
+            &format!("file = \"{}/meshes/", scenarios.display()),
+        )
+        .replace(
+            "part = \"upper_bottom\"\nagainst = \"lower_top\"",
+            "part = \"lower_top\"\nagainst = \"upper_bottom\"",
+        );
+    assert!(swapped.contains("against = \"upper_bottom\""));
+    let file = dir.path().join("swapped.toml");
+    std::fs::write(&file, swapped).unwrap();
+    agrees_across_processes(file.to_str().unwrap());
+    let blocks = repo_root().join("crates/hemicontact/tests/data/gmsh/two-blocks.msh");
+    let held = format!(
+        r#"
+[mesh]
+kind = "gmsh"
+file = "{}"
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "lower_bottom"
+[[loads.traction]]
+part = "upper_top"
+value = [2.0, -10.0]
+[[contact]]
+part = "lower_top"
+against = "upper_bottom"
+law = "signorini"
+[contact.friction]
+bound = "coulomb"
+mu = 0.3
+exact = true
+"#,
+        blocks.display()
+    );
+    let file = dir.path().join("held-master.toml");
+    std::fs::write(&file, held).unwrap();
+    agrees_across_processes(file.to_str().unwrap());
+}
+
 /// A load path with a moving obstacle: the sliding indenter's five steps, each warm-started
 /// from the last one's answer put together from every process's part. Every step's
 /// contact forces, counts and largest displacement, and the last step's displacements,

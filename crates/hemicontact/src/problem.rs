@@ -337,35 +337,53 @@ impl Problem {
         Ok(())
     }
 
-    /// The master body of a contact pair must be held by its own supports: a slave body may
-    /// rest on it through the pair (its free rigid motions carried by the pair as by a
-    /// foundation, the master side being held), but the rigid motions of a master body,
-    /// which only a joint analysis of the two bodies could carry, are not solved yet.
+    /// One of the two bodies of a contact pair must be held by its own supports: the
+    /// other may then rest on it through the pair (its free rigid motions carried by the
+    /// pair as by a foundation), whichever side it is; but free rigid motions of both
+    /// bodies (or of a body in contact with itself), which only a joint analysis of the two
+    /// bodies' motions could carry, are not solved yet.
     fn check_pair_bodies(&self) -> Result<()> {
         let points = self.contact_nodes()?;
         let rigid = self.rigid_motions()?;
         let d = self.mesh.dim();
+        let free = |v: u32| {
+            let b = rigid.body_of[v as usize] as usize;
+            rigid.free.get(b).map_or(0, Vec::len)
+        };
         for i in 0..points.len() {
             let (n, nodes, _) = points.stencil(d, i);
-            for &v in &nodes[1..n] {
-                let b = rigid.body_of[v as usize] as usize;
-                let free = rigid.free.get(b).map_or(0, Vec::len);
-                if free > 0 {
-                    let k = points.boundary[i] as usize;
-                    return Err(Error::Invalid {
-                        field: format!("contact[{k}].against"),
-                        value: format!(
-                            "`{}`: the master body (the body of node {v}) has {free} free \
-                             rigid motion(s)",
-                            self.mesh.part_names()[self.contact[k].against.map_or(0, |a| a.part)]
-                        ),
-                        allowed: "a master body held by its own supports (Dirichlet \
-                                  conditions that leave no rigid motion free); a body that \
-                                  rests on another through a pair must be its slave side \
-                                  (`part`), not its master side (`against`)"
-                            .into(),
-                    });
-                }
+            if n == 1 {
+                continue;
+            }
+            let (slave, master) = (free(nodes[0]), free(nodes[1]));
+            let same = rigid.body_of[nodes[0] as usize] == rigid.body_of[nodes[1] as usize];
+            if master > 0 && (slave > 0 || same) {
+                let k = points.boundary[i] as usize;
+                let names = self.mesh.part_names();
+                let what = if same {
+                    format!(
+                        "its body (of node {}) has {master} free rigid motion(s)",
+                        nodes[0]
+                    )
+                } else {
+                    format!(
+                        "both bodies have free rigid motions: the slave body (of node {}) \
+                         {slave}, the master body (of node {}) {master}",
+                        nodes[0], nodes[1]
+                    )
+                };
+                return Err(Error::Invalid {
+                    field: format!("contact[{k}].against"),
+                    value: format!(
+                        "`{}` against `{}`: {what}",
+                        names[self.contact[k].part],
+                        names[self.contact[k].against.map_or(0, |a| a.part)]
+                    ),
+                    allowed: "one of the two bodies held by its own supports (Dirichlet \
+                              conditions that leave no rigid motion free); the other may \
+                              rest on it through the pair"
+                        .into(),
+                });
             }
         }
         Ok(())

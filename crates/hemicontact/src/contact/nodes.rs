@@ -261,6 +261,41 @@ impl ContactNodes {
         out
     }
 
+    /// Where point `i` acts on the body `b` (the bodies of the mesh's nodes `body_of`), and
+    /// with which sign: at its node with sign 1 if its node is in `b`; at its master point
+    /// `Σ_j N_j x(m_j)` with sign −1 if its master facet is in `b` (a contact pair, the
+    /// point's own node in another body); `None` if it does not touch `b`. A rigid motion
+    /// `r` of `b` alone changes the point's relative displacement by `sign · r(x)`
+    /// ([`ContactNodes::relative`]): the row of the point in the analysis of `b`'s free
+    /// rigid motions. Returns the position (m, first `dim` entries), the sign, and the
+    /// stencil entries ([`ContactNodes::stencil`]) on `b`.
+    pub fn on_body(
+        &self,
+        mesh: &Mesh,
+        i: usize,
+        body_of: &[u32],
+        b: usize,
+    ) -> Option<([f64; 3], f64, std::ops::Range<usize>)> {
+        let d = mesh.dim();
+        let node = self.node[i] as usize;
+        let mut x = [0.0; 3];
+        if body_of[node] as usize == b {
+            x[..d].copy_from_slice(mesh.node(node));
+            return Some((x, 1.0, 0..1));
+        }
+        let (n, nodes, coef) = self.stencil(d, i);
+        if n == 1 || body_of[nodes[1] as usize] as usize != b {
+            return None;
+        }
+        for a in 1..n {
+            let y = mesh.node(nodes[a] as usize);
+            for k in 0..d {
+                x[k] -= coef[a] * y[k];
+            }
+        }
+        Some((x, -1.0, 1..n))
+    }
+
     /// Number of contact points.
     pub fn len(&self) -> usize {
         self.node.len()

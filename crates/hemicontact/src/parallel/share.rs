@@ -7,11 +7,11 @@
 //! [`Share::sum`] or [`Share::max`] completes the partial results over the processes. On
 //! several processes the solver's arrays are those of the process's part of the mesh, and
 //! it counts a prefix of each: its own nodes, their DOFs and equations, its own contact
-//! points (those of its own nodes, before its ghost points) and its owned cells ([`crate::parallel::Subdomain`]), so every
-//! entry of the whole problem is counted by exactly one process. On one process (and
-//! whenever a process holds and solves the whole system alone) it counts everything and
-//! the completions do nothing, so the serial solve adds the same numbers in the same order
-//! as without this seam.
+//! points (those of its own nodes, before its ghost points) and its owned cells
+//! ([`crate::parallel::Subdomain`]), so every entry of the whole problem is counted by
+//! exactly one process. On one process (and whenever a process holds and solves the whole
+//! system alone) it counts everything and the completions do nothing, so the serial solve
+//! adds the same numbers in the same order as without this seam.
 //!
 //! [`Share::of_part`] picks a part's entries from an array of the whole problem (the
 //! prescribed displacements, a starting displacement); [`Share::to_whole`] puts the

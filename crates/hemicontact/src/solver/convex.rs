@@ -247,15 +247,13 @@ impl ConvexEnergy for ConvexProblem<'_> {
                         m.iter().map(|c| c * c).sum::<f64>().sqrt()
                     })
                     .fold(0.0f64, f64::max);
+                // How far the motion presses a point of the body (its node, or a master
+                // point) into its contact.
                 let into = (0..contact.len())
-                    .filter(|&i| rigid.body_of[contact.node[i] as usize] as usize == r.body)
-                    .map(|i| {
-                        let m = rigid.displacement(
-                            r.body,
-                            &r.motion,
-                            mesh.node(contact.node[i] as usize),
-                        );
-                        (0..d).map(|j| m[j] * contact.normal[i][j]).sum::<f64>()
+                    .filter_map(|i| {
+                        let (x, sign, _) = contact.on_body(mesh, i, &rigid.body_of, r.body)?;
+                        let m = rigid.displacement(r.body, &r.motion, &x[..d]);
+                        Some(sign * (0..d).map(|j| m[j] * contact.normal[i][j]).sum::<f64>())
                     })
                     .fold(0.0f64, f64::max);
                 let mut extent = [reach, into];

@@ -151,20 +151,19 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         let mut gaps = Vec::new();
         let mut tresca = false;
         for i in 0..contact.owned() {
-            let v = contact.node[i] as usize;
-            if rigid.body_of[v] as usize != b {
+            // The point's node in this body, or (a contact pair) its master point.
+            let Some((x, sign, _)) = contact.on_body(mesh, i, &rigid.body_of, b) else {
                 continue;
-            }
+            };
             let cb = &problem.contact[contact.boundary[i] as usize];
             tresca |= cb
                 .friction
                 .as_ref()
                 .is_some_and(|fr| fr.bound == FrictionBound::Tresca);
-            let x = mesh.node(v);
             let mut row = [0.0; 6];
             for (l, c) in basis.iter().enumerate() {
-                let r = rigid.displacement(b, c, x);
-                row[l] = (0..d).map(|j| r[j] * contact.normal[i][j]).sum();
+                let r = rigid.displacement(b, c, &x[..d]);
+                row[l] = sign * (0..d).map(|j| r[j] * contact.normal[i][j]).sum::<f64>();
             }
             let (u_nu, _) = contact.kinematics(d, u, i);
             rows.push(row);
@@ -467,8 +466,10 @@ struct SlidingLoad {
     /// The load along r, `f·r / s` (a force or moment, solver's units), with `s` the size
     /// of r per unit coefficient: `|a|` for a translation, `|ω|` for a rotation.
     load: f64,
-    /// The contact points of the body with friction, with `‖r_τ(x_i)‖ / s` (each sum over
-    /// them runs over the points this process counts, completed over the processes).
+    /// The contact points of the body with friction (the process's ghost points too), with
+    /// `‖r_τ(x_i)‖ / s` (each sum over them runs over the points this process counts,
+    /// completed over the processes; the relief, a force at the points' nodes, takes them
+    /// all, so that it is complete at this process's own nodes).
     points: Vec<(usize, f64)>,
 }
 
@@ -546,13 +547,16 @@ impl Sliding {
             // The load along the unit direction is its norm `along` (f·r = F·direction).
             let load = along / per_unit;
             let mut points = Vec::new();
-            for i in 0..system.contact.owned() {
-                let v = system.contact.node[i] as usize;
+            for i in 0..system.contact.len() {
                 let boundary = &problem.contact[system.contact.boundary[i] as usize];
-                if rigid.body_of[v] as usize != b || boundary.friction.is_none() {
+                if boundary.friction.is_none() {
                     continue;
                 }
-                let r = rigid.displacement(b, &direction, mesh.node(v));
+                // The point's node in this body, or (a contact pair) its master point.
+                let Some((x, ..)) = system.contact.on_body(mesh, i, &rigid.body_of, b) else {
+                    continue;
+                };
+                let r = rigid.displacement(b, &direction, &x[..d]);
                 let n = &system.contact.normal[i];
                 let along_normal: f64 = (0..d).map(|j| r[j] * n[j]).sum();
                 let tangential: Vec<f64> = (0..d).map(|j| r[j] - along_normal * n[j]).collect();
@@ -613,19 +617,26 @@ impl Sliding {
                     }
                 }
             }
-            // ψ_l: w_i (r_l)_τ(x_i) at the frictional points, free DOFs only.
+            // ψ_l: w_i (r_l)_τ(x_i) at the frictional points, free DOFs only (at a master
+            // point, spread onto its facet's nodes by N_j).
             let mut psi = vec![vec![0.0; f.len()]; k];
             for &(i, _) in &s.points {
-                let v = contact.node[i] as usize;
+                let Some((x, _, on)) = contact.on_body(mesh, i, &rigid.body_of, b) else {
+                    continue;
+                };
+                let (_, nodes, coef) = contact.stencil(d, i);
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
                 for (l, c) in basis.iter().enumerate() {
-                    let r = rigid.displacement(b, c, mesh.node(v));
+                    let r = rigid.displacement(b, c, &x[..d]);
                     let along: f64 = (0..d).map(|j| r[j] * n[j]).sum();
-                    for j in 0..d {
-                        let dof = d * v + j;
-                        if !system.dofs.is_fixed(dof) {
-                            psi[l][dof] += w * (r[j] - along * n[j]);
+                    for a in on.clone() {
+                        let v = nodes[a] as usize;
+                        for j in 0..d {
+                            let dof = d * v + j;
+                            if !system.dofs.is_fixed(dof) {
+                                psi[l][dof] += coef[a].abs() * w * (r[j] - along * n[j]);
+                            }
                         }
                     }
                 }
@@ -672,8 +683,11 @@ impl Sliding {
             let k = basis.len();
             let mut gram = [[0.0; 6]; 6];
             let mut rhs = [0.0; 6];
-            for &(i, _) in &s.points {
-                let v = contact.node[i] as usize;
+            for &(i, _) in s.points.iter().filter(|&&(i, _)| i < contact.owned()) {
+                let Some((x, _, on)) = contact.on_body(mesh, i, &rigid.body_of, b) else {
+                    continue;
+                };
+                let (_, nodes, coef) = contact.stencil(d, i);
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
                 let tangential = |r: [f64; 3]| {
@@ -684,12 +698,18 @@ impl Sliding {
                     }
                     t
                 };
+                // The displacement of the body at the point (at a master point, Σ N_j u(m_j)).
                 let mut uv = [0.0; 3];
-                uv[..d].copy_from_slice(&u[d * v..d * v + d]);
+                for a in on {
+                    let v = nodes[a] as usize;
+                    for j in 0..d {
+                        uv[j] += coef[a].abs() * u[d * v + j];
+                    }
+                }
                 let ut = tangential(uv);
                 let fields: Vec<[f64; 3]> = basis
                     .iter()
-                    .map(|c| tangential(rigid.displacement(b, c, mesh.node(v))))
+                    .map(|c| tangential(rigid.displacement(b, c, &x[..d])))
                     .collect();
                 for l in 0..k {
                     rhs[l] += w * (0..d).map(|j| fields[l][j] * ut[j]).sum::<f64>();
@@ -794,9 +814,11 @@ impl Sliding {
 /// of [`SlidingLoad::load`].
 fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
     let share = system.share();
+    let owned = system.contact.owned();
     let mut sum = [s
         .points
         .iter()
+        .filter(|&&(i, _)| i < owned)
         .map(|&(i, t)| system.contact.weight[i] * bound[i] * t)
         .sum()];
     share.sum(&mut sum);
@@ -819,7 +841,8 @@ fn limit(
     let (mut coulomb, mut tresca) = (false, false);
     let mut flat = !s.rotation;
     let share = system.share();
-    for &(i, t) in &s.points {
+    let owned = system.contact.owned();
+    for &(i, t) in s.points.iter().filter(|&&(i, _)| i < owned) {
         let w = system.contact.weight[i];
         let boundary = &problem.contact[system.contact.boundary[i] as usize];
         let is_coulomb = boundary

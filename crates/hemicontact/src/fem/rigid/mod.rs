@@ -26,7 +26,9 @@
 //! A free motion is *carried* by contact when a contact point's normal (or, on a part with
 //! friction, a tangent) moves under it: the same construction with one row `ν_i · r(x_i)`
 //! per contact point (and `τ_i · r(x_i)` with friction), restricted to the free motions,
-//! has no null space. Motions neither prescribed nor carried make the problem singular:
+//! has no null space. A contact pair's point acts on the slave body at its node and on the
+//! master body at its master point `x_m = Σ_j N_j x(m_j)` (one of the two bodies held;
+//! [`ContactNodes::on_body`]). Motions neither prescribed nor carried make the problem singular:
 //! [`RigidMotions::check`] turns them into an [`Error::RigidMotion`] that names the motion
 //! (translation along x, rotation about z through a point, …) and what would block it.
 //!
@@ -129,13 +131,12 @@ impl RigidMotions {
             let mut pressing = Normal::new(z.len());
             if !z.is_empty() {
                 for p in 0..contact.len() {
-                    let v = contact.node[p] as usize;
-                    if body_of[v] as usize != b {
+                    // The point's node in this body, or (a contact pair) its master point.
+                    let Some((x, ..)) = contact.on_body(mesh, p, &body_of, b) else {
                         continue;
-                    }
-                    let x = mesh.node(v);
+                    };
                     let restricted = |dir: &[f64; 3]| {
-                        let row = mode_row(d, body, x, dir);
+                        let row = mode_row(d, body, &x[..d], dir);
                         let mut r = [0.0; 6];
                         for (l, zl) in z.iter().enumerate() {
                             r[l] = (0..m).map(|j| row[j] * zl[j]).sum();
