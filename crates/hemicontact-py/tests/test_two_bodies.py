@@ -2,8 +2,9 @@
 nodes of one part (the slave side) with the surface of another body's part (the master
 side). Two blocks stacked and pressed together (ν = 0) carry the uniform pressure E δ/H at
 every point when their interface nodes coincide; the committed punch-on-block scenario
-solves and certifies through Python as through the CLI; a master body with free rigid
-motions raises ``ScenarioError`` naming ``contact[0].against``."""
+solves and certifies through Python as through the CLI; a free block rests on a held one
+from either side of the pair; two bodies that both have free rigid motions raise
+``ScenarioError`` naming ``contact[0].against``."""
 
 import numpy as np
 import pytest
@@ -44,12 +45,30 @@ def test_punch_on_block_solves_through_python():
     assert np.all(r.contact["pressure"] > 0.0)
 
 
-def test_a_free_master_body_is_refused_naming_the_field():
-    # The lower block held, the upper one (here the master side) held by nothing but the
-    # prescribed top: swap the roles and free the upper body.
-    d = _pressed(slave="lower_top", master="upper_bottom")
-    d["dirichlet"] = [{"part": "lower_bottom"}]
-    with pytest.raises(hc.ScenarioError, match=r"contact\[0\]\.against"):
+def _resting(slave, master, lower_held=("x", "y")):
+    # The upper block held along x only and pressed by p on its top: its vertical
+    # translation and its rotation are free, carried by the pair.
+    d = _pressed(slave=slave, master=master)
+    d["dirichlet"] = [
+        {"part": "lower_bottom", "components": list(lower_held)},
+        {"part": "upper_top", "components": ["x"]},
+    ]
+    d["loads"] = {"traction": [{"part": "upper_top", "value": [0.0, -10.0]}]}
+    return d
+
+
+@pytest.mark.parametrize("slave,master", [("upper_bottom", "lower_top"),
+                                          ("lower_top", "upper_bottom")])
+def test_a_free_body_rests_on_a_held_one_either_side_of_the_pair(slave, master):
+    r = hc.solve(hc.Scenario.from_dict(_resting(slave, master)))
+    assert r.converged, r.message
+    assert np.allclose(r.contact["pressure"], 10.0, rtol=1e-10, atol=0)
+
+
+def test_two_free_bodies_are_refused_naming_the_field():
+    # The lower block held along x only too: both bodies keep free rigid motions.
+    d = _resting("upper_bottom", "lower_top", lower_held=("x",))
+    with pytest.raises(hc.ScenarioError, match=r"contact\[0\]\.against.*both bodies"):
         hc.solve(hc.Scenario.from_dict(d))
 
 
