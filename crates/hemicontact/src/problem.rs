@@ -331,6 +331,12 @@ impl Problem {
             }
         }
         if self.contact.iter().any(|c| c.against.is_some()) {
+            let points = self.contact_nodes()?;
+            let (body_of, _) = crate::fem::rigid::bodies(&self.mesh);
+            for (k, c) in self.contact.iter().enumerate() {
+                crate::contact::pair_placement::check(&self.mesh, k, c, &points, &body_of)
+                    .map_err(|e| e.within(&format!("contact[{k}].against")))?;
+            }
             self.check_pair_bodies()?;
         }
         self.rigid_motions()?.check("problem")?;

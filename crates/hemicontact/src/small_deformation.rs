@@ -15,7 +15,12 @@
 //!   configuration `x + u` is ≤ 0 (a triangle or tetrahedron turned inside out, which no
 //!   deformation of a body does; every cell is positive in the reference configuration).
 //!
-//! Each limit exceeded, and any inverted cell, gives a note ([`SmallDeformation::notes`]),
+//! - with contact pairs between bodies, the nodes of one body that the displacement puts
+//!   inside the other ([`crate::contact::interpenetration`]: the deepest of each pair and
+//!   direction, when deeper than a tenth of the element size there).
+//!
+//! Each limit exceeded, any inverted cell and any interpenetration gives a note
+//! ([`SmallDeformation::notes`]),
 //! which `summary.json` lists among its `notes`, the command line prints and the Python
 //! package raises as a `RuntimeWarning`. The limits are where the neglected terms reach
 //! the order of 10 % of the kept ones: the quadratic term `½ ∇uᵀ∇u` of the Green–Lagrange
@@ -58,13 +63,23 @@ pub struct SmallDeformation {
     pub strain_limit: f64,
     /// The displacement limit applied, [`DISPLACEMENT_LIMIT`].
     pub displacement_limit: f64,
+    /// The contact pairs whose bodies pass through each other in the deformed
+    /// configuration: the deepest node of each pair and direction beyond the limit
+    /// ([`crate::contact::interpenetration::deepest`]); empty without pairs.
+    pub interpenetration: Vec<crate::contact::interpenetration::Interpenetration>,
 }
 
 impl SmallDeformation {
     /// The check of the displacement `u` (m, DOF order) on `mesh`, whose cell strains are
     /// `strains` (one per cell, as [`crate::assembly::BulkAssembler::cell_strains`] gives
-    /// them).
-    pub fn of(mesh: &Mesh, u: &[f64], strains: &[Sym]) -> Self {
+    /// them), with the contact boundaries `contact` (their pairs checked for
+    /// interpenetration).
+    pub fn of(
+        mesh: &Mesh,
+        u: &[f64],
+        strains: &[Sym],
+        contact: &[crate::contact::ContactBoundary],
+    ) -> Self {
         let d = mesh.dim();
         let (mut max_strain, mut max_strain_cell) = (0.0f64, 0);
         for (c, e) in strains.iter().enumerate() {
@@ -102,6 +117,7 @@ impl SmallDeformation {
             inverted,
             strain_limit: STRAIN_LIMIT,
             displacement_limit: DISPLACEMENT_LIMIT,
+            interpenetration: crate::contact::interpenetration::deepest(mesh, contact, u),
         }
     }
 
@@ -151,6 +167,7 @@ impl SmallDeformation {
                 listed.join(", ")
             ));
         }
+        notes.extend(self.interpenetration.iter().map(|i| i.note()));
         notes
     }
 }

@@ -50,7 +50,7 @@ fn check(u: impl Fn(f64, f64) -> [f64; 2]) -> SmallDeformation {
         mu: 1.0,
     }));
     let strains = BulkAssembler::new(&mesh, &material).cell_strains(&values);
-    SmallDeformation::of(&mesh, &values, &strains)
+    SmallDeformation::of(&mesh, &values, &strains, &[])
 }
 
 fn close(a: f64, b: f64) -> bool {

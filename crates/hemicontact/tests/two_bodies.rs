@@ -868,3 +868,369 @@ fn a_crack_closed_by_compression_transmits_the_pressure_exactly() {
     println!("without the pair the faces overlap by {:.2e} m", -overlap);
     assert!(overlap < -1e-3 * DELTA, "{overlap}");
 }
+
+/// # The edge of the master surface
+///
+/// A slave node beyond the edge of the master surface is no contact point, even within the
+/// 5 % by which a projection may fall outside a facet (that tolerance reaches across
+/// interior edges and onto symmetry planes only) and even where its closest point is a
+/// vertex shared by several master facets on the surface's outer edge (3D).
+///
+/// 2D: the upper block `[0.2, 1.04]` overhangs the lower one (`[0, 1]`, one facet across,
+/// so 5 % of a facet is 0.05) by 0.04: its node at x = 1.04 was a contact point and carried
+/// 2 % of the force; it is none now, every point is over the master, and the force on the
+/// pair equals the reaction of the held bottom. A block standing wholly beside the master
+/// (`x ∈ [1.002, 1.048]`) has no contact point: refused naming the two parts.
+#[test]
+fn slave_nodes_beyond_the_edge_of_the_master_surface_are_no_contact_points() {
+    let rect = |x0: f64, y0: f64, w: f64, nx: usize| {
+        rectangle(&Rectangle {
+            origin: [x0, y0],
+            size: [w, H / 2.0],
+            n: [nx, 2],
+            pattern: CutPattern::Uniform,
+            progression: [1.0, 1.0],
+        })
+        .unwrap()
+    };
+    let overhang = merged(&rect(0.0, 0.0, 1.0, 1), &rect(0.2, H / 2.0, 0.84, 4));
+    let problem = pressed(overhang, NormalLaw::Signorini);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    let mesh = problem.mesh();
+    let beyond: Vec<f64> = s
+        .contact
+        .iter()
+        .map(|c| mesh.node(c.node as usize)[0])
+        .filter(|&x| x > 1.0)
+        .collect();
+    println!(
+        "2D overhang by 0.04: {} points, beyond the edge at x = {beyond:?}",
+        s.contact.len()
+    );
+    assert!(beyond.is_empty() && s.contact.len() == 4, "{beyond:?}");
+    let pair: f64 = s.contact.iter().map(|c| c.force[1]).sum();
+    let bottom: f64 = mesh
+        .part_nodes(mesh.part_index("b_bottom").unwrap())
+        .iter()
+        .map(|&v| s.reactions[2 * v as usize + 1])
+        .sum();
+    assert!(
+        (pair - bottom).abs() < 1e-10 * bottom.abs(),
+        "{pair} {bottom}"
+    );
+    // Wholly beside the master: no contact point, refused.
+    for nx_b in [1, 4] {
+        let beside = merged(&rect(0.0, 0.0, 1.0, nx_b), &rect(1.002, H / 2.0, 0.046, 4));
+        let part = |n: &str| beside.part_index(n).unwrap();
+        let e = Problem::builder(beside.clone(), material())
+            .contact(ContactBoundary {
+                part: part("a_bottom"),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part("b_top"))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            })
+            .dirichlet(Dirichlet {
+                part: part("b_bottom"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .build()
+            .unwrap_err()
+            .to_string();
+        println!("beside ({nx_b} master facets): {e}");
+        assert!(
+            e.contains("contact[0].against")
+                && e.contains("`a_bottom` against `b_top`")
+                && e.contains("a pair with contact points"),
+            "{e}"
+        );
+    }
+}
+
+/// 3D: the upper block (10 × 10 cubes across) overhangs the lower one (4 × 4) by two of its
+/// elements along x. The nodes of the overhang are a full element or more beyond the master
+/// surface's edge, where their closest points are vertices shared by two or three master
+/// facets on that edge: no contact points (they were, as if above a convex corner, and
+/// held the overhang up). Every point is over the master, and the pair's force balances
+/// the held bottom.
+#[test]
+fn in_3d_an_overhang_beyond_the_master_surface_has_no_contact_points() {
+    let cube = |origin: [f64; 3], n: usize| {
+        cuboid(&BoxSpec {
+            origin,
+            size: [1.0, 1.0, H / 2.0],
+            n: [n, n, 2],
+            pattern: CutPattern::Uniform,
+            progression: [1.0; 3],
+        })
+        .unwrap()
+    };
+    let mesh = merged(&cube([0.0; 3], 4), &cube([0.2, 0.0, H / 2.0], 10));
+    let problem = pressed(mesh, NormalLaw::Signorini);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
+    let mesh = problem.mesh();
+    let beyond = s
+        .contact
+        .iter()
+        .filter(|c| mesh.node(c.node as usize)[0] > 1.0 + 1e-12)
+        .count();
+    println!(
+        "3D overhang: {} points, {beyond} beyond the master's edge",
+        s.contact.len()
+    );
+    // The slave nodes over [0.2, 1] × [0, 1]: 9 columns of 11.
+    assert_eq!((s.contact.len(), beyond), (99, 0));
+    let pair: f64 = s.contact.iter().map(|c| c.force[2]).sum();
+    let bottom: f64 = mesh
+        .part_nodes(mesh.part_index("b_bottom").unwrap())
+        .iter()
+        .map(|&v| s.reactions[3 * v as usize + 2])
+        .sum();
+    assert!(
+        (pair - bottom).abs() < 1e-10 * bottom.abs(),
+        "{pair} {bottom}"
+    );
+}
+
+/// # A slave part that turns a corner
+///
+/// The upper block's bottom and right side in one slave part: at the corner node the two
+/// faces are paired apart, and the side, at a right angle to the pair's normal, is no
+/// contact point, so the corner carries the bottom's weight only (0.125 of the 0.25-wide
+/// elements, not 0.25). The solution is that of the bottom alone as the slave part, to
+/// round-off, with Signorini and with normal compliance (where the doubled weight raised
+/// the corner's force by 45 %), and the printed corner pressure is the same.
+#[test]
+fn a_slave_part_that_turns_a_corner_weighs_its_faces_apart() {
+    let rect = |x0: f64, y0: f64, w: f64, nx: usize| {
+        rectangle(&Rectangle {
+            origin: [x0, y0],
+            size: [w, H / 2.0],
+            n: [nx, 2],
+            pattern: CutPattern::Uniform,
+            progression: [1.0, 1.0],
+        })
+        .unwrap()
+    };
+    let mesh = merged(&rect(0.0, 0.0, 2.0, 8), &rect(0.5, H / 2.0, 1.0, 4));
+    // The same mesh with the part `a_corner`: `a_bottom` and `a_right` together.
+    let mut parts: Vec<(String, Vec<u32>)> = Vec::new();
+    let mut corner = Vec::new();
+    for name in mesh.part_names() {
+        let p = mesh.part_index(name).unwrap();
+        let facets: Vec<u32> = mesh
+            .part_facets(p)
+            .flat_map(|f| mesh.facet(f).to_vec())
+            .collect();
+        if name == "a_bottom" || name == "a_right" {
+            corner.extend(facets);
+        } else {
+            parts.push((name.clone(), facets));
+        }
+    }
+    parts.push(("a_corner".into(), corner));
+    let turned = Mesh::from_parts(2, mesh.coords().to_vec(), mesh.cells().to_vec(), &parts)
+        .unwrap()
+        .with_regions(
+            (0..mesh.n_cells())
+                .map(|c| mesh.cell_region(c) as u16)
+                .collect(),
+            mesh.region_names().to_vec(),
+        )
+        .unwrap();
+    for normal in [
+        NormalLaw::Signorini,
+        NormalLaw::Compliance(NormalCompliance { c_nu: 1e4 }),
+    ] {
+        let solve_with = |m: &Mesh, slave: &str| {
+            let names = ["b_bottom", "a_top", slave, "b_top"];
+            let problem = sheared_named(m.clone(), normal.clone(), None, 0.0, names);
+            let s = solve(&problem, &SolverSettings::default()).unwrap();
+            assert!(s.report.converged, "{}", s.report.message);
+            s
+        };
+        let bottom = solve_with(&mesh, "a_bottom");
+        let both = solve_with(&turned, "a_corner");
+        let du = bottom
+            .u
+            .iter()
+            .zip(&both.u)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0f64, f64::max);
+        let u_max = bottom.u.iter().map(|x| x.abs()).fold(0.0f64, f64::max);
+        // The corner node (1.5, 0.5) of the upper block, where `a_corner` turns.
+        let at_corner = |s: &hemicontact::solver::Solution, m: &Mesh| {
+            s.contact
+                .iter()
+                .filter(|c| {
+                    let x = m.node(c.node as usize);
+                    (x[0] - 1.5).abs() < 1e-12 && (x[1] - 0.5).abs() < 1e-12
+                })
+                .map(|c| (c.weight, c.pressure, c.force[1]))
+                .collect::<Vec<_>>()
+        };
+        let (one, two) = (at_corner(&bottom, &mesh), at_corner(&both, &turned));
+        println!("{normal:?}: corner {two:?} (bottom alone {one:?}), max |Δu| {du:.1e}");
+        assert_eq!(two.len(), 1, "one point at the corner");
+        assert!((two[0].0 - 0.125).abs() < 1e-14, "weight {}", two[0].0);
+        assert!(du <= 1e-12 * u_max, "{du:e}");
+        assert!(
+            (two[0].1 - one[0].1).abs() <= 1e-10 * one[0].1,
+            "{two:?} {one:?}"
+        );
+    }
+}
+
+/// # A master part that does not face the slave part
+///
+/// Refused naming both parts: the slave part's own body's far face (`a_bottom` against
+/// `a_top`, which took a contact force of 1002 N/m with no load at all), the other body's
+/// far face (`a_bottom` against `b_bottom`: the two outward normals point the same way),
+/// and the master's far face from the other side (`b_top` against `a_top`). Accepted: the
+/// faces that touch, and two blocks meshed with an overlap of 0.01 (an interference fit,
+/// negative gaps) and pressed by δ, which then carry the uniform pressure `E (δ + 0.01)/H`.
+#[test]
+fn a_master_part_that_does_not_face_the_slave_part_is_refused() {
+    let mesh = stacked_2d(4, 4, 2);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    for (slave, master, says) in [
+        ("a_bottom", "a_top", "lies inside the body of"),
+        ("a_bottom", "b_bottom", "faces away"),
+        ("b_top", "a_top", "faces away"),
+    ] {
+        let e = Problem::builder(mesh.clone(), material())
+            .dirichlet(Dirichlet {
+                part: part("b_bottom"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .dirichlet(Dirichlet {
+                part: part("a_top"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .contact(ContactBoundary {
+                part: part(slave),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part(master))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            })
+            .build()
+            .unwrap_err()
+            .to_string();
+        println!("{slave} against {master}: {e}");
+        assert!(
+            e.contains("contact[0].against")
+                && e.contains(&format!("`{slave}` against `{master}`"))
+                && e.contains(says),
+            "{e}"
+        );
+    }
+    // An interference fit: the upper block meshed 0.01 into the lower one and pressed by
+    // δ: the two blocks, of natural heights H/2 each, are shortened by δ + 0.01 together.
+    let overlap = 0.01;
+    let problem = pressed(stacked_2d_apart(4, 4, 2, -overlap), NormalLaw::Signorini);
+    let s = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(s.report.converged, "{}", s.report.message);
+    let p = E * (overlap + DELTA) / H;
+    let worst = s
+        .contact
+        .iter()
+        .map(|c| (c.pressure - p).abs() / p)
+        .fold(0.0f64, f64::max);
+    println!(
+        "interference fit: pressure {:.6} (E (δ + overlap)/H = {p:.6}), error {worst:.1e}",
+        s.contact[0].pressure
+    );
+    assert!(worst < 1e-10, "{worst:e}");
+}
+
+/// # Bodies that pass through each other
+///
+/// A block whose bottom (the slave part, one element 2 m across) is pressed by δ onto the
+/// apex of a roof (the master part, the two upper facets of a triangle): its two nodes
+/// stand 0.71 m from the roof's slopes, so no slave node touches, the block moves down
+/// freely by δ, and the apex ends up δ inside it. Node-to-segment contact cannot see this
+/// (it enforces the laws at the slave nodes): the solution is the model's, and its note says
+/// that the apex (node 2) of `b_roof` lies δ = 0.3 m inside the body of `a_bottom`, in
+/// `summary.json` among the notes. At δ = 0.1 (below a tenth of the 2 m facet) and with the
+/// sides swapped (the roof's nodes as slaves, which keep the block out) there is no note.
+#[test]
+fn bodies_that_pass_through_each_other_get_a_note_with_the_depth() {
+    // The roof (0, 0), (2, 0), (1, 1); the block [0, 2] × [1, 1.5] as two triangles.
+    let coords = vec![
+        0.0, 0.0, 2.0, 0.0, 1.0, 1.0, //
+        0.0, 1.0, 2.0, 1.0, 2.0, 1.5, 0.0, 1.5,
+    ];
+    let cells = vec![0, 1, 2, 3, 4, 5, 3, 5, 6];
+    let parts = vec![
+        ("b_bottom".to_string(), vec![0, 1]),
+        ("b_roof".to_string(), vec![1, 2, 2, 0]),
+        ("a_bottom".to_string(), vec![3, 4]),
+        ("a_top".to_string(), vec![5, 6]),
+    ];
+    let mesh = Mesh::from_parts(2, coords, cells, &parts).unwrap();
+    for (delta, slave, master, noted) in [
+        (0.3, "a_bottom", "b_roof", true),
+        (0.1, "a_bottom", "b_roof", false),
+        (0.3, "b_roof", "a_bottom", false),
+    ] {
+        let part = |n: &str| mesh.part_index(n).unwrap();
+        let problem = Problem::builder(mesh.clone(), material())
+            .plane(Plane::Strain)
+            .dirichlet(Dirichlet {
+                part: part("b_bottom"),
+                components: [true; 3],
+                value: [0.0; 3],
+            })
+            .dirichlet(Dirichlet {
+                part: part("a_top"),
+                components: [true; 3],
+                value: [0.0, -delta, 0.0],
+            })
+            .contact(ContactBoundary {
+                part: part(slave),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part(master))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            })
+            .build()
+            .unwrap();
+        let settings = SolverSettings::default();
+        let s = solve(&problem, &settings).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        let summary = hemicontact::io::summary::Summary::new(&problem, &settings, &s, None, "");
+        let found = &summary.small_deformation.interpenetration;
+        println!("δ = {delta}, {slave} against {master}: {found:?}");
+        if noted {
+            assert_eq!(found.len(), 1, "{found:?}");
+            let i = &found[0];
+            assert_eq!(
+                (i.node, i.part.as_str(), i.through.as_str()),
+                (2, "b_roof", "a_bottom")
+            );
+            assert!((i.depth - delta).abs() < 1e-12, "{}", i.depth);
+            assert!(
+                summary
+                    .notes
+                    .iter()
+                    .any(|n| n.contains("pass through each other")
+                        && n.contains("node 2 of `b_roof`")
+                        && n.contains("0.3 m")),
+                "{:?}",
+                summary.notes
+            );
+        } else {
+            assert!(found.is_empty(), "{found:?}");
+        }
+    }
+}

@@ -59,7 +59,13 @@
 //! master surface ([`super::pairing`]), with the weight of all its facets, the pair's normal
 //! and gap, and the master facet's nodes m_j and shape functions N_j at the projection
 //! ([`ContactNodes::master`], [`ContactNodes::master_shape`]). A node beyond the edge of the
-//! master surface is no point. Every law then reads the displacement relative to the master
+//! master surface is no point. Where the slave part turns a corner (its facets around the
+//! node fall into several direction groups, as under *Corners*), each face of the corner is
+//! paired on its own ([`super::pairing::MasterSurface::pair_facing`]: at a concave corner of
+//! the master surface, with the master facet that faces it) and is one point with its own
+//! weight, if it faces its master point; a face whose outward normal makes a right angle or
+//! more with the pair's normal ([`FACING_COSINE`]: the side of a block standing on the
+//! master) is none, so that the corner node carries the weight of the faces in contact only. Every law then reads the displacement relative to the master
 //! point, `u(x_i) − Σ_j N_j u(m_j)` ([`ContactNodes::relative`]), and the point's force acts
 //! on its stencil: its node with coefficient 1 and the master nodes with −N_j
 //! ([`ContactNodes::stencil`]).
@@ -121,6 +127,12 @@ pub struct ContactNodes {
 /// one contact point per direction (degrees); see the module documentation.
 pub const CORNER_ANGLE_DEG: f64 = 30.0;
 
+/// The cosine between the normal of one face of a corner of a slave part and its pair's
+/// normal at or below which the face does not face the master surface (a right angle, to
+/// round-off): that face of the corner is no contact point (see *Two bodies* in the module
+/// documentation).
+pub const FACING_COSINE: f64 = 1e-9;
+
 impl ContactNodes {
     /// Builds the contact points of `boundaries` on `mesh`, skipping nodes where
     /// `excluded[node]` is true (nodes with all components prescribed).
@@ -135,7 +147,6 @@ impl ContactNodes {
         excluded: &[bool],
     ) -> crate::Result<Self> {
         let d = mesh.dim();
-        let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
         let mut out = ContactNodes::default();
         for (b, cb) in boundaries.iter().enumerate() {
             let facets: Vec<(f64, [f64; 3])> = mesh
@@ -160,48 +171,12 @@ impl ContactNodes {
                 continue;
             }
             let mut group = Vec::new();
-            let mut stack = Vec::new();
             for around in incidence.chunk_by(|a, b| a.0 == b.0) {
                 let v = around[0].0;
                 if excluded[v as usize] {
                     continue;
                 }
-                // Group the facets around v by direction (single linkage).
-                let normal = |k: usize| &facets[around[k].1 as usize].1;
-                group.clear();
-                group.resize(around.len(), usize::MAX);
-                let mut n_groups = 0;
-                for seed in 0..around.len() {
-                    if group[seed] != usize::MAX {
-                        continue;
-                    }
-                    group[seed] = n_groups;
-                    stack.push(seed);
-                    while let Some(k) = stack.pop() {
-                        for m in 0..around.len() {
-                            let cos: f64 = (0..3).map(|i| normal(k)[i] * normal(m)[i]).sum();
-                            if group[m] == usize::MAX && cos >= cos_corner {
-                                group[m] = n_groups;
-                                stack.push(m);
-                            }
-                        }
-                    }
-                    n_groups += 1;
-                }
-                for g in 0..n_groups {
-                    let mut w = 0.0;
-                    let mut n = [0.0; 3];
-                    for (&(_, f), _) in around.iter().zip(&group).filter(|(_, &k)| k == g) {
-                        let (measure, nf) = &facets[f as usize];
-                        w += measure / d as f64;
-                        for i in 0..3 {
-                            n[i] += measure * nf[i];
-                        }
-                    }
-                    let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-                    for x in n.iter_mut() {
-                        *x /= len;
-                    }
+                for (w, n) in direction_groups(around, &facets, d, &mut group) {
                     out.node.push(v);
                     out.boundary.push(b as u16);
                     out.weight.push(w);
@@ -512,43 +487,109 @@ fn paired_points(
     let n_before = out.node.len();
     out.master.resize(n_before, [u32::MAX; 3]);
     out.master_shape.resize(n_before, [0.0; 3]);
+    let mut group = Vec::new();
     for around in incidence.chunk_by(|a, b| a.0 == b.0) {
         let v = around[0].0;
         if excluded[v as usize] || on_master[v as usize] {
             continue;
         }
-        let projection = match surface.pair(v) {
-            Ok(Pairing::Paired(p)) => p,
-            Ok(Pairing::Separated) => continue,
-            Err(message) => {
-                return Err(crate::Error::Invalid {
-                    field: String::new(),
-                    value: message,
-                    allowed: "a master part on which every node of the slave part has one \
-                              closest point"
-                        .into(),
-                })
+        let faces = direction_groups(around, facets, d, &mut group);
+        // One point per face of a corner of the slave part that faces its master point;
+        // one point with the weight of all its facets on a smooth part.
+        let corner = faces.len() > 1;
+        for (w, n_face) in faces {
+            let (weight, facing) = if corner {
+                (w, Some(n_face))
+            } else {
+                (lumped_weight(around, facets, d), None)
+            };
+            let projection = match surface.pair_facing(v, facing) {
+                Ok(Pairing::Paired(p)) => p,
+                Ok(Pairing::Separated) => continue,
+                Err(message) => {
+                    return Err(crate::Error::Invalid {
+                        field: String::new(),
+                        value: message,
+                        allowed: "a master part on which every node of the slave part has \
+                                  one closest point"
+                            .into(),
+                    })
+                }
+            };
+            let n = projection.normal;
+            if corner && (0..3).map(|k| n[k] * n_face[k]).sum::<f64>() <= FACING_COSINE {
+                continue;
             }
-        };
-        let n = projection.normal;
-        let mut x = [0.0; 3];
-        x[..d].copy_from_slice(mesh.node(v as usize));
-        out.node.push(v);
-        out.boundary.push(b as u16);
-        out.weight.push(lumped_weight(around, facets, d));
-        out.normal.push(n);
-        out.gap.push(master.gap(projection.gap));
-        out.tangent.push(tangent_basis(d, &n));
-        out.foundation_motion.push([0.0; 2]);
-        out.position.push(x);
-        let mut nodes = [u32::MAX; 3];
-        let mut shape = [0.0; 3];
-        nodes[..d].copy_from_slice(&projection.nodes[..d]);
-        shape[..d].copy_from_slice(&projection.shape[..d]);
-        out.master.push(nodes);
-        out.master_shape.push(shape);
+            let mut x = [0.0; 3];
+            x[..d].copy_from_slice(mesh.node(v as usize));
+            out.node.push(v);
+            out.boundary.push(b as u16);
+            out.weight.push(weight);
+            out.normal.push(n);
+            out.gap.push(master.gap(projection.gap));
+            out.tangent.push(tangent_basis(d, &n));
+            out.foundation_motion.push([0.0; 2]);
+            out.position.push(x);
+            let mut nodes = [u32::MAX; 3];
+            let mut shape = [0.0; 3];
+            nodes[..d].copy_from_slice(&projection.nodes[..d]);
+            shape[..d].copy_from_slice(&projection.shape[..d]);
+            out.master.push(nodes);
+            out.master_shape.push(shape);
+        }
     }
     Ok(())
+}
+
+/// The facets `around` a node ((node, facet) pairs; `facets` the measures and outward
+/// normals of the part's facets) grouped by direction (see *Corners* in the module
+/// documentation): the lumped weight `Σ |F| / d` and the averaged unit normal of each group,
+/// in the order of each group's first facet. `group` is scratch space (the group of each
+/// facet).
+fn direction_groups(
+    around: &[(u32, u32)],
+    facets: &[(f64, [f64; 3])],
+    d: usize,
+    group: &mut Vec<usize>,
+) -> Vec<(f64, [f64; 3])> {
+    let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
+    let normal = |k: usize| &facets[around[k].1 as usize].1;
+    group.clear();
+    group.resize(around.len(), usize::MAX);
+    let mut n_groups = 0;
+    let mut stack = Vec::new();
+    for seed in 0..around.len() {
+        if group[seed] != usize::MAX {
+            continue;
+        }
+        group[seed] = n_groups;
+        stack.push(seed);
+        while let Some(k) = stack.pop() {
+            for m in 0..around.len() {
+                let cos: f64 = (0..3).map(|i| normal(k)[i] * normal(m)[i]).sum();
+                if group[m] == usize::MAX && cos >= cos_corner {
+                    group[m] = n_groups;
+                    stack.push(m);
+                }
+            }
+        }
+        n_groups += 1;
+    }
+    (0..n_groups)
+        .map(|g| {
+            let mut w = 0.0;
+            let mut n = [0.0; 3];
+            for (&(_, f), _) in around.iter().zip(group.iter()).filter(|(_, &k)| k == g) {
+                let (measure, nf) = &facets[f as usize];
+                w += measure / d as f64;
+                for i in 0..3 {
+                    n[i] += measure * nf[i];
+                }
+            }
+            let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            (w, n.map(|x| x / len))
+        })
+        .collect()
 }
 
 /// The lumped weight `Σ |F| / d` of a node over all its facets `around` ((node, facet)

@@ -60,7 +60,7 @@ const TOUCH_TOLERANCE: f64 = 1e-9;
 
 /// The outward unit normal of part `part` at each of its nodes: the measure-weighted
 /// average of the outward normals of its facets there, as `(node, normal)` sorted by node.
-fn node_normals(mesh: &Mesh, part: usize) -> Vec<(u32, [f64; 3])> {
+pub(super) fn node_normals(mesh: &Mesh, part: usize) -> Vec<(u32, [f64; 3])> {
     let mut pairs: Vec<(u32, [f64; 3])> = mesh
         .part_facets(part)
         .flat_map(|f| {
@@ -91,7 +91,7 @@ fn node_normals(mesh: &Mesh, part: usize) -> Vec<(u32, [f64; 3])> {
 
 /// The largest distance between two vertices of facet `f` (its diameter, in the mesh's
 /// length unit).
-fn facet_diameter(mesh: &Mesh, f: usize) -> f64 {
+pub(super) fn facet_diameter(mesh: &Mesh, f: usize) -> f64 {
     let v = mesh.facet(f);
     let mut h = 0.0f64;
     for a in 0..v.len() {
@@ -105,7 +105,7 @@ fn facet_diameter(mesh: &Mesh, f: usize) -> f64 {
 }
 
 /// The contact points of boundary `b`.
-fn points_of(points: &ContactNodes, b: usize) -> Vec<usize> {
+pub(super) fn points_of(points: &ContactNodes, b: usize) -> Vec<usize> {
     (0..points.len())
         .filter(|&i| points.boundary[i] as usize == b)
         .collect()

@@ -187,8 +187,12 @@ impl Summary {
             })
             .count();
         let max_abs_trace_strain = strains.iter().map(|e| e.trace().abs()).fold(0.0, f64::max);
-        let small_deformation =
-            crate::small_deformation::SmallDeformation::of(mesh, &solution.u, &strains);
+        let small_deformation = crate::small_deformation::SmallDeformation::of(
+            mesh,
+            &solution.u,
+            &strains,
+            &problem.contact,
+        );
         let cert = &solution.report.certificate;
         Summary {
             version: env!("CARGO_PKG_VERSION").to_string(),

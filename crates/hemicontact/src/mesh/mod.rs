@@ -599,6 +599,17 @@ impl Mesh {
         m
     }
 
+    /// The same mesh with every node moved by the displacement `u` (m, DOF order: d
+    /// entries per node): the deformed configuration `x + u`, for geometric checks of a
+    /// solution. It is not validated again (a displacement may invert cells).
+    pub fn displaced(&self, u: &[f64]) -> Mesh {
+        let mut m = self.clone();
+        for (x, du) in m.coords.iter_mut().zip(u) {
+            *x += du;
+        }
+        m
+    }
+
     /// Bounding box `(min, max)` of the nodes (unused coordinates are zero).
     pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
         let mut lo = [f64::INFINITY; 3];

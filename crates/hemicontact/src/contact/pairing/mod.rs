@@ -21,13 +21,30 @@
 //! ambiguous: it is refused, naming the node, unless the two are neighbours whose normals
 //! differ by less than the corner angle ([`super::nodes::CORNER_ANGLE_DEG`], 30°): above
 //! the nearly flat crease between two triangles of a curved surface either point is as
-//! good, and the one of the lower facet index is taken. A node that projects onto no facet lies
-//! beyond the edge of the master surface, or above a convex corner between facets. Above
-//! a corner (the closest point is a vertex or edge shared by several master facets) it is
-//! paired with that point, with the mean of the facets' normals there. Beyond the master
-//! surface's own edge (the closest point is on the boundary of the master part) it is
-//! *separated*: it can never touch the master under small deformation, and is not a
-//! contact point.
+//! good, and the one of the lower facet index is taken. Two facets at the same distance with
+//! the same closest point (a slave node at a concave corner of the master surface) are not
+//! ambiguous: the lower facet index is taken, or, for one face of a slave corner
+//! ([`MasterSurface::pair_facing`]), the facet that faces that face most nearly head-on.
+//!
+//! # The edge of the master surface
+//!
+//! The master part's facets end somewhere: at the edge of the master surface, where the
+//! master body's boundary continues in facets of other parts (its *sides*: the side of a
+//! block whose top is the master part, or a symmetry plane that cuts the interface). A slave
+//! node *beyond* that edge can never touch the master under small deformation and is not a
+//! contact point. A closest point c on the edge (an orthogonal projection clamped there, or
+//! the end of the surface) is beyond it when the node lies on the outer side of a side facet
+//! that contains c's support (the facet's vertices where the shape functions at c are not
+//! zero): `(x − c)·n_S > 10⁻⁹ h` for such a side facet S with outward normal n_S, h the
+//! largest master facet size. So the 5 % by which a projection may fall outside a facet
+//! reaches across the master surface's interior edges (a crease of a curved surface) and
+//! onto a symmetry plane (the slave nodes on the plane lie in the plane of the side facets
+//! there), but never to a node that stands beside the master body.
+//!
+//! A node that projects onto no facet lies above a convex corner between master facets, or
+//! beyond the edge. Above a corner (the closest point is a vertex or edge shared by several
+//! master facets, and not beyond the edge as above) it is paired with that point, with the
+//! mean of the facets' normals there. Otherwise it is *separated*: not a contact point.
 
 use crate::mesh::Mesh;
 
@@ -116,6 +133,40 @@ fn closest_on_facet(mesh: &Mesh, f: usize, x: &[f64; 3]) -> ([f64; 3], bool) {
     (best.0, false)
 }
 
+/// The sides of the master surface of the facets `master` of `mesh`: `(node, facet)` for
+/// every boundary facet of the mesh other than the master facets (and other than a facet
+/// with the vertices of a master facet, listed in a second part) at each of its vertices
+/// that is a vertex of a master facet, sorted.
+fn sides_of(mesh: &Mesh, master: &[usize]) -> Vec<(u32, u32)> {
+    let key = |f: usize| {
+        let mut k = [u32::MAX; 3];
+        k[..mesh.dim()].copy_from_slice(mesh.facet(f));
+        k.sort_unstable();
+        k
+    };
+    let mut on_surface = vec![false; mesh.n_nodes()];
+    let mut keys: Vec<[u32; 3]> = master.iter().map(|&f| key(f)).collect();
+    keys.sort_unstable();
+    for &f in master {
+        for &v in mesh.facet(f) {
+            on_surface[v as usize] = true;
+        }
+    }
+    let mut sides = Vec::new();
+    for f in 0..mesh.n_facets() {
+        let vertices = mesh.facet(f);
+        if !vertices.iter().any(|&v| on_surface[v as usize]) || keys.binary_search(&key(f)).is_ok()
+        {
+            continue;
+        }
+        for &v in vertices.iter().filter(|&&v| on_surface[v as usize]) {
+            sides.push((v, f as u32));
+        }
+    }
+    sides.sort_unstable();
+    sides
+}
+
 /// The closest point of one master facet to a slave node.
 #[derive(Clone, Copy, Debug)]
 struct Candidate {
@@ -123,8 +174,12 @@ struct Candidate {
     facet: usize,
     /// Its shape functions at the closest point.
     shape: [f64; 3],
-    /// Whether the node projects orthogonally inside the facet.
+    /// Whether the node projects orthogonally inside the facet (and not beyond the edge of
+    /// the master surface).
     inside: bool,
+    /// Whether the closest point is on the edge of the master surface with the node beyond
+    /// it (see the module documentation).
+    beyond: bool,
     /// The closest point (m).
     point: [f64; 3],
     /// Its distance to the node (m).
@@ -164,6 +219,10 @@ pub struct MasterSurface<'a> {
     /// The facets (positions in `facets`) of each grid cell, in compressed rows.
     start: Vec<u32>,
     items: Vec<u32>,
+    /// The sides of the master surface: `(node, facet)` for each boundary facet of the mesh
+    /// that is not a master facet (nor one with a master facet's vertices) and has a vertex
+    /// `node` of the master surface, sorted.
+    sides: Vec<(u32, u32)>,
 }
 
 /// Rings of grid cells searched around a slave node before every facet is examined
@@ -250,7 +309,42 @@ impl<'a> MasterSurface<'a> {
             dims,
             start,
             items,
+            sides: sides_of(mesh, master),
         }
+    }
+
+    /// Whether the node at `x` lies beyond the edge of the master surface at the point `c`
+    /// of facet `f` with shape functions `shape`: on the outer side of a side facet that
+    /// contains every vertex of `f` where `shape` is not zero (see the module
+    /// documentation). False for a point inside the facet.
+    fn beyond_edge(&self, f: usize, shape: &[f64; 3], c: &[f64; 3], x: &[f64; 3]) -> bool {
+        let mesh = self.mesh;
+        let d = mesh.dim();
+        let vertices = mesh.facet(f);
+        if shape[..d].iter().all(|&n| n > 0.0) {
+            return false;
+        }
+        let support: Vec<u32> = (0..d)
+            .filter(|&a| shape[a] > 0.0)
+            .map(|a| vertices[a])
+            .collect();
+        let Some(&first) = support.first() else {
+            return false;
+        };
+        let from = self.sides.partition_point(|s| s.0 < first);
+        let tol = TOLERANCE * self.size;
+        self.sides[from..]
+            .iter()
+            .take_while(|s| s.0 == first)
+            .any(|&(_, side)| {
+                let side = side as usize;
+                let around = mesh.facet(side);
+                if !support.iter().all(|v| around.contains(v)) {
+                    return false;
+                }
+                let (_, n) = mesh.facet_measure_normal(side);
+                (0..d).map(|k| (x[k] - c[k]) * n[k]).sum::<f64>() > tol
+            })
     }
 
     /// The candidate of facet position `pos` for the slave node at `x`.
@@ -258,10 +352,12 @@ impl<'a> MasterSurface<'a> {
         let f = self.facets[pos];
         let (shape, inside) = closest_on_facet(self.mesh, f, x);
         let point = point_of(self.mesh, f, &shape);
+        let beyond = self.beyond_edge(f, &shape, &point, x);
         Candidate {
             facet: f,
             shape,
-            inside,
+            inside: inside && !beyond,
+            beyond,
             point,
             distance: (0..3)
                 .map(|k| (x[k] - point[k]).powi(2))
@@ -336,6 +432,21 @@ impl<'a> MasterSurface<'a> {
     /// The reason, in words naming the node, when two master facets are equally near with
     /// distinct closest points (an ambiguous pairing), or when the surface has no facets.
     pub fn pair(&self, slave: u32) -> std::result::Result<Pairing, String> {
+        self.pair_facing(slave, None)
+    }
+
+    /// [`MasterSurface::pair`] for one face of a corner of the slave part, of outward unit
+    /// normal `facing` (`None`: the node's whole boundary): among master facets equally
+    /// near with the same closest point (a concave corner of the master surface), the one
+    /// whose outward normal n_F is most nearly opposite, the least `n_F·facing`, is taken.
+    ///
+    /// # Errors
+    /// Those of [`MasterSurface::pair`].
+    pub fn pair_facing(
+        &self,
+        slave: u32,
+        facing: Option<[f64; 3]>,
+    ) -> std::result::Result<Pairing, String> {
         let mesh = self.mesh;
         let d = mesh.dim();
         let mut x = [0.0; 3];
@@ -345,7 +456,7 @@ impl<'a> MasterSurface<'a> {
         }
         let tol = TOLERANCE * self.size.max(f64::MIN_POSITIVE);
         let candidates = self.candidates(&x, tol);
-        decide(mesh, slave, &x, &candidates, tol)
+        decide(mesh, slave, &x, &candidates, tol, facing)
     }
 }
 
@@ -367,6 +478,7 @@ fn decide(
     x: &[f64; 3],
     candidates: &[Candidate],
     tol: f64,
+    facing: Option<[f64; 3]>,
 ) -> std::result::Result<Pairing, String> {
     let apart =
         |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
@@ -380,7 +492,27 @@ fn decide(
                     .then(a.facet.cmp(&b.facet))
             })
     };
-    if let Some(best) = nearest(true) {
+    if let Some(nearest) = nearest(true) {
+        // For one face of a slave corner, the facet with the same closest point that faces
+        // it most nearly head-on.
+        let best = match facing {
+            None => nearest,
+            Some(n) => {
+                let cos = |c: &Candidate| {
+                    let (_, nf) = mesh.facet_measure_normal(c.facet);
+                    (0..3).map(|k| nf[k] * n[k]).sum::<f64>()
+                };
+                candidates
+                    .iter()
+                    .filter(|c| {
+                        c.inside
+                            && (c.distance - nearest.distance).abs() <= tol
+                            && apart(&c.point, &nearest.point) <= tol
+                    })
+                    .min_by(|a, b| cos(a).total_cmp(&cos(b)).then(a.facet.cmp(&b.facet)))
+                    .unwrap_or(nearest)
+            }
+        };
         // Another facet as near with a different closest point: ambiguous, unless the two
         // facets are neighbours that meet at a nearly flat crease (a triangulated curved
         // surface), where either closest point is as good.
@@ -413,7 +545,7 @@ fn decide(
         return Ok(Pairing::Paired(projection(mesh, best, n, x)));
     }
     // No orthogonal projection: above a corner shared by master facets, or beyond the edge.
-    let Some(best) = nearest(false) else {
+    let Some(best) = nearest(false).filter(|c| !c.beyond) else {
         return Ok(Pairing::Separated);
     };
     let sharing: Vec<&Candidate> = candidates
@@ -455,227 +587,4 @@ fn projection(mesh: &Mesh, c: &Candidate, n: [f64; 3], x: &[f64; 3]) -> Projecti
 }
 
 #[cfg(test)]
-mod tests {
-    #![allow(clippy::unwrap_used, clippy::expect_used)]
-    use super::*;
-
-    /// Two unit squares (2D) side by side along y, separated by `gap`, each of two
-    /// triangles, with the parts `lower_top` (the lower square's top) and `upper_bottom`.
-    fn two_squares(gap: f64, shift: f64) -> Mesh {
-        let coords = vec![
-            0.0,
-            0.0,
-            1.0,
-            0.0,
-            1.0,
-            1.0,
-            0.0,
-            1.0, // lower
-            shift,
-            1.0 + gap,
-            1.0 + shift,
-            1.0 + gap,
-            1.0 + shift,
-            2.0 + gap,
-            shift,
-            2.0 + gap,
-        ];
-        let cells = vec![0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7];
-        Mesh::from_parts(
-            2,
-            coords,
-            cells,
-            &[
-                ("lower_top".into(), vec![2, 3]),
-                ("upper_bottom".into(), vec![4, 5]),
-            ],
-        )
-        .unwrap()
-    }
-
-    fn facets_of(m: &Mesh, part: &str) -> Vec<usize> {
-        m.part_facets(m.part_index(part).unwrap()).collect()
-    }
-
-    #[test]
-    fn a_node_above_a_facet_gets_its_gap_normal_and_shape_functions() {
-        let m = two_squares(0.1, 0.25);
-        let master = facets_of(&m, "lower_top");
-        // Slave node 4 at (0.25, 1.1): above the lower square's top, a quarter along it.
-        let Pairing::Paired(p) = pair(&m, &master, 4).unwrap() else {
-            panic!("separated")
-        };
-        assert!((p.gap - 0.1).abs() < 1e-14, "gap {}", p.gap);
-        assert!((p.normal[1] + 1.0).abs() < 1e-14 && p.normal[0].abs() < 1e-14);
-        // Facet nodes (2, 3) at x = 1 and x = 0: N = (0.25, 0.75).
-        let n_of = |v: u32| p.shape[p.nodes.iter().position(|&w| w == v).unwrap()];
-        assert!((n_of(2) - 0.25).abs() < 1e-14 && (n_of(3) - 0.75).abs() < 1e-14);
-    }
-
-    #[test]
-    fn a_node_beyond_the_edge_of_the_master_surface_is_separated() {
-        let m = two_squares(0.1, 0.25);
-        let master = facets_of(&m, "lower_top");
-        // Slave node 5 at (1.25, 1.1): beyond the master's right end.
-        assert_eq!(pair(&m, &master, 5).unwrap(), Pairing::Separated);
-    }
-
-    #[test]
-    fn a_penetrating_node_has_a_negative_gap() {
-        let m = two_squares(-0.05, 0.5);
-        let master = facets_of(&m, "lower_top");
-        let Pairing::Paired(p) = pair(&m, &master, 4).unwrap() else {
-            panic!("separated")
-        };
-        assert!((p.gap + 0.05).abs() < 1e-14, "gap {}", p.gap);
-    }
-
-    /// A lower body of `coords`/`cells` with its top facets in the part `master`, and a
-    /// slave triangle `slave` (its first node the one paired).
-    fn with_slave(
-        mut coords: Vec<f64>,
-        mut cells: Vec<u32>,
-        master: Vec<u32>,
-        slave: [f64; 6],
-    ) -> (Mesh, u32) {
-        let first = (coords.len() / 2) as u32;
-        coords.extend_from_slice(&slave);
-        cells.extend_from_slice(&[first, first + 1, first + 2]);
-        let m = Mesh::from_parts(2, coords, cells, &[("master".into(), master)]).unwrap();
-        (m, first)
-    }
-
-    #[test]
-    fn a_node_above_a_convex_corner_is_paired_with_the_corner() {
-        // A roof: the triangle (0, 0), (2, 0), (1, 1), its apex a convex corner.
-        let (m, node) = with_slave(
-            vec![0.0, 0.0, 2.0, 0.0, 1.0, 1.0],
-            vec![0, 1, 2],
-            vec![1, 2, 2, 0],
-            [1.0, 1.5, 1.5, 2.0, 0.5, 2.0],
-        );
-        let Pairing::Paired(p) = pair(&m, &facets_of(&m, "master"), node).unwrap() else {
-            panic!("separated")
-        };
-        assert!((p.gap - 0.5).abs() < 1e-14, "gap {}", p.gap);
-        assert!(p.normal[0].abs() < 1e-14 && (p.normal[1] + 1.0).abs() < 1e-14);
-        let at_apex = p.nodes.iter().position(|&v| v == 2).unwrap();
-        assert!((p.shape[at_apex] - 1.0).abs() < 1e-14);
-    }
-
-    #[test]
-    fn a_node_equally_near_two_facets_of_a_notch_is_refused_naming_it() {
-        // A pentagon with a V notch at its top, the notch's two facets the master part.
-        let (m, node) = with_slave(
-            vec![0.0, -1.0, 2.0, -1.0, 2.0, 1.0, 1.0, 0.0, 0.0, 1.0],
-            vec![0, 1, 3, 1, 2, 3, 0, 3, 4],
-            vec![2, 3, 3, 4],
-            [1.0, 0.8, 1.2, 1.5, 0.8, 1.5],
-        );
-        let e = pair(&m, &facets_of(&m, "master"), node).unwrap_err();
-        assert!(
-            e.contains(&format!("node {node}")) && e.contains("ambiguous"),
-            "{e}"
-        );
-    }
-
-    #[test]
-    fn a_node_above_a_triangle_gets_its_barycentric_shape_functions() {
-        // The lower tetrahedron's face z = 0 is the master; the slave tetrahedron's first
-        // node is at (0.2, 0.3, 0.1).
-        let coords = vec![
-            0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0, //
-            0.2, 0.3, 0.1, 1.2, 0.3, 0.1, 0.2, 1.3, 0.1, 0.2, 0.3, 1.1,
-        ];
-        let m = Mesh::from_parts(
-            3,
-            coords,
-            vec![0, 1, 2, 3, 4, 5, 6, 7],
-            &[("master".into(), vec![0, 1, 2])],
-        )
-        .unwrap();
-        let Pairing::Paired(p) = pair(&m, &facets_of(&m, "master"), 4).unwrap() else {
-            panic!("separated")
-        };
-        assert!((p.gap - 0.1).abs() < 1e-14, "gap {}", p.gap);
-        assert!((p.normal[2] + 1.0).abs() < 1e-14);
-        let n_of = |v: u32| p.shape[p.nodes.iter().position(|&w| w == v).unwrap()];
-        for (v, exact) in [(0, 0.5), (1, 0.3), (2, 0.2)] {
-            assert!(
-                (n_of(v) - exact).abs() < 1e-14,
-                "N at node {v}: {}",
-                n_of(v)
-            );
-        }
-    }
-
-    /// The grid search decides every slave node as examining every facet does: a curved
-    /// 3D master surface (a box's top lifted onto a sphere) under a finer, shifted and
-    /// wider slave surface (some of its nodes beyond the master's edge, some above it far
-    /// from its facets), each slave node paired through [`MasterSurface::pair`] and through
-    /// [`decide`] over all facets.
-    #[test]
-    fn the_grid_search_pairs_as_the_scan_of_every_facet() {
-        use crate::mesh::generate::{cuboid, BoxSpec, CutPattern};
-        let block = |origin: [f64; 3], size: [f64; 3], n: usize| {
-            cuboid(&BoxSpec {
-                origin,
-                size,
-                n: [n, n, 2],
-                pattern: CutPattern::Uniform,
-                progression: [1.0; 3],
-            })
-            .unwrap()
-        };
-        let lower = block([0.0, 0.0, -0.5], [1.0, 1.0, 0.5], 7);
-        let upper = block([-0.2, -0.1, 0.05], [1.5, 1.3, 0.5], 11);
-        let offset = lower.n_nodes() as u32;
-        let mut coords = lower.coords().to_vec();
-        for x in coords.chunks_exact_mut(3) {
-            x[2] -= 0.1 * (x[0] * x[0] + x[1] * x[1]) * (1.0 + 2.0 * x[2]);
-        }
-        coords.extend_from_slice(upper.coords());
-        let mut cells = lower.cells().to_vec();
-        cells.extend(upper.cells().iter().map(|&v| v + offset));
-        let part = |m: &Mesh, name: &str, shift: u32| -> Vec<u32> {
-            let p = m.part_index(name).unwrap();
-            m.part_facets(p)
-                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
-                .collect()
-        };
-        let mesh = Mesh::from_parts(
-            3,
-            coords,
-            cells,
-            &[
-                ("lower_top".into(), part(&lower, "top", 0)),
-                ("upper_bottom".into(), part(&upper, "bottom", offset)),
-            ],
-        )
-        .unwrap();
-        let master = facets_of(&mesh, "lower_top");
-        let surface = MasterSurface::new(&mesh, &master);
-        let slaves = mesh.part_nodes(mesh.part_index("upper_bottom").unwrap());
-        let (mut paired, mut separated) = (0, 0);
-        for &v in &slaves {
-            let mut x = [0.0; 3];
-            x.copy_from_slice(mesh.node(v as usize));
-            let tol = TOLERANCE * surface.size;
-            let all: Vec<Candidate> = (0..master.len())
-                .map(|pos| surface.candidate(pos, &x))
-                .collect();
-            let scan = decide(&mesh, v, &x, &all, tol);
-            let grid = surface.pair(v);
-            assert_eq!(grid, scan, "node {v}");
-            match grid {
-                Ok(Pairing::Paired(_)) => paired += 1,
-                _ => separated += 1,
-            }
-        }
-        // Both outcomes were exercised.
-        assert!(
-            paired > 50 && separated > 10,
-            "{paired} paired, {separated} separated"
-        );
-    }
-}
+mod tests;
