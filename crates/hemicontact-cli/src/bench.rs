@@ -201,7 +201,7 @@ pub fn run_paper(
             let s = hemicontact::solver::solve_observed(
                 &linear,
                 &settings,
-                linear.prescribed_displacement(),
+                linear.initial_displacement(),
                 &stop,
                 &|p| progress.observe(p),
             )?;
@@ -215,7 +215,7 @@ pub fn run_paper(
             let s = hemicontact::solver::solve_observed(
                 &paper,
                 &settings,
-                paper.prescribed_displacement(),
+                paper.initial_displacement(),
                 &stop,
                 &|p| progress.observe(p),
             )?;

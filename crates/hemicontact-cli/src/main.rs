@@ -496,7 +496,7 @@ fn run_and_write(
     let solution = hemicontact::solver::solve_observed(
         &problem,
         &settings,
-        problem.prescribed_displacement(),
+        problem.initial_displacement(),
         &std::sync::atomic::AtomicBool::new(false),
         &|p| progress.observe(p),
     )

@@ -59,7 +59,7 @@ pub fn solve(py: Python<'_>, scenario: &NativeScenario) -> PyResult<NativeSoluti
         })
         .map_err(|e| scenario.error(e))?;
     let solution = interrupt::run(py, |stop| {
-        solve_interruptible(&problem, &settings, problem.prescribed_displacement(), stop)
+        solve_interruptible(&problem, &settings, problem.initial_displacement(), stop)
     })?
     .map_err(|e| scenario.error(e))?;
     let mut summary = Summary::new(

@@ -156,17 +156,27 @@ pub fn for_each_step(
     on_step: &mut dyn FnMut(LoadStep) -> Result<()>,
 ) -> Result<usize> {
     validate_factors(factors)?;
-    let mut last: Option<Vec<f64>> = None;
+    // The last step's displacement and the translation its supports carried the bodies by.
+    let mut last: Option<(Vec<f64>, Option<Vec<f64>>)> = None;
     for (k, &factor) in factors.iter().enumerate() {
         let scaled = problem.with_load_factor(factor)?;
+        let carried = scaled.carried_displacement();
+        // From the last step, with the bodies carried on to this step's translation.
         let start = match last.take() {
-            Some(u) => u,
-            None => scaled.prescribed_displacement(),
+            Some((mut u, before)) => {
+                let moved = carried.is_some() || before.is_some();
+                for (k, x) in u.iter_mut().enumerate().filter(|_| moved) {
+                    *x += carried.as_ref().map_or(0.0, |c| c[k])
+                        - before.as_ref().map_or(0.0, |c| c[k]);
+                }
+                u
+            }
+            None => scaled.initial_displacement(),
         };
         let solution = solve_observed(&scaled, settings, start, stop, &|p| observe(k + 1, p))?;
         let converged = solution.report.converged;
         if converged {
-            last = Some(solution.u.clone());
+            last = Some((solution.u.clone(), carried));
         }
         on_step(LoadStep {
             step: k + 1,

@@ -694,11 +694,18 @@ impl Problem {
         let Ok(points) = self.contact_nodes() else {
             return Vec::new();
         };
+        let carried = self.carried_displacement();
         self.contact
             .iter()
             .enumerate()
             .flat_map(|(b, c)| {
-                crate::contact::placement::resolution_notes(&self.mesh, b, c, &points)
+                crate::contact::placement::resolution_notes(
+                    &self.mesh,
+                    b,
+                    c,
+                    &points,
+                    carried.as_deref(),
+                )
             })
             .collect()
     }
@@ -709,7 +716,39 @@ impl Problem {
     /// Those of [`ContactNodes::new`]: an invalid obstacle, or a node whose closest point on
     /// its obstacle is not unique.
     pub fn contact_nodes(&self) -> Result<ContactNodes> {
-        ContactNodes::new(&self.mesh, &self.contact, &self.fully_prescribed())
+        let carried = self.carried_displacement();
+        ContactNodes::new(
+            &self.mesh,
+            &self.contact,
+            &self.fully_prescribed(),
+            carried.as_deref(),
+        )
+    }
+
+    /// The start of a solve from scratch (m, DOF order): the prescribed values at the
+    /// prescribed DOFs ([`Problem::prescribed_displacement`]) and the translation the
+    /// supports carry each body by ([`Problem::carried_displacement`]) at the others, so
+    /// that the solve starts from each body moved rigidly where its supports put it.
+    pub fn initial_displacement(&self) -> Vec<f64> {
+        let mut u = self.prescribed_displacement();
+        if let Some(c) = self.carried_displacement() {
+            let dofs = self.dof_map();
+            for (k, x) in u.iter_mut().enumerate() {
+                if !dofs.is_fixed(k) {
+                    *x = c[k];
+                }
+            }
+        }
+        u
+    }
+
+    /// The translation by which its supports carry each body, as a displacement (m, DOF
+    /// order; [`crate::fem::carry`]); `None` when no body is carried.
+    pub fn carried_displacement(&self) -> Option<Vec<f64>> {
+        let dofs = self.dof_map();
+        crate::fem::carry::carried_translation(&self.mesh, &self.prescribed_displacement(), |k| {
+            dofs.is_fixed(k)
+        })
     }
 
     /// The positions of the nodes of boundary part `part` (m, unused coordinates 0), in the
@@ -750,26 +789,20 @@ impl Problem {
         u
     }
 
-    /// The largest prescribed motion (m): the largest component of a Dirichlet value and of
-    /// the translation of an obstacle on a part with friction (which drags the body along:
-    /// the slip is relative to the obstacle). The displacement these data can cause, for the
-    /// displacement scale and the force floor of the solver.
+    /// The largest prescribed motion (m): the largest component of a Dirichlet value beyond
+    /// the translation its body is carried by ([`Problem::carried_displacement`]). The
+    /// displacement these data ask of the bodies, for the displacement scale of the solver
+    /// (the carried translations, and an obstacle's own translation, move the bodies
+    /// rigidly and are taken exactly, not through the displacement).
     pub fn largest_prescribed_motion(&self) -> f64 {
-        let d = self.mesh.dim();
-        let mut m = 0.0f64;
-        for b in &self.dirichlet {
-            for i in 0..d {
-                if b.components[i] {
-                    m = m.max(b.value[i].abs());
-                }
-            }
-        }
-        for c in self.contact.iter().filter(|c| c.friction.is_some()) {
-            if let Some(t) = c.obstacle.as_ref().and_then(|o| o.translation(d).ok()) {
-                m = t[..d].iter().fold(m, |m, x| m.max(x.abs()));
-            }
-        }
-        m
+        let carried = self.carried_displacement();
+        let dofs = self.dof_map();
+        self.prescribed_displacement()
+            .iter()
+            .enumerate()
+            .filter(|&(k, _)| dofs.is_fixed(k))
+            .map(|(k, &x)| (x - carried.as_ref().map_or(0.0, |c| c[k])).abs())
+            .fold(0.0f64, f64::max)
     }
 
     /// The consistent external force vector `f` (DOF order, length `d · n_nodes`).

@@ -193,7 +193,7 @@ pub fn run_observed(
     let ref_sol = solve_observed(
         &reference,
         &solver,
-        reference.prescribed_displacement(),
+        reference.initial_displacement(),
         stop,
         observe,
     )?;
@@ -231,7 +231,7 @@ pub fn run_observed(
         let problem = scenario.with_resolution(n)?.into_problem()?;
         let start = match (&previous, settings.nested_iteration) {
             (Some((p, s)), true) => interpolate(&p.mesh, &s.u, &problem.mesh),
-            _ => problem.prescribed_displacement(),
+            _ => problem.initial_displacement(),
         };
         let t = Instant::now();
         let sol = solve_observed(&problem, &solver, start, stop, observe)?;

@@ -53,6 +53,19 @@
 //! `t` is then the same problem as moving every support by `−t` (Galilean invariance), with
 //! `u` shifted by `t`.
 //!
+//! # Carried bodies
+//!
+//! A body whose supports carry it by a translation c ([`crate::fem::carry`]) is solved for
+//! its displacement beyond c (the solver's placement, [`ContactNodes::place`]). Its points
+//! are made in the carried configuration: against a flat foundation or another body, the
+//! gap less `ν_i·c` and the slip plus `τ_a·c` (a placement; exact for a flat foundation);
+//! against an obstacle exactly, by projecting the node onto the obstacle translated by
+//! `t − c` (its own translation t less the body's), which gives the gap, normal, tangents
+//! and `foundation_motion = (t − c)·τ_a`. The relative translation is formed once, so an
+//! obstacle moved by t and a body whose supports are moved by −t give the same points, bit
+//! for bit. A translation `t − c` so large that double precision cannot place the nodes
+//! against the obstacle ([`TRANSLATION_RESOLUTION`]) is refused.
+//!
 //! # Two bodies
 //!
 //! A boundary with a master part (`against`) has one point per slave node paired with the
@@ -100,12 +113,14 @@ pub struct ContactNodes {
     /// a friction law of the position is evaluated.
     pub position: Vec<[f64; 3]>,
     /// Normal component `ν_i·u_R` (m) of a rigid placement `u_R` of the body applied
-    /// before the solve ([`ContactNodes::place`]), already subtracted from `gap`; empty
-    /// without placement.
+    /// before the solve (the translation its supports carry it by, and a rigid drop:
+    /// [`ContactNodes::new`], [`ContactNodes::place`]), already accounted for in `gap`;
+    /// empty without placement.
     pub placed_normal: Vec<f64>,
     /// Tangential coordinates `τ_a·u_R` (m) of that placement, added to the tangential
-    /// displacement of every evaluation ([`ContactNodes::kinematics`]); empty without
-    /// placement.
+    /// displacement of every evaluation ([`ContactNodes::kinematics`]; zero for a carried
+    /// translation at a point facing an obstacle, whose [`ContactNodes::foundation_motion`]
+    /// is relative to the carried body); empty without placement.
     pub placed_tangential: Vec<[f64; 2]>,
     /// The nodes m_j of the master facet of each point of a contact pair (first d entries),
     /// `u32::MAX` at a point facing a foundation or an obstacle; empty when no contact part
@@ -127,6 +142,13 @@ pub struct ContactNodes {
 /// one contact point per direction (degrees); see the module documentation.
 pub const CORNER_ANGLE_DEG: f64 = 30.0;
 
+/// How finely a rigid obstacle must place the nodes of a body, relative to the body's size
+/// (the diagonal of the mesh's bounding box): an obstacle's translation relative to the
+/// body, `t − c` (its displacement less the translation the body's supports carry it by),
+/// is refused when its round-off `ε‖t − c‖_∞` exceeds this fraction of the size, about
+/// 4.5·10⁷ sizes.
+pub const TRANSLATION_RESOLUTION: f64 = 1e-8;
+
 /// The cosine between the normal of one face of a corner of a slave part and its pair's
 /// normal at or below which the face does not face the master surface (a right angle, to
 /// round-off): that face of the corner is no contact point (see *Two bodies* in the module
@@ -135,19 +157,24 @@ pub const FACING_COSINE: f64 = 1e-9;
 
 impl ContactNodes {
     /// Builds the contact points of `boundaries` on `mesh`, skipping nodes where
-    /// `excluded[node]` is true (nodes with all components prescribed).
+    /// `excluded[node]` is true (nodes with all components prescribed), for bodies carried
+    /// by the translations `carried` (DOF order, in the units of the gaps; `None`: none; see
+    /// *Carried bodies* in the module documentation).
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] under `contact[b].obstacle` if an obstacle is invalid for
-    /// the mesh's dimension or the closest point of a node on it is not unique (the error
-    /// names the node and its position).
+    /// the mesh's dimension, the closest point of a node on it is not unique (the error
+    /// names the node and its position), or its translation relative to the body is beyond
+    /// what double precision resolves against the body's size ([`TRANSLATION_RESOLUTION`]).
     pub fn new(
         mesh: &Mesh,
         boundaries: &[ContactBoundary],
         excluded: &[bool],
+        carried: Option<&[f64]>,
     ) -> crate::Result<Self> {
         let d = mesh.dim();
         let mut out = ContactNodes::default();
+        let mut on_obstacle = Vec::new();
         for (b, cb) in boundaries.iter().enumerate() {
             let facets: Vec<(f64, [f64; 3])> = mesh
                 .part_facets(cb.part)
@@ -161,8 +188,12 @@ impl ContactNodes {
                 .collect();
             incidence.sort_unstable();
             if let Some(obstacle) = &cb.obstacle {
-                obstacle_points(&mut out, mesh, b, obstacle, &facets, &incidence, excluded)
-                    .map_err(|e| e.within(&format!("contact[{b}].obstacle")))?;
+                let first = out.len();
+                obstacle_points(
+                    &mut out, mesh, b, obstacle, &facets, &incidence, excluded, carried,
+                )
+                .map_err(|e| e.within(&format!("contact[{b}].obstacle")))?;
+                on_obstacle.extend(first..out.len());
                 continue;
             }
             if let Some(master) = &cb.against {
@@ -194,7 +225,34 @@ impl ContactNodes {
             out.master.resize(out.node.len(), [u32::MAX; 3]);
             out.master_shape.resize(out.node.len(), [0.0; 3]);
         }
+        if let Some(c) = carried {
+            out.carry(d, c, &on_obstacle);
+        }
         Ok(out)
+    }
+
+    /// Takes the carried translation `c` (DOF order) into the points: at a point facing a
+    /// flat foundation or of a pair, as a placement ([`ContactNodes::place`]: the gap less
+    /// the normal part of `c`, its tangential part added to the slips, linear and, for a
+    /// flat foundation, exact); at the points `on_obstacle` (sorted indices), which
+    /// [`obstacle_points`] made against the obstacle as the carried body meets it, only the
+    /// normal part `ν_i·c`, for the normal displacement reported.
+    fn carry(&mut self, dim: usize, c: &[f64], on_obstacle: &[usize]) {
+        let n = self.len();
+        self.placed_normal = vec![0.0; n];
+        self.placed_tangential = vec![[0.0; 2]; n];
+        for i in 0..n {
+            let x = self.relative(dim, c, i);
+            let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
+            self.placed_normal[i] = dot(&self.normal[i]);
+            if on_obstacle.binary_search(&i).is_ok() {
+                continue;
+            }
+            self.gap[i] -= self.placed_normal[i];
+            for a in 0..dim - 1 {
+                self.placed_tangential[i][a] = dot(&self.tangent[i][a]);
+            }
+        }
     }
 
     /// Whether some points are paired with a master surface (contact between two bodies).
@@ -378,25 +436,22 @@ impl ContactNodes {
     /// once, exactly, instead of being carried through every evaluation of `u_ν − g`), and
     /// its tangential coordinates `τ_a·u_r(x_i)` are kept in
     /// [`ContactNodes::placed_tangential`] and added back by
-    /// [`ContactNodes::kinematics`]. A placement replaces any earlier one, whose normal
-    /// part is first given back to the gaps.
+    /// [`ContactNodes::kinematics`]. A placement adds to an earlier one (the carried
+    /// translations of [`ContactNodes::new`]).
     pub fn place(&mut self, dim: usize, u_r: &[f64]) {
         let n = self.len();
-        if self.placed_normal.len() == n {
-            for (g, p) in self.gap.iter_mut().zip(&self.placed_normal) {
-                *g += p;
-            }
+        if self.placed_normal.len() != n {
+            self.placed_normal = vec![0.0; n];
+            self.placed_tangential = vec![[0.0; 2]; n];
         }
-        self.placed_normal = vec![0.0; n];
-        self.placed_tangential = vec![[0.0; 2]; n];
         for i in 0..n {
             let x = self.relative(dim, u_r, i);
             let dot = |a: &[f64; 3]| (0..dim).map(|k| a[k] * x[k]).sum::<f64>();
             let normal = dot(&self.normal[i]);
-            self.placed_normal[i] = normal;
+            self.placed_normal[i] += normal;
             self.gap[i] -= normal;
             for a in 0..dim - 1 {
-                self.placed_tangential[i][a] = dot(&self.tangent[i][a]);
+                self.placed_tangential[i][a] += dot(&self.tangent[i][a]);
             }
         }
     }
@@ -406,6 +461,7 @@ impl ContactNodes {
 /// (sorted (node, facet) pairs) not `excluded`, weighted by all its facets, with the gap and
 /// the reversed normal of its closest-point projection and the tangential part of the
 /// obstacle's translation (see the module documentation).
+#[allow(clippy::too_many_arguments)]
 fn obstacle_points(
     out: &mut ContactNodes,
     mesh: &Mesh,
@@ -414,9 +470,11 @@ fn obstacle_points(
     facets: &[(f64, [f64; 3])],
     incidence: &[(u32, u32)],
     excluded: &[bool],
+    carried: Option<&[f64]>,
 ) -> crate::Result<()> {
     let d = mesh.dim();
-    let translation = obstacle.translation(d)?;
+    let (lo, hi) = mesh.bounding_box();
+    let size = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt() * obstacle.length_unit;
     for around in incidence.chunk_by(|a, b| a.0 == b.0) {
         let v = around[0].0;
         if excluded[v as usize] {
@@ -424,7 +482,11 @@ fn obstacle_points(
         }
         let mut x = [0.0; 3];
         x[..d].copy_from_slice(mesh.node(v as usize));
-        let projection = obstacle.project(x, d).map_err(|e| match e {
+        let mut c = [0.0; 3];
+        if let Some(carried) = carried {
+            c[..d].copy_from_slice(&carried[d * v as usize..d * v as usize + d]);
+        }
+        let (projection, relative) = obstacle.project_carried(x, d, c).map_err(|e| match e {
             crate::Error::Invalid {
                 field,
                 value,
@@ -439,11 +501,33 @@ fn obstacle_points(
             },
             e => e,
         })?;
+        let far = relative.iter().map(|t| t.abs()).fold(0.0f64, f64::max) * obstacle.gap_unit;
+        if !(far * f64::EPSILON <= TRANSLATION_RESOLUTION * size
+            && relative.iter().all(|t| t.is_finite()))
+        {
+            return Err(crate::Error::Invalid {
+                field: "displacement".into(),
+                value: format!(
+                    "{} m relative to the body at node {v} (the obstacle's displacement less \
+                     the translation the body's supports carry it by)",
+                    crate::display::significant(far)
+                ),
+                allowed: format!(
+                    "a translation of the obstacle relative to the body of at most {} m, \
+                     {:.1e} times the body's size ({} m): beyond it double precision cannot \
+                     place the body's nodes against the obstacle to {:.0e} of the body's size",
+                    crate::display::significant(TRANSLATION_RESOLUTION * size / f64::EPSILON),
+                    TRANSLATION_RESOLUTION / f64::EPSILON,
+                    crate::display::significant(size),
+                    TRANSLATION_RESOLUTION
+                ),
+            });
+        }
         let n = projection.normal.map(|c| -c);
         let tangent = tangent_basis(d, &n);
         let mut motion = [0.0; 2];
         for (m, t) in motion.iter_mut().zip(&tangent).take(d - 1) {
-            *m = (0..d).map(|k| t[k] * translation[k]).sum();
+            *m = (0..d).map(|k| t[k] * relative[k]).sum();
         }
         out.node.push(v);
         out.boundary.push(b as u16);

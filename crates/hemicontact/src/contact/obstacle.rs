@@ -380,8 +380,16 @@ impl ObstacleSpec {
     /// Those of [`ObstacleSpec::validate`] and [`Obstacle::project`] (a point whose closest
     /// point is not unique is named by `x` itself).
     pub fn project(&self, x: [f64; 3], dim: usize) -> Result<Projection> {
+        self.project_translated(x, dim, self.translation(dim)?)
+    }
+
+    /// [`ObstacleSpec::project`] with the obstacle translated by `t` (m) instead of its own
+    /// translation.
+    ///
+    /// # Errors
+    /// Those of [`ObstacleSpec::project`].
+    pub fn project_translated(&self, x: [f64; 3], dim: usize, t: [f64; 3]) -> Result<Projection> {
         let shape = self.shape.shape(dim)?;
-        let t = self.translation(dim)?;
         let y = position(x, dim)?;
         let shifted = [y[0] - t[0], y[1] - t[1], y[2] - t[2]];
         let mut p = shape
@@ -454,10 +462,34 @@ impl ContactObstacle {
     /// # Errors
     /// Those of [`ObstacleSpec::project`], the point named in metres.
     pub fn project(&self, x: [f64; 3], dim: usize) -> Result<Projection> {
-        let mut p = self.spec.project(x.map(|c| c * self.length_unit), dim)?;
+        Ok(self.project_carried(x, dim, [0.0; 3])?.0)
+    }
+
+    /// The projection of the point `x` (in units of `length_unit`) of a body carried by the
+    /// translation `c` (in units of `gap_unit`; [`crate::fem::carry`]): that of `x` onto the
+    /// obstacle translated by `t − c` (t its own translation), the obstacle as the carried
+    /// body meets it. Returns the projection as [`ContactObstacle::project`] does, and the
+    /// translation `t − c` in units of `gap_unit`. With `c = 0` it is
+    /// [`ContactObstacle::project`] and [`ContactObstacle::translation`], bit for bit; the
+    /// relative translation `t − c` is formed once, so that moving the obstacle by t and
+    /// every support by −t give the same bits.
+    ///
+    /// # Errors
+    /// Those of [`ObstacleSpec::project`].
+    pub fn project_carried(
+        &self,
+        x: [f64; 3],
+        dim: usize,
+        c: [f64; 3],
+    ) -> Result<(Projection, [f64; 3])> {
+        let t = self.spec.translation(dim)?;
+        let relative = [0, 1, 2].map(|k| t[k] - c[k] * self.gap_unit);
+        let mut p = self
+            .spec
+            .project_translated(x.map(|c| c * self.length_unit), dim, relative)?;
         p.gap /= self.gap_unit;
         p.point = p.point.map(|c| c / self.length_unit);
-        Ok(p)
+        Ok((p, relative.map(|v| v / self.gap_unit)))
     }
 }
 

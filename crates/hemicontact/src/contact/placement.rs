@@ -203,12 +203,15 @@ pub fn check_facing(
 /// The notes on how well the contact part of boundary `b` (`cb`) resolves its obstacle:
 /// a radius of curvature below the part's element size, and a penetration between nodes
 /// while every contact point is apart (see the module documentation). Empty for a flat
-/// foundation. `points` are the problem's contact points ([`ContactNodes::new`]).
+/// foundation. `points` are the problem's contact points ([`ContactNodes::new`]), and
+/// `carried` the translation by which the supports carry each body (DOF order, in units of
+/// the gaps; [`crate::fem::carry`]), where the part's facets meet the obstacle.
 pub fn resolution_notes(
     mesh: &Mesh,
     b: usize,
     cb: &ContactBoundary,
     points: &ContactNodes,
+    carried: Option<&[f64]>,
 ) -> Vec<String> {
     let mut notes = Vec::new();
     let Some(obstacle) = &cb.obstacle else {
@@ -261,6 +264,12 @@ pub fn resolution_notes(
         let mut p = [[0.0; 3]; 3];
         for (a, &w) in mesh.facet(f).iter().enumerate() {
             p[a][..d].copy_from_slice(mesh.node(w as usize));
+            // Where a carried body meets the obstacle.
+            if let Some(c) = carried {
+                for k in 0..d {
+                    p[a][k] += c[d * w as usize + k] * obstacle.gap_unit / unit;
+                }
+            }
         }
         let Some((y, value)) = facet_minimum(&p[..d], &phi) else {
             continue;

@@ -12,8 +12,10 @@
 //! - the Newton residual `‖∇E|_b‖` relative to the body's force scale
 //!   `F_b = max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)` (external forces, internal forces reactions
 //!   included, and the force unit of the body's prescribed motions
-//!   `f_D,b = S · max|u_D|_b · diam_b^{d−2}`, S the P-wave modulus, so that a stress-free
-//!   displacement-driven body is measured against the forces its data could cause);
+//!   `f_D,b = S · max|u_D − c_b|_b · diam_b^{d−2}`, S the P-wave modulus and `c_b` the
+//!   translation the body's supports carry it by ([`crate::fem::carry`]), so that a
+//!   stress-free displacement-driven body is measured against the forces its data could
+//!   cause);
 //! - the relative change of u in the energy norm, `‖Δu|_b‖_E / ‖u|_b‖_E`.
 //!
 //! On a mesh of one body each norm is the plain one, computed in the same order.
@@ -39,7 +41,6 @@
 //! its stick state against `δ_i` ([`super::certificate`]).
 
 use crate::assembly::element;
-use crate::contact::ContactNodes;
 use crate::fem::rigid::RigidMotions;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
@@ -66,15 +67,14 @@ pub struct Bodies {
     /// Number of bodies.
     pub count: usize,
     /// Force unit of the prescribed motions of each body, `f_D,b` (N): the largest
-    /// prescribed displacement component on the body, or translation of a frictional
-    /// obstacle touching it, times `S · diam_b^{d−2}`.
+    /// prescribed displacement component on the body beyond its carried translation, times
+    /// `S · diam_b^{d−2}`.
     pub force_floor: Vec<f64>,
 }
 
 impl Bodies {
-    /// The bodies of `problem`, with the bodies of `rigid` and the contact points
-    /// `contact` (whose foundations' translations drag the bodies they touch).
-    pub fn new(problem: &Problem, rigid: &RigidMotions, contact: &ContactNodes) -> Self {
+    /// The bodies of `problem`, with the bodies of `rigid`.
+    pub fn new(problem: &Problem, rigid: &RigidMotions) -> Self {
         let mesh = &problem.mesh;
         let d = mesh.dim();
         let count = rigid.bodies.len();
@@ -84,26 +84,17 @@ impl Bodies {
                 of_node[v as usize] = b as u32;
             }
         }
-        // Largest prescribed motion per body.
+        // Largest prescribed motion per body, beyond the translation its supports carry it
+        // by (a rigid translation, taken exactly, asks no force of the body).
         let mut motion = vec![0.0f64; count];
         let u_d = problem.prescribed_displacement();
+        let carried = problem.carried_displacement();
         let dofs = problem.dof_map();
         for (k, x) in u_d.iter().enumerate() {
             let b = of_node[k / d];
             if dofs.is_fixed(k) && b != u32::MAX {
-                motion[b as usize] = motion[b as usize].max(x.abs());
-            }
-        }
-        for i in 0..contact.len() {
-            let b = of_node[contact.node[i] as usize];
-            let cb = &problem.contact[contact.boundary[i] as usize];
-            if b == u32::MAX || cb.friction.is_none() {
-                continue;
-            }
-            if let Some(t) = cb.obstacle.as_ref().and_then(|o| o.translation(d).ok()) {
-                motion[b as usize] = t[..d]
-                    .iter()
-                    .fold(motion[b as usize], |m, x| m.max(x.abs()));
+                let beyond = x - carried.as_ref().map_or(0.0, |c| c[k]);
+                motion[b as usize] = motion[b as usize].max(beyond.abs());
             }
         }
         let stiffness = problem.stiffness();

@@ -175,7 +175,7 @@ pub struct Solution {
 /// ([`crate::Error::Law`]). Non-convergence is not an error: see
 /// [`SolveReport::converged`].
 pub fn solve(problem: &Problem, settings: &SolverSettings) -> Result<Solution> {
-    let u0 = problem.prescribed_displacement();
+    let u0 = problem.initial_displacement();
     solve_from(problem, settings, u0)
 }
 
@@ -232,8 +232,9 @@ pub fn solve_observed(
 /// regularization and threshold below is a pure number relative to the problem's scales,
 /// `scales` (which messages use to speak in the user's units).
 ///
-/// A body resting across a gap is first dropped onto its contact
-/// ([`held::rigid_drop`]); the outer loop then solves for the displacement relative to
+/// The solve is for the displacement beyond the translation the supports carry each body
+/// by ([`crate::fem::carry`]), and a body resting across a gap is first dropped onto its
+/// contact ([`held::rigid_drop`]); the outer loop solves for the displacement relative to
 /// that placement, and the answer is the placement plus it.
 fn solve_dimensionless(
     problem: Problem,
@@ -275,6 +276,9 @@ fn solve_scaled(
             *x = prescribed[k];
         }
     }
+    // The unknown is the displacement beyond the translation the supports carry each body
+    // by (zero at the DOFs it prescribes).
+    let mut u = system.relative_to_placement(u);
     let drop = held::rigid_drop(&system, problem, &u)?;
     let drop_words = drop
         .as_ref()
@@ -461,6 +465,7 @@ pub fn certify(
             }
         })
         .collect();
+    let u = system.relative_to_placement(u);
     let frozen = Frozen::initial(&system, &scaled, &u)?;
     let mut eval = system::Evaluation::new(&system);
     system.evaluate(&scaled, &u, &frozen, &mut eval, false);
@@ -488,9 +493,15 @@ pub fn certify(
         &mu,
         settings.certificate_tolerance,
     );
+    let placed = &system.contact.placed_normal;
     let contact = contact
         .iter()
-        .map(|c| scales.dimensional_contact(c))
+        .enumerate()
+        .map(|(i, c)| {
+            let mut c = *c;
+            c.u_nu += placed.get(i).copied().unwrap_or(0.0);
+            scales.dimensional_contact(&c)
+        })
         .collect();
     Ok((contact, certificate))
 }

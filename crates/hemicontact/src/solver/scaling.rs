@@ -5,13 +5,16 @@
 //! - length `L`: the diameter of the mesh's bounding box (m);
 //! - stress `S`: the P-wave modulus `λ + 2G` of the small-strain elasticity (Pa), the
 //!   largest of the materials' for a body of several ([`Problem::stiffness`]);
-//! - displacement `U`: the largest displacement the data can cause — the largest prescribed
-//!   displacement, the largest translation of an obstacle with friction (which drags the
-//!   body, [`Problem::largest_prescribed_motion`]), `|f_N| L / S` for the largest traction
-//!   and `|f_0| L² / S` for the body force, and the deepest initial penetration `−g_i` of a
-//!   contact point into a rigid obstacle, up to `L` (m) (a displacement-driven indentation;
-//!   without friction, a translation along the obstacle's surface drives nothing); `L` when
-//!   there is no load at all.
+//! - displacement `U`: the largest displacement the data can cause beyond the rigid
+//!   translations that are taken exactly (the translation a body's supports carry it by,
+//!   [`crate::fem::carry`], and an obstacle's own translation, which place the body against
+//!   its obstacle) — the largest prescribed displacement beyond the carried translation
+//!   ([`Problem::largest_prescribed_motion`]), `|f_N| L / S` for the largest traction and
+//!   `|f_0| L² / S` for the body force, and the deepest initial penetration `−g_i` of a
+//!   contact point into a rigid obstacle or another body where the carried body meets it,
+//!   up to `L` (m) (a displacement-driven indentation; a translation along the obstacle's
+//!   surface drives the body only through friction, whose forces the penetration and the
+//!   loads bound); `L` when there is no load at all.
 //!
 //! Each scale is rounded to a power of two, so that scaling is exact in floating point:
 //! a problem and the same problem with every stiffness and load multiplied by 2^k give

@@ -85,9 +85,11 @@ pub struct System {
     /// messages and the runaway check read them.
     pub scales: Option<Scales>,
     /// A rigid placement of the bodies applied before the solve (DOF order, in the units
-    /// of the displacements; see [`super::held::rigid_drop`]): the unknown is then the
-    /// displacement relative to it, and the contact points' gaps and tangential
-    /// displacements account for it ([`ContactNodes::place`]). `None`: no placement.
+    /// of the displacements): the translations their supports carry them by
+    /// ([`crate::fem::carry`]) and a rigid drop ([`super::held::rigid_drop`]). The unknown
+    /// is then the displacement relative to it, and the contact points' gaps and
+    /// tangential displacements account for it ([`ContactNodes::new`],
+    /// [`ContactNodes::place`]). `None`: no placement.
     pub placement: Option<Vec<f64>>,
 }
 
@@ -249,7 +251,7 @@ impl System {
         let contact_stiffness = super::constraints::contact_stiffness(problem, &contact);
         let f_ext = problem.external_forces();
         let rigid = problem.rigid_motions()?;
-        let bodies = Bodies::new(problem, &rigid, &contact);
+        let bodies = Bodies::new(problem, &rigid);
         let whole_counts = WholeCounts {
             dofs: dofs.n_dofs(),
             equations: dofs.n_free(),
@@ -364,6 +366,15 @@ impl System {
             0 => rayon::current_num_threads(),
             t => t,
         });
+        // The translation the supports carry each body by: the solve is for the
+        // displacement beyond it (the contact points already meet the obstacles there).
+        let placement = problem.carried_displacement().map(|c| match &part {
+            None => c,
+            Some((_, _, nodes, _)) => nodes
+                .iter()
+                .flat_map(|&v| c[d * v as usize..d * v as usize + d].iter().copied())
+                .collect(),
+        });
         let (subdomain, share, processes, part_problem) = match part {
             None => (None, Share::whole(), Processes::alone(), None),
             Some((sub, mesh, nodes, points)) => {
@@ -409,7 +420,7 @@ impl System {
             share,
             processes,
             scales: None,
-            placement: None,
+            placement,
         };
         Ok((system, part_problem))
     }
@@ -451,11 +462,23 @@ impl System {
         )
     }
 
-    /// Places the bodies rigidly by `u_r` (DOF order) before the solve: see
-    /// [`System::placement`] and [`ContactNodes::place`].
+    /// Places the bodies rigidly by `u_r` (DOF order) before the solve, in addition to
+    /// any placement before: see [`System::placement`] and [`ContactNodes::place`].
     pub fn place(&mut self, u_r: Vec<f64>) {
         self.contact.place(self.rigid.dim, &u_r);
-        self.placement = Some(u_r);
+        match &mut self.placement {
+            Some(p) => p.iter_mut().zip(&u_r).for_each(|(p, x)| *p += x),
+            None => self.placement = Some(u_r),
+        }
+    }
+
+    /// The displacement `u` (DOF order) relative to the placement ([`System::placement`]):
+    /// `u − u_R`, or `u` without placement.
+    pub fn relative_to_placement(&self, mut u: Vec<f64>) -> Vec<f64> {
+        if let Some(p) = &self.placement {
+            u.iter_mut().zip(p).for_each(|(x, p)| *x -= p);
+        }
+        u
     }
 
     /// The contact assembler of `problem` on this system.
