@@ -295,8 +295,15 @@ fn describe(rigid: &RigidMotions, b: usize, c: &[f64; 6], length: f64) -> String
     }
 }
 
+/// The Euclidean norm of `x`, scaled by its largest entry so that neither the squares of
+/// entries beyond 10^154 (a drop across a gap of that many displacement units) overflow
+/// nor those below 10^-154 underflow.
 fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+    let largest = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest * x.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt()
 }
 
 /// The maximizer of `F·c` over `c ∈ ℝ^k` subject to `rows[i]·c ≤ gaps[i]` (all gaps ≥ 0)
