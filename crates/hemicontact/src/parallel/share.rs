@@ -398,18 +398,17 @@ bound = "coulomb"
 mu = { law = "constant", mu = 0.3 }
 "#;
 
-    fn solved() -> Solution {
-        let scenario = Scenario::from_str(BLOCK, "<test>").unwrap();
-        let problem = scenario.into_problem().unwrap();
-        solve(&problem, &scenario.settings().unwrap()).unwrap()
-    }
-
     /// A collective operation that fails (here: a share over two processes in a build
     /// without MPI, where every completion fails through `Processes`) leaves NaN and is
     /// recorded in that share alone: a solve before it and a solve after it in the same
     /// process converge to the same bits.
     #[test]
     fn a_failed_collective_ends_only_the_solve_whose_share_it_was() {
+        let solved = || -> Solution {
+            let scenario = Scenario::from_str(BLOCK, "<test>").unwrap();
+            let problem = scenario.into_problem().unwrap();
+            solve(&problem, &scenario.settings().unwrap()).unwrap()
+        };
         let first = solved();
         assert!(first.report.converged, "{}", first.report.message);
         assert!(first.contact.iter().any(|c| c.pressure > 0.0));
