@@ -295,15 +295,10 @@ fn describe(rigid: &RigidMotions, b: usize, c: &[f64; 6], length: f64) -> String
     }
 }
 
-/// The Euclidean norm of `x`, scaled by its largest entry so that neither the squares of
-/// entries beyond 10^154 (a drop across a gap of that many displacement units) overflow
-/// nor those below 10^-154 underflow.
+/// The Euclidean norm of `x` by `hypot`, so that no square overflows or underflows (a drop
+/// across a gap of 10^300 displacement units, a load of 10^-300 in them).
 fn norm(x: &[f64]) -> f64 {
-    let largest = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if largest == 0.0 || !largest.is_finite() {
-        return largest;
-    }
-    largest * x.iter().map(|v| (v / largest).powi(2)).sum::<f64>().sqrt()
+    x.iter().fold(0.0, |n, v| n.hypot(*v))
 }
 
 /// The maximizer of `F·c` over `c ∈ ℝ^k` subject to `rows[i]·c ≤ gaps[i]` (all gaps ≥ 0)
