@@ -97,6 +97,18 @@ def test_an_exception_in_the_callable_propagates_as_itself_naming_the_law():
         (lambda r: r >= 0.0, "boolean values"),
         (lambda r: True, "boolean values"),
         (lambda r: np.array([0.3] * (len(r) - 1) + [True], dtype=object), "bool value"),
+        # Numbers as text, dates and other non-numbers: refused as booleans are, in any dtype.
+        (lambda r: np.full(len(r), "0.3"), "strings (dtype <U3)"),
+        (lambda r: ["0.3"] * len(r), "strings (dtype <U3)"),
+        (lambda r: np.array(["0.3"] * len(r), dtype=object), "str value ('0.3')"),
+        (lambda r: np.array([0.3] * (len(r) - 1) + ["0.3"], dtype=object), "str value ('0.3')"),
+        (lambda r: np.full(len(r), b"0.3"), "bytes (dtype |S3)"),
+        (lambda r: np.array([b"0.3"] * len(r), dtype=object), "bytes value (b'0.3')"),
+        (lambda r: np.array([0.3] * (len(r) - 1) + [None], dtype=object), "NoneType value (None)"),
+        (lambda r: np.full(len(r), np.datetime64("2024-01-01")), "datetimes (dtype datetime64[D])"),
+        (lambda r: np.full(len(r), np.timedelta64(3, "s")), "time spans (timedelta) (dtype timedelta64[s])"),
+        (lambda r: np.zeros(len(r), dtype="V8"), "raw or structured values (dtype |V8)"),
+        (lambda r: np.zeros(len(r), dtype=[("mu", "f8")]), "raw or structured values"),
     ],
 )
 def test_a_bad_value_is_a_scenario_error_naming_the_law(law, says):
@@ -104,6 +116,24 @@ def test_a_bad_value_is_a_scenario_error_naming_the_law(law, says):
         hc.solve(paper_with(law, part="left"))
     text = str(e.value)
     assert "contact[0].friction.mu" in text and says in text, text
+
+
+def test_real_numbers_of_any_numeric_dtype_or_as_objects_give_the_float_law():
+    # The same μ = 0.25 as float32 and as objects (Python and numpy floats): every
+    # real-number form is accepted and gives the solution of the float64 values.
+    reference = hc.solve(paper_with(lambda r: np.full(len(r), 0.25)))
+    for law in (
+        lambda r: np.full(len(r), 0.25, dtype=np.float32),
+        lambda r: np.array([0.25] * len(r), dtype=object),
+        lambda r: np.array([np.float64(0.25)] * len(r), dtype=object),
+    ):
+        s = hc.solve(paper_with(law))
+        assert s.converged
+        assert np.array_equal(s.displacement, reference.displacement)
+    # An integer coefficient (μ = 1) as int64 and as unsigned integers.
+    one = hc.solve(paper_with(lambda r: np.ones(len(r))))
+    for law in (lambda r: np.ones(len(r), dtype=np.int64), lambda r: np.ones(len(r), dtype=np.uint8)):
+        assert np.array_equal(hc.solve(paper_with(law)).displacement, one.displacement)
 
 
 def test_a_constant_scalar_result_is_accepted_as_a_constant_law():

@@ -24,9 +24,15 @@
 //! 2. **A load path** `[loading] factors = [1e-12, 1.0]` across a 1 mm gap converges at
 //!    both steps, each to its closed form.
 //!
+//! 3. **The edge of the representable range**: loads down to 10⁻²⁹⁹ Pa (a deformation of
+//!    10⁻³⁰² m, gaps of 10³⁰⁰ displacement units) and a load path whose first factor is
+//!    10⁻³⁰⁰ give the same closed form.
+//!
 //! Before the rigid drop, the 2D block across 1 mm under 10⁻⁹ N/m ran 50 Newton steps
 //! (the cap) without reaching the foundation ("Newton did not converge", exit 3), and the
-//! load path stopped at its first step.
+//! load path stopped at its first step. Below about 10⁻¹⁵⁴ Pa across 1 mm the drop was
+//! silently skipped (the norm of its coefficients, 10¹⁵⁵ displacement units, overflowed
+//! when squared), with the same exit 3.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
@@ -187,6 +193,55 @@ fn a_load_path_from_1e_minus_12_converges_at_every_step() {
         let settings = scenario.settings().unwrap();
         let factors = scenario.load_factors().unwrap().unwrap();
         assert_eq!(factors, vec![1e-12, 1.0]);
+        let steps = load_path(
+            &problem,
+            &settings,
+            &factors,
+            &AtomicBool::new(false),
+            &|_, _| {},
+            &mut |_| Ok(()),
+        )
+        .unwrap();
+        assert_eq!(steps.len(), 2, "{dim}D");
+        for step in &steps {
+            let case = format!("{dim}D, step {} (λ = {:e})", step.step, step.factor);
+            assert_closed_form(
+                &step.problem,
+                &step.solution,
+                gap,
+                step.factor * Q_REF,
+                &case,
+            );
+        }
+    }
+}
+
+/// Loads at the bottom of the range of doubles, across gaps of up to 10³⁰⁰ displacement
+/// units, with the drop, and a load path that starts there.
+#[test]
+fn loads_down_to_1e_minus_299_and_a_first_factor_of_1e_minus_300_converge() {
+    for dim in [2, 3] {
+        let (_, size) = height_and_size(dim);
+        for q in [1e-160, 1e-299] {
+            for fraction in [0.0, 1e-3, 1.0] {
+                let gap = fraction * size;
+                let case = format!("{dim}D, q = {q:e} Pa, gap = {gap:e} m");
+                let (problem, settings) = common::setup(&block(dim, gap, q));
+                let sol = solve(&problem, &settings).unwrap_or_else(|e| panic!("{case}: {e}"));
+                assert_closed_form(&problem, &sol, gap, q, &case);
+                assert_eq!(
+                    sol.report.rigid_drop.len(),
+                    usize::from(gap > 0.0),
+                    "{case}"
+                );
+            }
+        }
+        let gap = 1e-3;
+        let text = block(dim, gap, Q_REF) + "[loading]\nfactors = [1e-300, 1.0]\n";
+        let scenario = hemicontact::scenario::Scenario::from_str(&text, "<test>").unwrap();
+        let problem = scenario.into_problem().unwrap();
+        let settings = scenario.settings().unwrap();
+        let factors = scenario.load_factors().unwrap().unwrap();
         let steps = load_path(
             &problem,
             &settings,

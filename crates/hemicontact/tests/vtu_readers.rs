@@ -351,7 +351,8 @@ fn many_short_arrays_are_read_the_same_by_meshio_and_vtk() {
 /// Gmsh), split into 3 pieces by contiguous ranges of nodes and by a scattered split (node
 /// v to rank 7v mod 3, the most borders), written as `hemicontact solve` writes it under
 /// `mpirun -np 3`:
-/// - the files are `solution_0.vtu` … `solution_2.vtu` and the index `solution.pvtu` last,
+/// - the files are `solution_<r>.vtu` for every rank r that owns a cell (all three here but
+///   for a rank whose nodes are the lowest of no cell) and the index `solution.pvtu` last,
 ///   which names them and declares every piece array with its type and components;
 /// - every cell of the mesh is in exactly one piece (`cell_id`);
 /// - every value of every point and cell array, every point's coordinates and every cell's
@@ -385,27 +386,27 @@ fn parallel_pieces_hold_every_cell_once_with_the_serial_values() {
             ("ranges", Partition::ranges(n, 3)),
             ("scattered", scattered),
         ] {
+            let owned = partition.owned_cells(mesh);
             solution.partition = Some(partition);
             let files = solution_files(&problem, &solution, "t", 1.0).unwrap();
             let names: Vec<&str> = files.iter().map(|(f, _)| f.as_str()).collect();
-            assert_eq!(
-                names,
-                [
-                    "solution_0.vtu",
-                    "solution_1.vtu",
-                    "solution_2.vtu",
-                    "solution.pvtu"
-                ]
-            );
-            let index = String::from_utf8(files[3].1.clone()).unwrap();
+            let mut expected: Vec<String> = (0..3)
+                .filter(|&r| !owned[r].is_empty())
+                .map(|r| format!("solution_{r}.vtu"))
+                .collect();
+            assert!(expected.len() >= 2, "{name} {split}: {expected:?}");
+            expected.push("solution.pvtu".into());
+            assert_eq!(names, expected);
+            let pieces = files.len() - 1;
+            let index = String::from_utf8(files[pieces].1.clone()).unwrap();
             let sources: Vec<&str> = index
                 .lines()
                 .filter_map(|l| l.strip_prefix("<Piece Source=\""))
                 .map(|l| l.trim_end_matches("\"/>"))
                 .collect();
-            assert_eq!(sources, names[..3]);
+            assert_eq!(sources, names[..pieces]);
             let mut seen = vec![0u32; mesh.n_cells()];
-            for (_, piece) in &files[..3] {
+            for (_, piece) in &files[..pieces] {
                 for (section, ids, id) in [
                     ("PointData", "node", "node_id"),
                     ("CellData", "cell", "cell_id"),
@@ -468,18 +469,84 @@ fn parallel_pieces_hold_every_cell_once_with_the_serial_values() {
             for (f, bytes) in files.iter().chain(&serial) {
                 std::fs::write(folder.join(f), bytes).unwrap();
             }
-            // A piece may hold no cell (the last range of a tiny mesh owns none); the
-            // readers' comparison needs points.
-            to_check.extend(
-                files[..3]
-                    .iter()
-                    .filter(|(_, piece)| !i64s(piece, "cell_id").is_empty())
-                    .map(|(f, _)| folder.join(f)),
-            );
+            // Every piece written holds cells (a rank that owns none writes none).
+            to_check.extend(files[..pieces].iter().map(|(f, _)| folder.join(f)));
             pairs.push(folder);
         }
     }
     check_files(&to_check);
     python_check("check_pvtu.py", &pairs);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A mesh of 2 triangles on 4 processes (each node its own rank): the ranks that own no
+/// cell (a cell belongs to the rank of its lowest node) write no piece and the index names
+/// only the others; every piece holds points and cells and is read by meshio as by VTK,
+/// and VTK's parallel reader reads the index as the serial file. Before, every rank had a
+/// piece, and meshio could not read one of 0 points.
+#[test]
+fn ranks_that_own_no_cell_of_a_tiny_mesh_write_no_piece() {
+    use common::vtu::i64s;
+    use hemicontact::io::vtu::solution_files;
+    use hemicontact::parallel::Partition;
+    let text = r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 1.0]
+n = [1, 1]
+pattern = "uniform"
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "bottom"
+[[loads.traction]]
+part = "top"
+value = [0.0, -10.0]
+"#;
+    let (problem, settings) = common::setup(text);
+    let mut solution = hemicontact::solver::solve(&problem, &settings).unwrap();
+    let mesh = problem.mesh();
+    assert_eq!((mesh.n_nodes(), mesh.n_cells()), (4, 2));
+    let serial = solution_files(&problem, &solution, "t", 1.0).unwrap();
+    let partition = Partition::ranges(4, 4);
+    let owned = partition.owned_cells(mesh);
+    // Node 3 is the lowest node of no triangle: at least one rank owns nothing.
+    let empty = owned.iter().filter(|c| c.is_empty()).count();
+    assert!((2..=3).contains(&empty), "{owned:?}");
+    solution.partition = Some(partition);
+    let files = solution_files(&problem, &solution, "t", 1.0).unwrap();
+    let names: Vec<&str> = files.iter().map(|(f, _)| f.as_str()).collect();
+    let mut expected: Vec<String> = (0..4)
+        .filter(|&r| !owned[r].is_empty())
+        .map(|r| format!("solution_{r}.vtu"))
+        .collect();
+    expected.push("solution.pvtu".into());
+    assert_eq!(names, expected);
+    let pieces = files.len() - 1;
+    assert_eq!(pieces, 4 - empty);
+    let index = String::from_utf8(files[pieces].1.clone()).unwrap();
+    let sources: Vec<&str> = index
+        .lines()
+        .filter_map(|l| l.strip_prefix("<Piece Source=\""))
+        .map(|l| l.trim_end_matches("\"/>"))
+        .collect();
+    assert_eq!(sources, names[..pieces]);
+    let mut cells: Vec<i64> = files[..pieces]
+        .iter()
+        .flat_map(|(_, piece)| {
+            assert!(!i64s(piece, "node_id").is_empty());
+            i64s(piece, "cell_id")
+        })
+        .collect();
+    cells.sort_unstable();
+    assert_eq!(cells, [0, 1]);
+    let dir = common::fresh_dir("vtu-readers-tiny-pieces");
+    for (f, bytes) in files.iter().chain(&serial) {
+        std::fs::write(dir.join(f), bytes).unwrap();
+    }
+    let written: Vec<PathBuf> = files[..pieces].iter().map(|(f, _)| dir.join(f)).collect();
+    check_files(&written);
+    python_check("check_pvtu.py", std::slice::from_ref(&dir));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -17,6 +17,8 @@ Each callable returns an array with one value per point (or a scalar): finite an
 dimensionless for a Coulomb bound, Pa for a Tresca bound, Pa for ``p``, Pa/m for ``dp``.
 """
 
+import decimal
+import numbers
 from typing import Any, Callable, Dict, List, Optional, Tuple
 
 import numpy as np
@@ -123,47 +125,69 @@ def restore(d: Dict[str, Any], laws: List[Law]) -> Dict[str, Any]:
     return d
 
 
+#: What an array of a dtype kind that is not a number holds, in messages.
+_NOT_NUMBERS = {
+    "b": "boolean values",
+    "c": "complex values",
+    "U": "strings",
+    "S": "bytes",
+    "M": "datetimes",
+    "m": "time spans (timedelta)",
+    "V": "raw or structured values",
+}
+
+#: Why converting such values to floats would be wrong, where it would succeed.
+_WHY = {
+    "b": "; True would count as 1",
+    "c": "; the imaginary part would be lost",
+    "U": "; text is not parsed as a number",
+    "S": "; text is not parsed as a number",
+}
+
+
+def _is_real_number(v: Any) -> bool:
+    """Whether ``v`` is a real number: an int or float (Python's or numpy's, any
+    :class:`numbers.Real`, or a :class:`decimal.Decimal`), not a bool."""
+    return isinstance(v, (numbers.Real, decimal.Decimal)) and not isinstance(v, (bool, np.bool_))
+
+
 def _real(y: Any, name: str, what: str) -> np.ndarray:
     """The values ``y`` a law returned as a float array, if they are real numbers (floats
-    or integers): booleans, complex numbers (even with a zero imaginary part), strings
-    and other objects are a :class:`ScenarioError` naming the law — converting them would
-    turn ``True`` into 1 or drop an imaginary part without a word."""
+    or integers, dtype kinds ``i``, ``u`` and ``f``, or objects that are such numbers):
+    every other dtype — booleans, complex numbers (even with a zero imaginary part),
+    strings, bytes, datetimes and time spans, raw or structured values — and objects
+    that are not real numbers (strings, ``None``, …) are a :class:`ScenarioError` naming
+    the law and the dtype or value — converting them would turn ``True`` into 1, drop an
+    imaginary part or parse ``"0.3"`` as a number without a word."""
     allowed = f"real numbers (float or int), one per {what}"
     try:
         a = np.asarray(y)
     except (TypeError, ValueError):
         raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}") from None
-    if a.dtype.kind == "O":
-        bad = next(
-            (v for v in a.flat if isinstance(v, (bool, np.bool_, complex, np.complexfloating))),
-            None,
-        )
-        if bad is not None:
-            raise ScenarioError(f"{name}: returned a {type(bad).__name__} value ({bad!r}): {allowed}")
+    kind = a.dtype.kind
+    if kind == "O":
+        for bad in a.flat:
+            if not _is_real_number(bad):
+                raise ScenarioError(f"{name}: returned a {type(bad).__name__} value ({bad!r}): {allowed}")
         try:
             return a.astype(float)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}") from None
-    if a.dtype.kind == "b":
-        raise ScenarioError(
-            f"{name}: returned boolean values (dtype {a.dtype}): {allowed}; True would count as 1"
-        )
-    if a.dtype.kind == "c":
-        raise ScenarioError(
-            f"{name}: returned complex values (dtype {a.dtype}): {allowed}; the imaginary "
-            "part would be lost"
-        )
-    if a.dtype.kind not in "iuf":
-        raise ScenarioError(f"{name}: returned a {type(y).__name__}: {allowed}")
-    return a.astype(float)
+    if kind in "iuf":
+        return a.astype(float)
+    if a.shape == () and kind in "US":
+        raise ScenarioError(f"{name}: returned a {type(y).__name__} ({y!r}): {allowed}")
+    held = _NOT_NUMBERS.get(kind, "values that are not numbers")
+    raise ScenarioError(f"{name}: returned {held} (dtype {a.dtype}): {allowed}{_WHY.get(kind, '')}")
 
 
 def evaluate(f: Callable[..., Any], data: bytes, dim: int, name: str, what: str) -> bytes:
     """The user's callable ``f`` at the points of ``data`` (float64 bytes: slips or
     penetrations (m) for ``dim == 0``, else positions (m), ``dim`` per point), as float64
     bytes, one value per point. An exception of ``f`` propagates as itself, with a note
-    naming the law (Python ≥ 3.11); a result of the wrong shape or type (booleans and
-    complex numbers included) is a :class:`ScenarioError` naming the law. ``what`` names
+    naming the law (Python ≥ 3.11); a result of the wrong shape or type (anything but real
+    numbers: booleans, complex numbers, strings, bytes, datetimes, other objects) is a
+    :class:`ScenarioError` naming the law. ``what`` names
     the argument in messages."""
     x = np.frombuffer(data, dtype="<f8").copy()
     if dim > 0:

@@ -22,6 +22,8 @@ use crate::tensor::von_mises;
 use std::fmt::Write as _;
 use std::path::Path;
 
+mod parallel;
+
 enum Data {
     F64(Vec<f64>),
     I32(Vec<i32>),
@@ -201,59 +203,6 @@ impl<'a> VtuWriter<'a> {
     /// offset is looked up, so the lookup always finds the right one.
     pub fn to_bytes(&self) -> Vec<u8> {
         self.encode(None)
-    }
-
-    /// The files of the same data split into pieces, as ParaView's parallel format: piece
-    /// `r` (`{stem}_{r}.vtu`) holds the cells `pieces[r]` and the nodes they use (in
-    /// increasing order), every array restricted to them, plus the point array `node_id`
-    /// and the cell array `cell_id` (their numbers in the whole mesh, from 0); last the
-    /// index `{stem}.pvtu` naming the pieces. Every piece repeats the `FieldData`. A node on
-    /// the border of two pieces is in both, with the same values.
-    ///
-    /// # Panics
-    /// If a cell number is out of range.
-    pub fn parallel_files(&self, pieces: &[Vec<u32>], stem: &str) -> Vec<(String, Vec<u8>)> {
-        let mut files: Vec<(String, Vec<u8>)> = pieces
-            .iter()
-            .enumerate()
-            .map(|(r, cells)| (format!("{stem}_{r}.vtu"), self.encode(Some(cells))))
-            .collect();
-        let mut xml = String::from(
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" \
-             byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
-             <PUnstructuredGrid GhostLevel=\"0\">\n",
-        );
-        // A section's declarations: the arrays of every piece, then the piece's own ids.
-        let declare = |section: &str, arrays: &[Array], id: &str| {
-            let mut x = format!("<P{section}>\n");
-            for a in arrays {
-                let _ = writeln!(
-                    x,
-                    "<PDataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\"/>",
-                    a.data.type_name(),
-                    a.name,
-                    a.components
-                );
-            }
-            let _ = writeln!(
-                x,
-                "<PDataArray type=\"Int64\" Name=\"{id}\" NumberOfComponents=\"1\"/>"
-            );
-            let _ = writeln!(x, "</P{section}>");
-            x
-        };
-        xml.push_str(&declare("PointData", &self.point, "node_id"));
-        xml.push_str(&declare("CellData", &self.cell, "cell_id"));
-        xml.push_str(
-            "<PPoints>\n<PDataArray type=\"Float64\" Name=\"Points\" \
-             NumberOfComponents=\"3\"/>\n</PPoints>\n",
-        );
-        for (name, _) in &files {
-            let _ = writeln!(xml, "<Piece Source=\"{name}\"/>");
-        }
-        xml.push_str("</PUnstructuredGrid>\n</VTKFile>\n");
-        files.push((format!("{stem}.pvtu"), xml.into_bytes()));
-        files
     }
 
     /// The file of the whole mesh (`piece` = `None`), or of the cells `piece` and the nodes
@@ -677,8 +626,8 @@ pub fn solution_vtu<'a>(
 
 /// The files of a solution's fields ([`solution_vtu`]): `solution.vtu`, or, for a solution
 /// of several MPI processes ([`Solution::partition`]), ParaView's parallel format with one
-/// piece per process, `solution_<rank>.vtu` holding the cells that rank owns
-/// ([`crate::parallel::Partition::owned_cells`]), and the index `solution.pvtu` last
+/// piece per process that owns cells, `solution_<rank>.vtu` holding the cells that rank
+/// owns ([`crate::parallel::Partition::owned_cells`]), and the index `solution.pvtu` last
 /// ([`VtuWriter::parallel_files`]). Names are relative to the result folder.
 ///
 /// # Errors

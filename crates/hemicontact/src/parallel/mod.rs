@@ -162,7 +162,7 @@ impl Processes {
         #[cfg(not(feature = "petsc"))]
         {
             let _ = values;
-            Ok(())
+            Err(self.without_mpi())
         }
     }
 
@@ -201,9 +201,21 @@ impl Processes {
         }
         #[cfg(not(feature = "petsc"))]
         {
-            global.copy_from_slice(local);
-            Ok(())
+            let _ = local;
+            Err(self.without_mpi())
         }
+    }
+
+    /// The error of a collective operation over several processes in a build without MPI
+    /// (no cargo feature `petsc`), which has nothing to complete it with: such processes
+    /// exist only where this crate makes them itself.
+    #[cfg(not(feature = "petsc"))]
+    fn without_mpi(&self) -> Error {
+        Error::Breakdown(format!(
+            "a collective operation over {} processes in a build without MPI (the cargo \
+             feature `petsc`, see docs/distributed.md)",
+            self.size
+        ))
     }
 
     /// Ends every process with exit code `code`: the way out of a failure that only some

@@ -16,12 +16,24 @@
 //! [`Share::of_part`] picks a part's entries from an array of the whole problem (the
 //! prescribed displacements, a starting displacement); [`Share::to_whole`] puts the
 //! answer's arrays together from every process's own entries. A completion that fails
-//! (MPI's error) leaves NaN and is recorded; the solve then ends with that error
-//! ([`failure`]).
+//! (MPI's error) leaves NaN and is recorded in the `Share` that made it, which belongs to
+//! one solve; that solve then ends with the error ([`Share::failure`]), and the next solve,
+//! with a `Share` of its own, starts clean.
 
 use crate::fem::dofs::{DofMap, FIXED};
 use crate::parallel::{Processes, Subdomain};
 use std::sync::OnceLock;
+
+/// The processes that complete a [`Share`]'s partial results, and the first failure of
+/// one of its completions.
+#[derive(Clone, Debug)]
+struct Completion {
+    /// The processes.
+    processes: Processes,
+    /// The first failure of a collective operation (MPI's error, in words), until the
+    /// solve reports it ([`Share::failure`]).
+    failure: OnceLock<String>,
+}
 
 /// Which entries of the solver's arrays this process counts; see the module documentation.
 ///
@@ -32,9 +44,9 @@ use std::sync::OnceLock;
 /// What it counts is therefore a prefix of each.
 #[derive(Clone, Debug)]
 pub struct Share {
-    /// The processes that complete a partial result; `None`: this process counts every
-    /// entry and completes nothing.
-    processes: Option<Processes>,
+    /// The processes that complete a partial result, with the failure of a completion;
+    /// `None`: this process counts every entry and completes nothing (and nothing fails).
+    completion: Option<Completion>,
     /// The DOFs per node.
     dim: usize,
     /// Number of nodes counted here: the first ones of the part.
@@ -70,7 +82,7 @@ impl Share {
     /// Everything, completed by nothing: one process, or one that holds and solves the
     /// whole system alone.
     pub const WHOLE: Share = Share {
-        processes: None,
+        completion: None,
         dim: 1,
         own_nodes: usize::MAX,
         own_equations: usize::MAX,
@@ -110,7 +122,10 @@ impl Share {
             .filter(|&&eq| eq != FIXED)
             .count();
         Share {
-            processes: Some(processes),
+            completion: Some(Completion {
+                processes,
+                failure: OnceLock::new(),
+            }),
             dim,
             own_nodes,
             own_equations,
@@ -126,7 +141,31 @@ impl Share {
     /// Whether the results are completed over several processes (`false`: this process
     /// counts every entry).
     pub fn is_split(&self) -> bool {
-        self.processes.is_some()
+        self.completion.is_some()
+    }
+
+    /// The processes that complete the partial results; `None` on one process.
+    fn processes(&self) -> Option<&Processes> {
+        self.completion.as_ref().map(|c| &c.processes)
+    }
+
+    /// Records the failure `e` of a collective operation of this `Share` (the first one is
+    /// kept); the operation's result is then NaN (or nothing, for a gather), and the solve
+    /// ends with the error ([`Share::failure`]).
+    fn fail(&self, e: crate::Error) {
+        if let Some(c) = &self.completion {
+            let _ = c.failure.set(e.to_string());
+        }
+    }
+
+    /// The failure of a collective operation of this `Share`, if one failed:
+    /// [`crate::Error::Breakdown`] with MPI's message. The solve that owns it checks it
+    /// after every evaluation and before it returns, so that a failed reduction ends that
+    /// solve with this error rather than with the NaN it left behind; a `Share` belongs to
+    /// one solve, so no later solve sees it.
+    pub fn failure(&self) -> Option<crate::Error> {
+        let c = self.completion.as_ref()?;
+        c.failure.get().map(|m| crate::Error::Breakdown(m.clone()))
     }
 
     /// Whether node `v` (of the part) is counted here.
@@ -172,7 +211,7 @@ impl Share {
     /// entry of kind `of`: every node of the part (own and ghost), its contact points, its
     /// cells. `whole` itself on one process.
     pub fn of_part(&self, whole: Vec<f64>, width: usize, of: Entries) -> Vec<f64> {
-        if self.processes.is_none() {
+        if self.completion.is_none() {
             return whole;
         }
         let ids = match of {
@@ -193,7 +232,7 @@ impl Share {
     /// tagged with their whole numbers, and every process receives all of them (one
     /// gather). `part` itself on one process.
     pub fn to_whole(&self, part: Vec<f64>, width: usize, of: Entries) -> Vec<f64> {
-        if self.processes.is_none() || width == 0 {
+        if self.completion.is_none() || width == 0 {
             return part;
         }
         let (ids, counted, n) = match of {
@@ -219,9 +258,9 @@ impl Share {
     /// `values` ← their element-wise sum over the processes, added in rank order so that
     /// every process gets the same bits ([`Processes::sum`]); nothing on one process.
     pub fn sum(&self, values: &mut [f64]) {
-        if let Some(p) = &self.processes {
+        if let Some(p) = self.processes() {
             if let Err(e) = p.sum(values) {
-                fail(e);
+                self.fail(e);
                 values.fill(f64::NAN);
             }
         }
@@ -231,7 +270,7 @@ impl Share {
     /// [`Share::sum`] (small arrays of one decision: normal equations and their right-hand
     /// side, a direction and its size); nothing on one process.
     pub fn sum_parts(&self, parts: &mut [&mut [f64]]) {
-        if self.processes.is_none() {
+        if self.completion.is_none() {
             return;
         }
         let mut all: Vec<f64> = parts.iter().flat_map(|p| p.iter().copied()).collect();
@@ -247,7 +286,7 @@ impl Share {
     /// giving a NaN (an MPI maximum leaves NaNs to the implementation); nothing on one
     /// process.
     pub fn max(&self, values: &mut [f64]) {
-        let Some(p) = &self.processes else {
+        let Some(p) = self.processes() else {
             return;
         };
         let m = values.len();
@@ -257,7 +296,7 @@ impl Share {
             .collect();
         both.extend(values.iter().map(|x| f64::from(u8::from(x.is_nan()))));
         if let Err(e) = p.max(&mut both) {
-            fail(e);
+            self.fail(e);
             both.fill(f64::NAN);
         }
         for (k, v) in values.iter_mut().enumerate() {
@@ -276,12 +315,12 @@ impl Share {
     /// Every process's `local` values (the same number on each), rank after rank; `local`
     /// itself on one process.
     pub fn gather(&self, local: &[f64]) -> Vec<f64> {
-        match &self.processes {
+        match self.processes() {
             None => local.to_vec(),
             Some(p) => {
                 let total = local.len() * p.size();
                 p.all_gather(local, total).unwrap_or_else(|e| {
-                    fail(e);
+                    self.fail(e);
                     vec![f64::NAN; total]
                 })
             }
@@ -291,7 +330,7 @@ impl Share {
     /// Every process's `local` values (any number on each), rank after rank; `local`
     /// itself on one process.
     pub fn gather_varying(&self, local: &[f64]) -> Vec<f64> {
-        match &self.processes {
+        match self.processes() {
             None => local.to_vec(),
             Some(p) => {
                 let gathered = p
@@ -299,7 +338,7 @@ impl Share {
                     // Lengths below 2^53 add exactly in floating point.
                     .and_then(|counts| p.all_gather(local, counts.iter().sum::<f64>() as usize));
                 gathered.unwrap_or_else(|e| {
-                    fail(e);
+                    self.fail(e);
                     Vec::new()
                 })
             }
@@ -332,20 +371,70 @@ impl Share {
     }
 }
 
-/// The first failure of a collective operation of a [`Share`] (MPI's error, in words),
-/// until the solve reports it ([`failure`]).
-static FAILURE: OnceLock<String> = OnceLock::new();
+#[cfg(all(test, not(feature = "petsc")))]
+mod tests {
+    use super::*;
+    use crate::scenario::Scenario;
+    use crate::solver::{solve, Solution};
 
-/// Records the failure `e` of a collective operation; the operation's result is then NaN
-/// (or nothing, for a gather), and the solve ends with the error ([`failure`]).
-fn fail(e: crate::Error) {
-    let _ = FAILURE.set(e.to_string());
-}
+    /// A block pressed onto a foundation with Coulomb friction: a solve with contact,
+    /// whose sums and maxima go through its `Share`.
+    const BLOCK: &str = r#"
+[mesh]
+kind = "rectangle"
+size = [2.0, 1.0]
+n = [8, 4]
+[material]
+young = 1000.0
+poisson = 0.3
+[[dirichlet]]
+part = "top"
+value = [0.01, -0.02]
+[[contact]]
+part = "bottom"
+c_nu = 1000.0
+[contact.friction]
+bound = "coulomb"
+mu = { law = "constant", mu = 0.3 }
+"#;
 
-/// The failure of a collective operation of a [`Share`] in this process, if one failed:
-/// [`crate::Error::Breakdown`] with MPI's message. The solve checks it after every
-/// evaluation and before it returns, so that a failed reduction ends it with this error
-/// rather than with the NaN it left behind.
-pub fn failure() -> Option<crate::Error> {
-    FAILURE.get().map(|m| crate::Error::Breakdown(m.clone()))
+    /// A collective operation that fails (here: a share over two processes in a build
+    /// without MPI, where every completion fails through `Processes`) leaves NaN and is
+    /// recorded in that share alone: a solve before it and a solve after it in the same
+    /// process converge to the same bits.
+    #[test]
+    fn a_failed_collective_ends_only_the_solve_whose_share_it_was() {
+        let solved = || -> Solution {
+            let scenario = Scenario::from_str(BLOCK, "<test>").unwrap();
+            let problem = scenario.into_problem().unwrap();
+            solve(&problem, &scenario.settings().unwrap()).unwrap()
+        };
+        let first = solved();
+        assert!(first.report.converged, "{}", first.report.message);
+        assert!(first.contact.iter().any(|c| c.pressure > 0.0));
+        let failing = Share {
+            completion: Some(Completion {
+                processes: Processes {
+                    rank: 0,
+                    size: 2,
+                    on_machine: 1,
+                },
+                failure: OnceLock::new(),
+            }),
+            ..Share::whole()
+        };
+        assert!(failing.failure().is_none());
+        let mut x = [1.0, 2.0];
+        failing.sum(&mut x);
+        assert!(x.iter().all(|v| v.is_nan()), "{x:?}");
+        let message = failing.failure().map(|e| e.to_string()).unwrap_or_default();
+        assert!(
+            message.contains("collective operation over 2 processes"),
+            "{message}"
+        );
+        let second = solved();
+        assert!(second.report.converged, "{}", second.report.message);
+        assert_eq!(first.u, second.u);
+        assert!(Share::whole().failure().is_none());
+    }
 }

@@ -295,8 +295,10 @@ fn describe(rigid: &RigidMotions, b: usize, c: &[f64; 6], length: f64) -> String
     }
 }
 
+/// The Euclidean norm of `x` by `hypot`, so that no square overflows or underflows (a drop
+/// across a gap of 10^300 displacement units, a load of 10^-300 in them).
 fn norm(x: &[f64]) -> f64 {
-    x.iter().map(|v| v * v).sum::<f64>().sqrt()
+    x.iter().fold(0.0, |n, v| n.hypot(*v))
 }
 
 /// The maximizer of `F·c` over `c ∈ ℝ^k` subject to `rows[i]·c ≤ gaps[i]` (all gaps ≥ 0)

@@ -244,23 +244,6 @@ fn solve_dimensionless(
     stop: &AtomicBool,
     observe: &dyn Fn(&OuterProgress),
 ) -> Result<Solution> {
-    let solution = solve_scaled(problem, settings, u, scales, stop, observe);
-    // A reduction over the processes that failed left NaNs behind: its error, not theirs.
-    match crate::parallel::share::failure() {
-        Some(e) => Err(e),
-        None => solution,
-    }
-}
-
-/// The body of [`solve_dimensionless`].
-fn solve_scaled(
-    problem: Problem,
-    settings: &SolverSettings,
-    u: Vec<f64>,
-    scales: &scaling::Scales,
-    stop: &AtomicBool,
-    observe: &dyn Fn(&OuterProgress),
-) -> Result<Solution> {
     let start = Instant::now();
     // On several processes, this process's part of the system and of the problem: every
     // array below is the part's, until the answer is put together.
@@ -278,22 +261,44 @@ fn solve_scaled(
     }
     // The unknown is the displacement beyond the translation the supports carry each body
     // by (zero at the DOFs it prescribes).
-    let mut u = system.relative_to_placement(u);
-    let drop = held::rigid_drop(&system, problem, &u)?;
+    let u = system.relative_to_placement(u);
+    let solution = solve_scaled(problem, &mut system, settings, u, start, stop, observe);
+    // A reduction over the processes that failed left NaNs behind: its error, not theirs.
+    // The failure is this solve's (its system's `Share`): the next solve starts clean.
+    match system.share().failure() {
+        Some(e) => Err(e),
+        None => solution,
+    }
+}
+
+/// The body of [`solve_dimensionless`], on the system of this solve (this process's part
+/// of it) and `problem` (the part's), from `u` (its prescribed DOFs set); `start` is when
+/// the solve began.
+fn solve_scaled(
+    problem: &Problem,
+    system: &mut System,
+    settings: &SolverSettings,
+    mut u: Vec<f64>,
+    start: Instant,
+    stop: &AtomicBool,
+    observe: &dyn Fn(&OuterProgress),
+) -> Result<Solution> {
+    let d = problem.mesh.dim();
+    let drop = held::rigid_drop(system, problem, &u)?;
     let drop_words = drop
         .as_ref()
-        .map(|p| held::describe_placement(&system, problem, p))
+        .map(|p| held::describe_placement(system, problem, p))
         .unwrap_or_default();
     if let Some(p) = drop {
         system.place(p.u);
     }
-    let mut report = SolveReport::new(&system);
+    let mut report = SolveReport::new(system);
     report.rigid_drop = drop_words;
-    let mut eval = system::Evaluation::new(&system);
+    let mut eval = system::Evaluation::new(system);
     let outcome = outer::run(
         problem,
         settings,
-        &mut system,
+        system,
         &mut eval,
         &mut u,
         &mut report,

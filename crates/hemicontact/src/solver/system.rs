@@ -666,7 +666,7 @@ impl System {
             }
         }
         // A failed reduction of the solver's (MPI's error) ends the solve with that error.
-        if let Some(e) = crate::parallel::share::failure() {
+        if let Some(e) = self.share.failure() {
             out.law_error.get_or_insert(e);
             return f64::NAN;
         }
