@@ -143,7 +143,7 @@ young = 1000.0
 poisson = 0.3
 [[dirichlet]]
 part = "top"
-value = [0.0, -0.001]
+value = [0.0, 0.0]
 [[contact]]
 part = "bottom"
 law = "signorini"

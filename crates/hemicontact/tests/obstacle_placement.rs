@@ -25,6 +25,12 @@ use hemicontact::Error;
 /// A block `[0, 1] × [0, 0.5]` (8 × 4 squares), its top pushed down by 2 cm, its bottom in
 /// Signorini contact with the obstacle `obstacle` (an inline TOML table).
 fn block(obstacle: &str) -> String {
+    block_with_top(obstacle, "[0.0, -0.02]")
+}
+
+/// [`block`] with its top moved by `top` (a TOML array): a body its support carries by
+/// that translation, which meets the obstacle where the translation puts it.
+fn block_with_top(obstacle: &str, top: &str) -> String {
     format!(
         r#"
 [mesh]
@@ -36,7 +42,7 @@ young = 1000.0
 poisson = 0.3
 [[dirichlet]]
 part = "top"
-value = [0.0, -0.02]
+value = {top}
 [[contact]]
 part = "bottom"
 law = "signorini"
@@ -232,6 +238,11 @@ fn a_contact_part_around_a_round_body_may_turn_its_far_side_away() {
     }
 }
 
+/// [`block`] held at its top: the obstacle's notes describe it where it stands.
+fn held_block(obstacle: &str) -> String {
+    block_with_top(obstacle, "[0.0, 0.0]")
+}
+
 /// The note of `notes` containing `what`, if any.
 fn note<'a>(notes: &'a [String], what: &str) -> Option<&'a String> {
     notes.iter().find(|n| n.contains(what))
@@ -242,7 +253,7 @@ fn a_circle_smaller_than_the_elements_between_two_nodes_is_noted() {
     // Radius 1 mm, centre 0.5 mm below the bottom, midway between the nodes at x = 0.5 and
     // 0.625 (elements 0.125 m wide): the circle reaches R − 0.0005 = 0.5 mm into the block,
     // while the nearest nodes are 62.5 mm from its centre.
-    let n = notes(&block(
+    let n = notes(&held_block(
         "{ kind = \"circle\", center = [0.5625, -0.0005], radius = 0.001 }",
     ));
     let size = note(&n, "radius of curvature").unwrap_or_else(|| panic!("{n:?}"));
@@ -258,7 +269,7 @@ fn a_circle_smaller_than_the_elements_between_two_nodes_is_noted() {
         "{between}"
     );
     // The same circle 1.5 mm below the face: still too small, but apart from the body.
-    let n = notes(&block(
+    let n = notes(&held_block(
         "{ kind = \"circle\", center = [0.5625, -0.0025], radius = 0.001 }",
     ));
     assert!(note(&n, "radius of curvature").is_some(), "{n:?}");
@@ -269,7 +280,7 @@ fn a_circle_smaller_than_the_elements_between_two_nodes_is_noted() {
 fn a_large_circle_crossing_the_face_between_nodes_is_noted() {
     // Radius 0.5, its top 0.1 mm above the bottom face at x = 0.5625, between two nodes:
     // the nodes at x = 0.5 and 0.625 are √(0.0625² + 0.4999²) − 0.5 ≈ 3.8 mm from it.
-    let n = notes(&block(
+    let n = notes(&held_block(
         "{ kind = \"circle\", center = [0.5625, -0.4999], radius = 0.5 }",
     ));
     assert!(note(&n, "radius of curvature").is_none(), "{n:?}");
@@ -279,15 +290,31 @@ fn a_large_circle_crossing_the_face_between_nodes_is_noted() {
         "{between}"
     );
     // Touching the face at the node x = 0.5: no penetration between nodes.
-    let n = notes(&block(
+    let n = notes(&held_block(
         "{ kind = \"circle\", center = [0.5, -0.5], radius = 0.5 }",
     ));
     assert!(note(&n, "between the part's nodes").is_none(), "{n:?}");
     // 0.1 mm apart from the face: no note either.
-    let n = notes(&block(
+    let n = notes(&held_block(
         "{ kind = \"circle\", center = [0.5625, -0.5001], radius = 0.5 }",
     ));
     assert!(n.iter().all(|n| !n.contains("obstacle")), "{n:?}");
+}
+
+/// The notes describe the body where its support carries it: the large circle 0.1 mm
+/// below the bottom face is apart from the held block, but the block whose top is moved
+/// down by 0.2 mm meets it 0.1 mm inside, between two nodes (which stay 3.8 mm from it).
+#[test]
+fn the_notes_describe_the_body_where_its_support_carries_it() {
+    let circle = "{ kind = \"circle\", center = [0.5625, -0.5001], radius = 0.5 }";
+    let n = notes(&held_block(circle));
+    assert!(note(&n, "between the part's nodes").is_none(), "{n:?}");
+    let n = notes(&block_with_top(circle, "[0.0, -0.0002]"));
+    let between = note(&n, "between the part's nodes").unwrap_or_else(|| panic!("{n:?}"));
+    assert!(
+        between.contains("reaches 0.0001 m into the body"),
+        "{between}"
+    );
 }
 
 #[test]
