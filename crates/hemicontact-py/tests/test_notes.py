@@ -59,7 +59,7 @@ def test_a_small_deformation_warns_nothing():
 def test_an_obstacle_smaller_than_the_mesh_warns():
     d = _block(
         {"kind": "circle", "center": [0.5625, -0.0005], "radius": 0.001},
-        top=(0.0, -0.001),
+        top=(0.0, 0.0),
         size=(1.0, 0.5),
         n=(8, 4),
     )
