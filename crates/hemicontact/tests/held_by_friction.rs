@@ -51,6 +51,7 @@ use hemicontact::contact::{ContactBoundary, Friction, FrictionCoefficient};
 use hemicontact::io::contact_totals::contact_totals;
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::Problem;
+use hemicontact::solver::certificate::FrictionState;
 use hemicontact::solver::{solve, Solution, SolverSettings};
 use hemicontact::Error;
 
@@ -403,5 +404,81 @@ fn a_rigid_foundation_and_a_gap_have_the_same_limit() {
                 "{case}: {msg}"
             );
         }
+    }
+}
+
+/// A thin block (2 m × 0.25 m, ν = 0) on a rigid foundation, pressed by q = 10 Pa and
+/// pushed sideways by `s` on its top, with the Coulomb coefficient `mu` (a TOML value).
+fn thin_block(s: f64, mu: &str, exact: bool) -> String {
+    format!(
+        r#"
+[mesh]
+kind = "rectangle"
+size = [2.0, 0.25]
+n = [16, 2]
+pattern = "symmetric"
+[material]
+young = 1000.0
+poisson = 0.0
+[[contact]]
+part = "bottom"
+gap = 0.0
+law = "signorini"
+[contact.friction]
+bound = "coulomb"
+mu = {mu}
+potential = {{ kind = "norm" }}
+exact = {exact}
+[[loads.traction]]
+part = "top"
+value = [{s}, {}]
+"#,
+        -Q
+    )
+}
+
+/// A strongly slip-weakening coefficient (μ from 0.2 at rest to 0.05 over slips of 1 mm)
+/// holds the thin block at 0.9 of its static limit μ(0) N = 0.2 × 20 N/m = 4 N/m. With
+/// the same static coefficient held constant every point of the block sticks, so that
+/// answer, at which μ(r) = μ(0) everywhere, is the slip-weakening problem's too: the block
+/// sticks, friction carries the 3.6 N/m, and the displacement is the constant
+/// coefficient's. (Before the block was first brought to rest with its static coefficient,
+/// the slips of the outer iterations on the way, at the pressures of the relieved first
+/// iteration, weakened μ and the solve was refused: "above the friction limit of outer
+/// iteration 2, 3.5965 N/m".)
+#[test]
+fn a_strongly_weakening_coefficient_holds_a_sticking_block_at_nine_tenths_of_its_static_limit() {
+    let static_limit = 0.2 * Q * 2.0;
+    let s = 0.9 * static_limit / 2.0;
+    let weakening = "{ law = \"exponential\", a = 0.2, b = 0.05, beta = 1000.0 }";
+    let constant = "{ law = \"constant\", mu = 0.2 }";
+    for exact in [false, true] {
+        let case = format!("exact = {exact}");
+        let (problem, settings) = common::setup(&thin_block(s, weakening, exact));
+        let sol = solve(&problem, &settings).unwrap_or_else(|e| panic!("{case}: {e}"));
+        assert!(sol.report.converged, "{case}: {}", sol.report.message);
+        assert!(sol.report.certificate.passes(), "{case}");
+        assert_held(
+            &problem,
+            &sol,
+            &[0.9 * static_limit, -Q * 2.0],
+            static_limit,
+            &case,
+        );
+        let (problem, settings) = common::setup(&thin_block(s, constant, exact));
+        let reference = solve(&problem, &settings).unwrap();
+        let scale = reference.u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in sol.contact.iter().zip(&reference.contact) {
+            assert_eq!(b.friction_state, FrictionState::Stick, "{case}: reference");
+            assert_eq!(a.friction_state, FrictionState::Stick, "{case}");
+            assert!(a.slip <= 1e-8 * scale, "{case}: slip {:e}", a.slip);
+        }
+        let diff = sol
+            .u
+            .iter()
+            .zip(&reference.u)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        println!("{case}: u differs from the constant coefficient's by {diff:.1e} of {scale:.3e}");
+        assert!(diff <= 1e-8 * scale, "{case}: {diff:e} of {scale:e}");
     }
 }

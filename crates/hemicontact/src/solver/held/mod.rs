@@ -68,13 +68,16 @@
 //! bound of the next iteration, which carries the load when the load is below the limit.
 //! Mixing conserves the total: for a constant μ on a flat foundation every image has
 //! `Σ w_i F_i = μ × normal force`, and the affine combinations of the Anderson step keep
-//! it. A slip-dependent μ may still lose the body in a later iteration (the slips of the
-//! early, strongly regularized, stages weaken μ); the error then says what the bound of
-//! that iteration carried and the limit.
+//! it. A slip-dependent μ may still weaken the bound of a later iteration below the load
+//! (the slips of the iterates on the way to equilibrium): the body is then first brought
+//! to rest with its static coefficient ([`AtRest`]), and if the real law loses it from
+//! there, the error says what the bound of that iteration carried and the static limit.
 
+mod at_rest;
 mod drop;
 mod sliding;
 
+pub use at_rest::AtRest;
 pub use drop::{describe_placement, rigid_drop, Placement, MAX_DROP_STEPS};
 pub use sliding::{largest_bounds, Sliding};
 

@@ -15,12 +15,12 @@ use crate::solver::System;
 /// documentation): per body, the direction of that load and its size.
 #[derive(Clone, Debug, Default)]
 pub struct Sliding {
-    bodies: Vec<SlidingLoad>,
+    pub(super) bodies: Vec<SlidingLoad>,
 }
 
 /// The load along the sliding motions of one body.
 #[derive(Clone, Debug)]
-struct SlidingLoad {
+pub(super) struct SlidingLoad {
     body: usize,
     /// Unit coefficient vector of the direction r of the load within the sliding motions.
     direction: [f64; 6],
@@ -28,12 +28,12 @@ struct SlidingLoad {
     rotation: bool,
     /// The load along r, `f·r / s` (a force or moment, solver's units), with `s` the size
     /// of r per unit coefficient: `|a|` for a translation, `|ω|` for a rotation.
-    load: f64,
+    pub(super) load: f64,
     /// The contact points of the body with friction (the process's ghost points too), with
     /// `‖r_τ(x_i)‖ / s` (each sum over them runs over the points this process counts,
     /// completed over the processes; the relief, a force at the points' nodes, takes them
     /// all, so that it is complete at this process's own nodes).
-    points: Vec<(usize, f64)>,
+    pub(super) points: Vec<(usize, f64)>,
 }
 
 /// The friction limit of one body at some bounds, and how it is made up.
@@ -375,7 +375,7 @@ impl Sliding {
 /// The friction force the bounds `bound` (per contact point) can exert along the direction
 /// of the sliding load `s`: `Σ w_i F_i ‖r_τ(x_i)‖` over its frictional points, in the units
 /// of [`SlidingLoad::load`].
-fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
+pub(super) fn capacity(system: &System, s: &SlidingLoad, bound: &[f64]) -> f64 {
     let share = system.share();
     let owned = system.contact.owned();
     let mut sum = [s
@@ -523,6 +523,23 @@ pub fn largest_bounds(
     frozen: &Frozen,
     frozen_multipliers: bool,
 ) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
+    bounds_at(system, problem, u, frozen, frozen_multipliers, true)
+}
+
+/// The friction bound of each contact point at rest at `u`, with its pressure and
+/// coefficient, as [`largest_bounds`]: with the coefficient `μ₀ = sup μ` if `largest`,
+/// else with its value at zero slip μ(0) (the state at rest, [`super::AtRest`]).
+///
+/// # Errors
+/// [`Error::Law`] if a user-defined law fails.
+pub(super) fn bounds_at(
+    system: &System,
+    problem: &Problem,
+    u: &[f64],
+    frozen: &Frozen,
+    frozen_multipliers: bool,
+    largest: bool,
+) -> Result<(Vec<f64>, Vec<f64>, Vec<f64>)> {
     let ca = system.contact_assembler(problem);
     let mut responses = Vec::new();
     ca.normal_responses(u, false, &mut responses)?;
@@ -559,7 +576,7 @@ pub fn largest_bounds(
             })?;
         let sup = fr.mu.sup();
         for i in range {
-            if !fr.mu.is_field() && sup.is_finite() {
+            if largest && !fr.mu.is_field() && sup.is_finite() {
                 mu[i] = mu[i].max(sup);
             }
             pressures[i] = if frozen_multipliers && problem.contact[b].normal.is_exact() {
