@@ -6,6 +6,13 @@
 //! contact point within its tangent plane (only friction can carry them). Two things
 //! follow.
 //!
+//! Everything below runs over a *group* of bodies ([`crate::fem::rigid::groups`]): the
+//! bodies whose contact pairs join two of them with free motions, analysed together. Its
+//! motions are those of its bodies together ([`crate::fem::rigid::Motion`]), the
+//! coefficients c below are its stacked coefficients (at most 6 per body), and the row of
+//! a point between two of its bodies is the change of the point's relative displacement,
+//! `r_s(x_s) − r_m(x_m)`. A body in no such pair is a group of one.
+//!
 //! # The rigid drop
 //!
 //! A body resting across a gap (a block above its foundation) first moves rigidly until
@@ -87,18 +94,13 @@ use crate::fem::rigid::RigidMotions;
 /// in the rigid drop and the friction limit.
 const ROUND_OFF: f64 = 1e-12;
 
-/// The motion `c` of body `b` in words in the user's coordinates, with its mesh component
-/// when there are several.
+/// The motion `c` of body `b` in words in the user's coordinates, with the body
+/// ([`RigidMotions::label`]) when the mesh has several.
 fn describe(rigid: &RigidMotions, b: usize, c: &[f64; 6], length: f64) -> String {
     let motion = rigid.describe_in(b, c, length);
-    if rigid.bodies.len() > 1 {
-        format!(
-            "mesh component {} of {}: {motion}",
-            b + 1,
-            rigid.bodies.len()
-        )
-    } else {
-        motion
+    match rigid.label(b) {
+        l if l.is_empty() => motion,
+        l => format!("{l}: {motion}"),
     }
 }
 

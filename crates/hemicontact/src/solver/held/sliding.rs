@@ -2,41 +2,45 @@
 //! relief of the first outer iteration, the recentring of its answer and the check of the
 //! load against the largest friction force (see the module documentation of [`super`]).
 
-use super::{describe, norm, ROUND_OFF};
+use super::{norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
-use crate::fem::rigid::{solve_small, Runaway};
+use crate::fem::rigid::{solve_symmetric, Group, Motion, Runaway};
 use crate::problem::Problem;
 use crate::solver::frozen::Frozen;
 use crate::solver::System;
 
-/// The load along the sliding motions of the bodies that carry some (see the module
-/// documentation): per body, the direction of that load and its size.
+/// The load along the sliding motions of the groups of bodies that carry some (see the
+/// module documentation): per group, the direction of that load and its size.
 #[derive(Clone, Debug, Default)]
 pub struct Sliding {
     pub(super) bodies: Vec<SlidingLoad>,
 }
 
-/// The load along the sliding motions of one body.
+/// The load along the sliding motions of one group of bodies ([`crate::fem::rigid::Group`]).
 #[derive(Clone, Debug)]
 pub(super) struct SlidingLoad {
-    body: usize,
-    /// Unit coefficient vector of the direction r of the load within the sliding motions.
-    direction: [f64; 6],
-    /// Whether r is a rotation (the load is then a moment) rather than a translation.
+    /// The group (index into [`crate::fem::rigid::RigidMotions::groups`]).
+    group: usize,
+    /// Unit coefficient vector (of the group's bodies together) of the direction r of the
+    /// load within the sliding motions.
+    direction: Motion,
+    /// Whether r rotates some body (the load is then a moment) rather than translating them.
     rotation: bool,
     /// The load along r, `f·r / s` (a force or moment, solver's units), with `s` the size
-    /// of r per unit coefficient: `|a|` for a translation, `|ω|` for a rotation.
+    /// of r per unit coefficient: the largest `|a|` of a body for a translation, the
+    /// largest `|ω|` for a rotation.
     pub(super) load: f64,
-    /// The contact points of the body with friction (the process's ghost points too), with
-    /// `‖r_τ(x_i)‖ / s` (each sum over them runs over the points this process counts,
-    /// completed over the processes; the relief, a force at the points' nodes, takes them
-    /// all, so that it is complete at this process's own nodes).
+    /// The contact points of the group with friction (the process's ghost points too),
+    /// with `‖ρ_τ(x_i)‖ / s`, ρ the change of the point's relative displacement under r
+    /// (each sum over them runs over the points this process counts, completed over the
+    /// processes; the relief, a force at the points' nodes, takes them all, so that it is
+    /// complete at this process's own nodes).
     pub(super) points: Vec<(usize, f64)>,
 }
 
-/// The friction limit of one body at some bounds, and how it is made up.
+/// The friction limit of one group at some bounds, and how it is made up.
 struct Limit {
     /// The friction force the bounds can exert along the load's direction, in the units
     /// of [`SlidingLoad::load`] ([`capacity`]).
@@ -50,15 +54,25 @@ struct Limit {
     /// Whether every point is of Coulomb type (false: every point of Tresca type; None:
     /// mixed).
     coulomb: Option<bool>,
-    /// Whether `‖r_τ‖ / s = 1` at every point (a translation along a flat contact).
+    /// Whether `‖ρ_τ‖ / s = 1` at every point (a translation along a flat contact).
     flat: bool,
 }
 
+/// The tangential part `r − (r·n) n` of `r` at a point of normal `n` (first d entries).
+fn tangential(d: usize, r: &[f64; 3], n: &[f64; 3]) -> [f64; 3] {
+    let along: f64 = (0..d).map(|j| r[j] * n[j]).sum();
+    let mut t = [0.0; 3];
+    for j in 0..d {
+        t[j] = r[j] - along * n[j];
+    }
+    t
+}
+
 impl Sliding {
-    /// The sliding loads of `problem` on `system`: for each body with sliding motions
-    /// carried by friction ([`RigidMotions::sliding`] not in
-    /// [`RigidMotions::uncarried`]), the projection of the load onto them, if it is more
-    /// than round-off of the body's load.
+    /// The sliding loads of `problem` on `system`: for each group of bodies with sliding
+    /// motions carried by friction ([`crate::fem::rigid::Group::sliding`], and no
+    /// uncarried motion), the projection of the load onto them, if it is more than
+    /// round-off of the group's load.
     pub fn of(system: &System, problem: &Problem) -> Sliding {
         let rigid = &system.rigid;
         let mesh = &problem.mesh;
@@ -67,45 +81,57 @@ impl Sliding {
         let f = &system.f_ext;
         let share = system.share();
         let mut bodies = Vec::new();
-        for b in 0..rigid.bodies.len() {
-            if rigid.sliding[b].is_empty() || !rigid.uncarried[b].is_empty() {
+        for (g, group) in rigid.groups.iter().enumerate() {
+            if group.sliding.is_empty() || !group.uncarried.is_empty() {
                 continue;
             }
-            let nodes = &rigid.bodies[b].nodes;
-            let mut direction = [0.0; 6];
+            let mut direction = vec![[0.0; 6]; group.bodies.len()];
             let mut size = 0.0;
-            for &v in nodes.iter().filter(|&&v| share.counts_node(v as usize)) {
-                let x = mesh.node(v as usize);
-                for c in &rigid.sliding[b] {
-                    let r = rigid.displacement(b, c, x);
-                    let along: f64 = (0..d)
-                        .filter(|&i| !system.dofs.is_fixed(d * v as usize + i))
-                        .map(|i| r[i] * f[d * v as usize + i])
-                        .sum();
-                    for j in 0..6 {
-                        direction[j] += along * c[j];
+            for (j, &b) in group.bodies.iter().enumerate() {
+                let nodes = rigid.bodies[b].nodes.iter();
+                for &v in nodes.filter(|&&v| share.counts_node(v as usize)) {
+                    let x = mesh.node(v as usize);
+                    for c in &group.sliding {
+                        let r = rigid.displacement(b, &c[j], x);
+                        let along: f64 = (0..d)
+                            .filter(|&i| !system.dofs.is_fixed(d * v as usize + i))
+                            .map(|i| r[i] * f[d * v as usize + i])
+                            .sum();
+                        for (dj, cj) in direction.iter_mut().zip(c) {
+                            for i in 0..6 {
+                                dj[i] += along * cj[i];
+                            }
+                        }
+                    }
+                    for i in 0..d {
+                        size += f[d * v as usize + i].abs();
                     }
                 }
-                for i in 0..d {
-                    size += f[d * v as usize + i].abs();
-                }
             }
-            share.sum_parts(&mut [&mut direction, std::slice::from_mut(&mut size)]);
-            let along = norm(&direction[..m]);
+            share.sum_parts(&mut [
+                direction.as_flattened_mut(),
+                std::slice::from_mut(&mut size),
+            ]);
+            let used: Vec<f64> = direction.iter().flat_map(|c| c[..m].to_vec()).collect();
+            let along = norm(&used);
             if along.is_nan() || along <= ROUND_OFF * size {
                 continue;
             }
-            for x in direction.iter_mut() {
+            for x in direction.as_flattened_mut() {
                 *x = if x.abs() <= 1e-9 * along {
                     0.0
                 } else {
                     *x / along
                 };
             }
-            let body = &rigid.bodies[b];
-            let translation = norm(&direction[..d]);
-            let omega = norm(&direction[d..m]) / body.size;
-            let rotation = omega * body.size > 1e-9 * translation;
+            let (mut translation, mut omega, mut rotation) = (0.0f64, 0.0f64, false);
+            for (c, &b) in direction.iter().zip(&group.bodies) {
+                let size = rigid.bodies[b].size;
+                let (t, w) = (norm(&c[..d]), norm(&c[d..m]) / size);
+                rotation |= w * size > 1e-9 * t;
+                translation = translation.max(t);
+                omega = omega.max(w);
+            }
             let per_unit = if rotation { omega } else { translation };
             // The load along the unit direction is its norm `along` (f·r = F·direction).
             let load = along / per_unit;
@@ -115,18 +141,22 @@ impl Sliding {
                 if boundary.friction.is_none() {
                     continue;
                 }
-                // The point's node in this body, or (a contact pair) its master point.
-                let Some((x, ..)) = system.contact.on_body(mesh, i, &rigid.body_of, b) else {
-                    continue;
+                // The point's node, or (a contact pair) its master point, on the group.
+                let on = rigid.group_sides(&system.contact, mesh, i, g);
+                let r = match &on[..] {
+                    [] => continue,
+                    [(j, side)] => {
+                        rigid.displacement(b_of(group, *j), &direction[*j], &side.x[..d])
+                    }
+                    _ => rigid.relative_motion(g, &direction, &on),
                 };
-                let r = rigid.displacement(b, &direction, &x[..d]);
                 let n = &system.contact.normal[i];
                 let along_normal: f64 = (0..d).map(|j| r[j] * n[j]).sum();
                 let tangential: Vec<f64> = (0..d).map(|j| r[j] - along_normal * n[j]).collect();
                 points.push((i, norm(&tangential) / per_unit));
             }
             bodies.push(SlidingLoad {
-                body: b,
+                group: g,
                 direction,
                 rotation,
                 load,
@@ -136,13 +166,13 @@ impl Sliding {
         Sliding { bodies }
     }
 
-    /// Whether no body has a load along motions only friction carries.
+    /// Whether no group of bodies has a load along motions only friction carries.
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
     }
 
     /// Whether the friction bounds `bound` (per contact point) cannot carry the load of
-    /// some body: its load is above `Σ w_i F_i ‖r_τ‖`.
+    /// some group: its load is above `Σ w_i F_i ‖ρ_τ‖`.
     pub fn exceeds(&self, system: &System, bound: &[f64]) -> bool {
         self.bodies
             .iter()
@@ -150,9 +180,11 @@ impl Sliding {
     }
 
     /// The relief of the first outer iteration (see the module documentation): nodal
-    /// forces (DOF order) at the frictional contact points of each body, tangential and
+    /// forces (DOF order) at the frictional contact points of each group, tangential and
     /// proportional to the points' weights, whose load along every sliding motion of the
-    /// body is minus that of the external forces.
+    /// group is minus that of the external forces. At a point between two bodies of the
+    /// group the force acts on both, as a contact force does (`+t` on the slave node,
+    /// `−N_j t` on the master facet's nodes).
     pub fn relief(&self, system: &System, problem: &Problem) -> Vec<f64> {
         let rigid = &system.rigid;
         let mesh = &problem.mesh;
@@ -163,61 +195,75 @@ impl Sliding {
         let counted = |v: &&u32| share.counts_node(**v as usize);
         let mut relief = vec![0.0; f.len()];
         for s in &self.bodies {
-            let b = s.body;
-            let basis = &rigid.sliding[b];
+            let g = s.group;
+            let group = &rigid.groups[g];
+            let basis = &group.sliding;
             let k = basis.len();
             // The load along each sliding motion.
-            let mut load = [0.0; 6];
-            for &v in rigid.bodies[b].nodes.iter().filter(counted) {
-                let x = mesh.node(v as usize);
-                for (l, c) in basis.iter().enumerate() {
-                    let r = rigid.displacement(b, c, x);
-                    for i in 0..d {
-                        let dof = d * v as usize + i;
-                        if !system.dofs.is_fixed(dof) {
-                            load[l] += r[i] * f[dof];
+            let mut load = vec![0.0; k];
+            for (j, &b) in group.bodies.iter().enumerate() {
+                for &v in rigid.bodies[b].nodes.iter().filter(counted) {
+                    let x = mesh.node(v as usize);
+                    for (l, c) in basis.iter().enumerate() {
+                        let r = rigid.displacement(b, &c[j], x);
+                        for i in 0..d {
+                            let dof = d * v as usize + i;
+                            if !system.dofs.is_fixed(dof) {
+                                load[l] += r[i] * f[dof];
+                            }
                         }
                     }
                 }
             }
-            // ψ_l: w_i (r_l)_τ(x_i) at the frictional points, free DOFs only (at a master
+            // ψ_l: w_i (ρ_l)_τ(x_i) at the frictional points, free DOFs only (at a master
             // point, spread onto its facet's nodes by N_j).
             let mut psi = vec![vec![0.0; f.len()]; k];
             for &(i, _) in &s.points {
-                let Some((x, _, on)) = contact.on_body(mesh, i, &rigid.body_of, b) else {
-                    continue;
-                };
+                let on = rigid.group_sides(contact, mesh, i, g);
                 let (_, nodes, coef) = contact.stencil(d, i);
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
                 for (l, c) in basis.iter().enumerate() {
-                    let r = rigid.displacement(b, c, &x[..d]);
-                    let along: f64 = (0..d).map(|j| r[j] * n[j]).sum();
-                    for a in on.clone() {
-                        let v = nodes[a] as usize;
-                        for j in 0..d {
-                            let dof = d * v + j;
-                            if !system.dofs.is_fixed(dof) {
-                                psi[l][dof] += coef[a].abs() * w * (r[j] - along * n[j]);
+                    // One side: the force on the body along its own motion's tangential
+                    // part; two: the contact force along the relative motion's.
+                    let (t, signed) = match &on[..] {
+                        [(j, side)] => {
+                            let r = rigid.displacement(b_of(group, *j), &c[*j], &side.x[..d]);
+                            (tangential(d, &r, n), false)
+                        }
+                        _ => (tangential(d, &rigid.relative_motion(g, c, &on), n), true),
+                    };
+                    for (_, side) in &on {
+                        for a in side.stencil.clone() {
+                            let v = nodes[a] as usize;
+                            let ca = if signed { coef[a] } else { coef[a].abs() };
+                            for j in 0..d {
+                                let dof = d * v + j;
+                                if !system.dofs.is_fixed(dof) {
+                                    psi[l][dof] += ca * w * t[j];
+                                }
                             }
                         }
                     }
                 }
             }
             // M β = −F with M_lm = ψ_l · r_m.
-            let mut gram = [[0.0; 6]; 6];
-            for &v in rigid.bodies[b].nodes.iter().filter(counted) {
-                let x = mesh.node(v as usize);
-                for (m_, c) in basis.iter().enumerate() {
-                    let r = rigid.displacement(b, c, x);
-                    for (l, p) in psi.iter().enumerate() {
-                        gram[l][m_] += (0..d).map(|i| p[d * v as usize + i] * r[i]).sum::<f64>();
+            let mut gram = vec![0.0; k * k];
+            for (j, &b) in group.bodies.iter().enumerate() {
+                for &v in rigid.bodies[b].nodes.iter().filter(counted) {
+                    let x = mesh.node(v as usize);
+                    for (m_, c) in basis.iter().enumerate() {
+                        let r = rigid.displacement(b, &c[j], x);
+                        for (l, p) in psi.iter().enumerate() {
+                            gram[l * k + m_] +=
+                                (0..d).map(|i| p[d * v as usize + i] * r[i]).sum::<f64>();
+                        }
                     }
                 }
             }
-            share.sum_parts(&mut [gram.as_flattened_mut(), &mut load]);
-            let minus = load.map(|x| -x);
-            let beta = solve_small(&gram, &minus, k);
+            share.sum_parts(&mut [&mut gram, &mut load]);
+            let minus: Vec<f64> = load.iter().map(|x| -x).collect();
+            let beta = solve_symmetric(&gram, &minus);
             for (l, p) in psi.iter().enumerate() {
                 for (x, y) in relief.iter_mut().zip(p) {
                     *x += beta[l] * y;
@@ -227,13 +273,14 @@ impl Sliding {
         relief
     }
 
-    /// Removes from `u` (DOF order, free DOFs) the sliding rigid motion of each body that
+    /// Removes from `u` (DOF order, free DOFs) the sliding rigid motion of each group that
     /// best fits the tangential displacements of its frictional contact points (weighted
-    /// least squares with the points' weights), so that their slips are centred on zero.
-    /// The relieved first iteration has no friction: its energy is the same along every
-    /// sliding motion, and its Newton steps may leave the body anywhere along them (a
-    /// tilt about the centroid slides the contact); the friction of the next iteration
-    /// then starts from slips of the order of the displacements instead of from rest.
+    /// least squares with the points' weights; at a point between two of its bodies, the
+    /// relative displacement), so that their slips are centred on zero. The relieved
+    /// first iteration has no friction: its energy is the same along every sliding
+    /// motion, and its Newton steps may leave the bodies anywhere along them (a tilt about
+    /// the centroid slides the contact); the friction of the next iteration then starts
+    /// from slips of the order of the displacements instead of from rest.
     pub fn recenter(&self, system: &System, problem: &Problem, u: &mut [f64]) {
         let rigid = &system.rigid;
         let mesh = &problem.mesh;
@@ -241,60 +288,66 @@ impl Sliding {
         let contact = &system.contact;
         let share = system.share();
         for s in &self.bodies {
-            let b = s.body;
-            let basis = &rigid.sliding[b];
+            let g = s.group;
+            let group = &rigid.groups[g];
+            let basis = &group.sliding;
             let k = basis.len();
-            let mut gram = [[0.0; 6]; 6];
-            let mut rhs = [0.0; 6];
+            let mut gram = vec![0.0; k * k];
+            let mut rhs = vec![0.0; k];
             for &(i, _) in s.points.iter().filter(|&&(i, _)| i < contact.owned()) {
-                let Some((x, _, on)) = contact.on_body(mesh, i, &rigid.body_of, b) else {
-                    continue;
-                };
+                let on = rigid.group_sides(contact, mesh, i, g);
                 let (_, nodes, coef) = contact.stencil(d, i);
                 let n = &contact.normal[i];
                 let w = contact.weight[i];
-                let tangential = |r: [f64; 3]| {
-                    let along: f64 = (0..d).map(|j| r[j] * n[j]).sum();
-                    let mut t = [0.0; 3];
-                    for j in 0..d {
-                        t[j] = r[j] - along * n[j];
-                    }
-                    t
-                };
-                // The displacement of the body at the point (at a master point, Σ N_j u(m_j)).
+                // The displacement of the body at the point (at a master point,
+                // Σ N_j u(m_j)); between two bodies of the group, the relative one.
+                let signed = on.len() > 1;
                 let mut uv = [0.0; 3];
-                for a in on {
-                    let v = nodes[a] as usize;
-                    for j in 0..d {
-                        uv[j] += coef[a].abs() * u[d * v + j];
+                for (_, side) in &on {
+                    for a in side.stencil.clone() {
+                        let v = nodes[a] as usize;
+                        let ca = if signed { coef[a] } else { coef[a].abs() };
+                        for j in 0..d {
+                            uv[j] += ca * u[d * v + j];
+                        }
                     }
                 }
-                let ut = tangential(uv);
+                let ut = tangential(d, &uv, n);
                 let fields: Vec<[f64; 3]> = basis
                     .iter()
-                    .map(|c| tangential(rigid.displacement(b, c, &x[..d])))
+                    .map(|c| match &on[..] {
+                        [(j, side)] => tangential(
+                            d,
+                            &rigid.displacement(b_of(group, *j), &c[*j], &side.x[..d]),
+                            n,
+                        ),
+                        _ => tangential(d, &rigid.relative_motion(g, c, &on), n),
+                    })
                     .collect();
                 for l in 0..k {
                     rhs[l] += w * (0..d).map(|j| fields[l][j] * ut[j]).sum::<f64>();
                     for m in 0..k {
-                        gram[l][m] += w * (0..d).map(|j| fields[l][j] * fields[m][j]).sum::<f64>();
+                        gram[l * k + m] +=
+                            w * (0..d).map(|j| fields[l][j] * fields[m][j]).sum::<f64>();
                     }
                 }
             }
-            share.sum_parts(&mut [gram.as_flattened_mut(), &mut rhs]);
-            let y = solve_small(&gram, &rhs, k);
-            let mut c = [0.0; 6];
-            for (l, bl) in basis.iter().enumerate() {
-                for j in 0..6 {
-                    c[j] += y[l] * bl[j];
+            share.sum_parts(&mut [&mut gram, &mut rhs]);
+            let y = solve_symmetric(&gram, &rhs);
+            for (j, &b) in group.bodies.iter().enumerate() {
+                let mut c = [0.0; 6];
+                for (l, bl) in basis.iter().enumerate() {
+                    for i in 0..6 {
+                        c[i] += y[l] * bl[j][i];
+                    }
                 }
-            }
-            for &v in &rigid.bodies[b].nodes {
-                let r = rigid.displacement(b, &c, mesh.node(v as usize));
-                for i in 0..d {
-                    let dof = d * v as usize + i;
-                    if !system.dofs.is_fixed(dof) {
-                        u[dof] -= r[i];
+                for &v in &rigid.bodies[b].nodes {
+                    let r = rigid.displacement(b, &c, mesh.node(v as usize));
+                    for i in 0..d {
+                        let dof = d * v as usize + i;
+                        if !system.dofs.is_fixed(dof) {
+                            u[dof] -= r[i];
+                        }
                     }
                 }
             }
@@ -337,7 +390,8 @@ impl Sliding {
         frozen: &Frozen,
         iteration: usize,
     ) -> Result<Option<Error>> {
-        let Some(s) = self.bodies.iter().find(|s| s.body == r.body) else {
+        let group = system.rigid.group_of[r.body];
+        let Some(s) = self.bodies.iter().find(|s| s.group as u32 == group) else {
             return Ok(None);
         };
         if system.rigid.sliding_share(r.body, &r.motion) < 0.5 {
@@ -365,7 +419,9 @@ impl Sliding {
         let units = system.user_units();
         let unit = force_unit(system, s);
         Error::FrictionLimit {
-            motion: describe(&system.rigid, s.body, &s.direction, units.length),
+            motion: system
+                .rigid
+                .describe_group_in(s.group, &s.direction, units.length),
             load: with_unit(s.load * unit.0, unit.1),
             limit,
         }
@@ -588,4 +644,9 @@ pub(super) fn bounds_at(
         }
     }
     Ok((bounds, pressures, mu))
+}
+
+/// The body at place `j` of `group`.
+fn b_of(group: &Group, j: usize) -> usize {
+    group.bodies[j]
 }
