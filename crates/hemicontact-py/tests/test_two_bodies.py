@@ -3,8 +3,8 @@ nodes of one part (the slave side) with the surface of another body's part (the 
 side). Two blocks stacked and pressed together (ν = 0) carry the uniform pressure E δ/H at
 every point when their interface nodes coincide; the committed punch-on-block scenario
 solves and certifies through Python as through the CLI; a free block rests on a held one
-from either side of the pair; two bodies that both have free rigid motions raise
-``ScenarioError`` naming ``contact[0].against``."""
+from either side of the pair; two free bodies that nothing holds up but their contact with
+each other raise ``ScenarioError`` naming both by their cell regions and the motion."""
 
 import numpy as np
 import pytest
@@ -65,10 +65,14 @@ def test_a_free_body_rests_on_a_held_one_either_side_of_the_pair(slave, master):
     assert np.allclose(r.contact["pressure"], 10.0, rtol=1e-10, atol=0)
 
 
-def test_two_free_bodies_are_refused_naming_the_field():
-    # The lower block held along x only too: both bodies keep free rigid motions.
+def test_two_free_bodies_that_nothing_holds_up_are_refused_naming_their_regions():
+    # The lower block held along x only too: both bodies keep free rigid motions, analysed
+    # together; their contact carries only their relative motion, so nothing holds them up.
     d = _resting("upper_bottom", "lower_top", lower_held=("x",))
-    with pytest.raises(hc.ScenarioError, match=r"contact\[0\]\.against.*both bodies"):
+    with pytest.raises(
+        hc.ScenarioError,
+        match=r"region `lower`.*region `upper`.*together: translation along y",
+    ):
         hc.solve(hc.Scenario.from_dict(d))
 
 

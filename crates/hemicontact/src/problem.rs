@@ -343,51 +343,40 @@ impl Problem {
         Ok(())
     }
 
-    /// One of the two bodies of a contact pair must be held by its own supports: the
-    /// other may then rest on it through the pair (its free rigid motions carried by the
-    /// pair as by a foundation), whichever side it is; but free rigid motions of both
-    /// bodies (or of a body in contact with itself), which only a joint analysis of the two
-    /// bodies' motions could carry, are not solved yet.
+    /// A body in contact with itself (a pair between two parts of one body, a crack) must
+    /// be held by its own supports: its pair points would enter the analysis of its free
+    /// motions with the rows `r(x_s) − r(x_m)` (which vanish where the faces coincide), but
+    /// that case is not verified, and is refused. Two different bodies may both have free
+    /// rigid motions: their motions are analysed together ([`crate::fem::rigid::groups`]).
     fn check_pair_bodies(&self) -> Result<()> {
         let points = self.contact_nodes()?;
         let rigid = self.rigid_motions()?;
         let d = self.mesh.dim();
-        let free = |v: u32| {
-            let b = rigid.body_of[v as usize] as usize;
-            rigid.free.get(b).map_or(0, Vec::len)
-        };
         for i in 0..points.len() {
             let (n, nodes, _) = points.stencil(d, i);
             if n == 1 {
                 continue;
             }
-            let (slave, master) = (free(nodes[0]), free(nodes[1]));
-            let same = rigid.body_of[nodes[0] as usize] == rigid.body_of[nodes[1] as usize];
-            if master > 0 && (slave > 0 || same) {
+            let b = rigid.body_of[nodes[0] as usize] as usize;
+            let free = rigid.free.get(b).map_or(0, Vec::len);
+            if free > 0 && rigid.body_of[nodes[1] as usize] as usize == b {
                 let k = points.boundary[i] as usize;
                 let names = self.mesh.part_names();
-                let what = if same {
-                    format!(
-                        "its body (of node {}) has {master} free rigid motion(s)",
-                        nodes[0]
-                    )
-                } else {
-                    format!(
-                        "both bodies have free rigid motions: the slave body (of node {}) \
-                         {slave}, the master body (of node {}) {master}",
-                        nodes[0], nodes[1]
-                    )
+                let body = match rigid.label(b) {
+                    l if l.is_empty() => "the body".to_string(),
+                    l => format!("the body {l}"),
                 };
                 return Err(Error::Invalid {
                     field: format!("contact[{k}].against"),
                     value: format!(
-                        "`{}` against `{}`: {what}",
+                        "`{}` against `{}`: both parts of {body}, which has {free} free rigid \
+                         motion(s)",
                         names[self.contact[k].part],
                         names[self.contact[k].against.map_or(0, |a| a.part)]
                     ),
-                    allowed: "one of the two bodies held by its own supports (Dirichlet \
-                              conditions that leave no rigid motion free); the other may \
-                              rest on it through the pair"
+                    allowed: "a pair between two parts of one body (a crack) in a body held by \
+                              its own supports (Dirichlet conditions that leave no rigid motion \
+                              free)"
                         .into(),
                 });
             }

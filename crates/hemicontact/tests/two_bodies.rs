@@ -23,14 +23,20 @@
 //!    master body's residual is 0.7 of its force scale: checked by removing them).
 //! 4. **Friction on the relative slip**: blocks sliding on each other carry the friction
 //!    bound, and slip by the jump of the displacement across the interface.
-//! 5. **Refusals**: a part against itself, a master body with free rigid motions, a gap
-//!    with a master part.
+//! 5. **Refusals**: a part against itself, two bodies whose free motions nothing carries
+//!    but their contact with each other (named by their cell regions, with the motions in
+//!    words), a gap with a master part.
 //! 6. **A free body resting on a held one** through the pair, with or without an initial
 //!    gap, carries the load exactly; a Gmsh file of two bodies with coincident interface
 //!    nodes passes the patch test.
 //! 7. **The trace constant of the jump** (uniqueness condition): with the master side
 //!    clamped it equals the slave body's own (1.267894592052 both), and it grows when the
 //!    master side is free (1.71).
+//! 8. **Free bodies on free bodies**, their motions analysed together: a stack of two or
+//!    three free blocks on a held foundation (2D, 3D, touching or across gaps, down to
+//!    10⁻⁶ Pa) carries the load through every interface exactly; a block clamped by
+//!    friction between a held block and a free one is held with the normal and friction
+//!    forces its equilibrium gives, and refused above the friction limit.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
@@ -506,7 +512,8 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
         e.contains("contact[0].against") && e.contains("other than the contact part"),
         "{e}"
     );
-    // Two bodies each with free rigid motions (the lower one held along x only).
+    // Two bodies each with free rigid motions (the lower one held along x only, the upper
+    // one not at all).
     let e = refusal(
         Problem::builder(mesh.clone(), material())
             .dirichlet(Dirichlet {
@@ -516,11 +523,19 @@ fn pairs_that_cannot_be_solved_are_refused_with_the_reason() {
             })
             .contact(pair(part("b_top"))),
     );
+    // Their motions are analysed together: nothing holds them both up (nor their common
+    // tilt, nor the upper one sideways).
     println!("{e}");
-    assert!(
-        e.contains("contact[0].against") && e.contains("both bodies") && e.contains("free"),
-        "{e}"
-    );
+    for words in [
+        "no contact part carries",
+        "region `b`, mesh component 1 of 2",
+        "region `a`, mesh component 2 of 2",
+        "region `b` (mesh component 1 of 2) and region `a` (mesh component 2 of 2) together: \
+         translation along y",
+        "region `a` (mesh component 2 of 2): translation along x",
+    ] {
+        assert!(e.contains(words), "{words:?} not in {e}");
+    }
     // A gap with a master part.
     let e = refusal(
         held(Problem::builder(mesh.clone(), material()))
@@ -662,7 +677,7 @@ fn a_block_resting_on_a_held_block_is_carried_by_the_pair() {
             if free_slave { "slave" } else { "master" }
         );
         assert!(
-            rigid.uncarried.iter().all(Vec::is_empty),
+            rigid.groups.iter().all(|g| g.uncarried.is_empty()),
             "the pair carries every free motion"
         );
         // The load passes through the pair exactly; the pointwise error is node-to-segment's
@@ -721,7 +736,12 @@ fn a_block_held_by_friction_on_a_held_block_either_side_of_the_pair() {
             .unwrap();
         let rigid = problem.rigid_motions().unwrap();
         assert_eq!(rigid.free.iter().map(Vec::len).collect::<Vec<_>>(), [0, 3]);
-        assert_eq!(rigid.sliding[1].len(), 1, "the sideways motion: friction's");
+        assert_eq!(rigid.groups[0].bodies, [1]);
+        assert_eq!(
+            rigid.groups[0].sliding.len(),
+            1,
+            "the sideways motion: friction's"
+        );
         let s = solve(&problem, &SolverSettings::default()).unwrap();
         assert!(s.report.converged, "{}", s.report.message);
         assert!(s.report.certificate.passes(), "{:?}", s.report.certificate);
@@ -1341,5 +1361,355 @@ fn bodies_that_pass_through_each_other_get_a_note_with_the_depth() {
         } else {
             assert!(found.is_empty(), "{found:?}");
         }
+    }
+}
+
+/// Blocks of unit width and height H/2 stacked along the vertical (y in 2D, z in 3D): the
+/// foundation `f` from 0, then the blocks `b1`, …, `b{n_free}`, each `gap` above the one
+/// below (2D: 4 × 2 squares each; 3D: 2 × 2 × 1 cubes), one region and one prefix of parts
+/// each.
+fn stack_mesh(dim: usize, n_free: usize, gap: f64) -> Mesh {
+    let names: Vec<String> = std::iter::once("f".to_string())
+        .chain((1..=n_free).map(|k| format!("b{k}")))
+        .collect();
+    let blocks: Vec<Mesh> = (0..=n_free)
+        .map(|k| {
+            let z0 = k as f64 * (H / 2.0 + gap);
+            if dim == 2 {
+                rectangle(&Rectangle {
+                    origin: [0.0, z0],
+                    size: [1.0, H / 2.0],
+                    n: [4, 2],
+                    pattern: CutPattern::Uniform,
+                    progression: [1.0, 1.0],
+                })
+            } else {
+                cuboid(&BoxSpec {
+                    origin: [0.0, 0.0, z0],
+                    size: [1.0, 1.0, H / 2.0],
+                    n: [2, 2, 1],
+                    pattern: CutPattern::Uniform,
+                    progression: [1.0; 3],
+                })
+            }
+            .unwrap()
+        })
+        .collect();
+    let refs: Vec<&Mesh> = blocks.iter().collect();
+    let names: Vec<&str> = names.iter().map(String::as_str).collect();
+    common::several_bodies(&refs, &names)
+}
+
+/// The stack of [`stack_mesh`] with `f_bottom` held, each free block held only sideways
+/// (`u_x = 0` on its left side; in 3D `u_y = 0` on its front face too: free to move
+/// vertically, nothing else), each block's bottom against the top of the one below
+/// (Signorini, frictionless), and the vertical traction −p on the top of the highest.
+fn stack(dim: usize, n_free: usize, gap: f64, p: f64) -> Problem {
+    let mesh = stack_mesh(dim, n_free, gap);
+    let part = |n: String| mesh.part_index(&n).unwrap();
+    let mut load = [0.0; 3];
+    load[dim - 1] = -p;
+    let mut b = Problem::builder(mesh.clone(), material())
+        .plane(Plane::Strain)
+        .dirichlet(Dirichlet {
+            part: part("f_bottom".into()),
+            components: [true; 3],
+            value: [0.0; 3],
+        })
+        .traction(Traction {
+            part: part(format!("b{n_free}_top")),
+            value: load,
+        });
+    for k in 1..=n_free {
+        let below = if k == 1 {
+            "f".to_string()
+        } else {
+            format!("b{}", k - 1)
+        };
+        b = b
+            .dirichlet(Dirichlet {
+                part: part(format!("b{k}_left")),
+                components: [true, false, false],
+                value: [0.0; 3],
+            })
+            .contact(ContactBoundary {
+                part: part(format!("b{k}_bottom")),
+                gap: 0.0,
+                obstacle: None,
+                against: Some(MasterPart::new(part(format!("{below}_top")))),
+                normal: NormalLaw::Signorini,
+                friction: None,
+            });
+        if dim == 3 {
+            b = b.dirichlet(Dirichlet {
+                part: part(format!("b{k}_front")),
+                components: [false, true, false],
+                value: [0.0; 3],
+            });
+        }
+    }
+    b.build().unwrap()
+}
+
+/// The exact displacement of the stack of [`stack`] (ν = 0): uniaxial compression
+/// `u_v = −k g − p v′/E` at the height `v′ = v − k g` in the closed stack of a node of
+/// block k (0 the foundation), nothing sideways.
+fn stack_exact(mesh: &Mesh, v: usize, gap: f64, p: f64) -> Vec<f64> {
+    let d = mesh.dim();
+    let height = mesh.node(v)[d - 1];
+    let k = (height / (H / 2.0 + gap) + 1e-9).floor();
+    let mut u = vec![0.0; d];
+    u[d - 1] = -k * gap - p * (height - k * gap) / E;
+    u
+}
+
+/// A stack of free blocks on a held foundation, each block held only sideways, pressed by p
+/// on the top of the highest: the blocks' vertical translations, free, are analysed
+/// together (the pair between two free blocks has the row `y_k − y_{k−1}`), every
+/// interface carries the uniform pressure p, and the displacement is uniaxial compression,
+/// exact on matching meshes: two free blocks and a chain of three in 2D, two in 3D,
+/// touching and each 0.01 m above the one below; and under 10⁻⁶ Pa, whose deformation
+/// (10⁻⁹ m) is far below the gaps, dropped across them first (the rigid drop's linear
+/// programme over the group's stacked coefficients), to 10⁻⁸ of the deformation. (Before
+/// the joint analysis the pair between two free blocks was refused: "both bodies have free
+/// rigid motions: the slave body (of node 30) 1, the master body (of node 26) 1".)
+#[test]
+fn a_stack_of_free_blocks_on_a_held_foundation_carries_the_load_through_every_interface() {
+    for (dim, n_free, gap, p) in [
+        (2, 2, 0.0, 10.0),
+        (2, 2, 0.01, 10.0),
+        (2, 3, 0.0, 10.0),
+        (2, 3, 0.01, 10.0),
+        (3, 2, 0.0, 10.0),
+        (3, 2, 0.01, 10.0),
+        (2, 3, 0.01, 1e-6),
+        (3, 2, 0.01, 1e-6),
+    ] {
+        let case = format!("{dim}D, {n_free} free blocks, gap {gap}, p {p}");
+        let problem = stack(dim, n_free, gap, p);
+        let rigid = problem.rigid_motions().unwrap();
+        let group: Vec<usize> = (1..=n_free).collect();
+        assert_eq!(rigid.groups.len(), 1, "{case}");
+        assert_eq!(rigid.groups[0].bodies, group, "{case}");
+        assert!(rigid.groups[0].uncarried.is_empty(), "{case}");
+        assert_eq!(
+            rigid.groups[0].pressed.len(),
+            n_free,
+            "{case}: one vertical translation each"
+        );
+        let s =
+            solve(&problem, &SolverSettings::default()).unwrap_or_else(|e| panic!("{case}: {e}"));
+        assert!(s.report.converged, "{case}: {}", s.report.message);
+        assert!(
+            s.report.certificate.passes(),
+            "{case}: {:?}",
+            s.report.certificate
+        );
+        let mesh = problem.mesh();
+        let d = mesh.dim();
+        let mut eu = 0.0f64;
+        for v in 0..mesh.n_nodes() {
+            let exact = stack_exact(mesh, v, gap, p);
+            for i in 0..d {
+                eu = eu.max((s.u[d * v + i] - exact[i]).abs());
+            }
+        }
+        let ep = s
+            .contact
+            .iter()
+            .map(|c| (c.pressure - p).abs())
+            .fold(0.0f64, f64::max);
+        // Each interface carries p over its unit width (area).
+        let mut per_interface = vec![0.0; n_free];
+        for c in &s.contact {
+            per_interface[c.boundary] += c.pressure * c.weight;
+        }
+        let deformation = p * (n_free as f64 + 1.0) * H / 2.0 / E;
+        let rel = if p < 1.0 { 1e-8 } else { 1e-10 };
+        // The rounding of a total of gaps: a few units in its last place.
+        let tol_u = rel * deformation + 1e-14 * n_free as f64 * gap;
+        println!(
+            "{case}: Σ w p per interface {per_interface:?}, pressure error {:.1e} p, \
+             displacement error {:.1e} of the deformation {deformation:.1e}; drop {:?}",
+            ep / p,
+            eu / deformation,
+            s.report.rigid_drop
+        );
+        assert!(ep <= rel * p, "{case}: {ep:e}");
+        assert!(eu <= tol_u, "{case}: {eu:e}");
+        for total in per_interface {
+            assert!((total - p).abs() <= rel * p, "{case}: {total}");
+        }
+        if gap > 100.0 * deformation {
+            assert_eq!(
+                s.report.rigid_drop.len(),
+                n_free,
+                "{case}: every block dropped"
+            );
+        }
+    }
+}
+
+/// Three blocks side by side along x: `l` held at its left side, `m` free (no support at
+/// all) and `r` held only vertically (`u_y = 0` on its bottom) and pushed against `m` by the
+/// traction q on its right side; `m` pressed down by s on its top, held up by Coulomb
+/// friction on both its sides. `m` and `r` both have free motions: their pair is analysed
+/// jointly, and `m`'s vertical translation, which moves no contact point along its normal,
+/// is a sliding motion of the group that friction alone carries.
+fn clamped(s: f64, mu: f64) -> Problem {
+    let blocks: Vec<Mesh> = (0..3)
+        .map(|k| {
+            rectangle(&Rectangle {
+                origin: [k as f64, 0.0],
+                size: [1.0, 1.0],
+                n: [2, 4],
+                pattern: CutPattern::Uniform,
+                progression: [1.0, 1.0],
+            })
+            .unwrap()
+        })
+        .collect();
+    let mesh = common::several_bodies(&[&blocks[0], &blocks[1], &blocks[2]], &["l", "m", "r"]);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let friction = Some(Friction {
+        bound: FrictionBound::Coulomb,
+        mu: FrictionCoefficient::Constant { mu },
+        potential: FrictionPotential::Norm {
+            treatment: NormTreatment::Exact,
+        },
+    });
+    let pair = |slave: &str, master: &str| ContactBoundary {
+        part: part(slave),
+        gap: 0.0,
+        obstacle: None,
+        against: Some(MasterPart::new(part(master))),
+        normal: NormalLaw::Signorini,
+        friction: friction.clone(),
+    };
+    Problem::builder(mesh.clone(), material())
+        .plane(Plane::Strain)
+        .dirichlet(Dirichlet {
+            part: part("l_left"),
+            components: [true; 3],
+            value: [0.0; 3],
+        })
+        .dirichlet(Dirichlet {
+            part: part("r_bottom"),
+            components: [false, true, false],
+            value: [0.0; 3],
+        })
+        .traction(Traction {
+            part: part("r_right"),
+            value: [-10.0, 0.0, 0.0],
+        })
+        .traction(Traction {
+            part: part("m_top"),
+            value: [0.0, -s, 0.0],
+        })
+        .contact(pair("m_left", "l_right"))
+        .contact(pair("r_left", "m_right"))
+        .build()
+        .unwrap()
+}
+
+/// A block clamped by friction between two blocks, one of which is itself free (see
+/// [`clamped`]): each side carries the push q × 1 m = 10 N/m as its normal force, the two
+/// sides' friction carries the block's load s × 1 m, which friction holds up to
+/// μ × (10 + 10) N/m, and above that limit the solve is refused naming the group's
+/// sliding motion and the limit. (Before the joint analysis: refused, "`r_left` against
+/// `m_right`: both bodies have free rigid motions: the slave body (of node 30) 1, the
+/// master body (of node 17) 3".)
+#[test]
+fn a_block_clamped_by_friction_between_a_held_block_and_a_free_one_is_held() {
+    let mu = 0.3;
+    let s = 2.0;
+    let problem = clamped(s, mu);
+    let rigid = problem.rigid_motions().unwrap();
+    assert_eq!(rigid.groups.len(), 1);
+    assert_eq!(rigid.groups[0].bodies, [1, 2]);
+    assert_eq!(rigid.groups[0].sliding.len(), 1, "m's vertical translation");
+    let sol = solve(&problem, &SolverSettings::default()).unwrap();
+    assert!(sol.report.converged, "{}", sol.report.message);
+    assert!(
+        sol.report.certificate.passes(),
+        "{:?}",
+        sol.report.certificate
+    );
+    let (mut normal, mut vertical) = ([0.0; 2], 0.0);
+    for c in &sol.contact {
+        normal[c.boundary] += c.pressure * c.weight;
+        // The friction force on m: on its left side m is the slave, on its right the master.
+        let on_m = if c.boundary == 0 { 1.0 } else { -1.0 };
+        vertical += on_m * c.friction_traction[1] * c.weight;
+    }
+    println!("clamped block: normal forces {normal:?}, friction on m {vertical}");
+    for n in normal {
+        assert!((n - 10.0).abs() <= 1e-8 * 10.0, "{n}");
+    }
+    assert!((vertical - s).abs() <= 1e-8 * s, "{vertical}");
+    // Above the limit 0.3 × 20 N/m = 6 N/m.
+    match solve(&clamped(6.1, mu), &SolverSettings::default()) {
+        Err(e) => {
+            let msg = e.to_string();
+            println!("{msg}");
+            assert!(msg.contains("friction cannot hold the body"), "{msg}");
+            assert!(
+                msg.contains("region `m`") && msg.contains("translation along y"),
+                "{msg}"
+            );
+            assert!(msg.contains("6.1 N/m") && msg.contains("6 N/m"), "{msg}");
+        }
+        Ok(s) => panic!("held above the limit: {}", s.report.message),
+    }
+}
+
+/// Two free blocks in contact with each other, each held only sideways, and nothing holding
+/// them vertically: their pair carries only their relative vertical motion, so their joint
+/// vertical translation is free, and the problem is refused before any solve, naming the
+/// two bodies by their cell regions and the motion in words. (Before: "both bodies have
+/// free rigid motions: the slave body (of node 15) 1, the master body (of node 11) 1",
+/// naming nodes, and no motion.)
+#[test]
+fn two_free_blocks_that_nothing_holds_together_are_refused_naming_them_and_the_motion() {
+    let mesh = stacked_2d(4, 4, 2);
+    let part = |n: &str| mesh.part_index(n).unwrap();
+    let refused = Problem::builder(mesh.clone(), material())
+        .plane(Plane::Strain)
+        .dirichlet(Dirichlet {
+            part: part("b_left"),
+            components: [true, false, false],
+            value: [0.0; 3],
+        })
+        .dirichlet(Dirichlet {
+            part: part("a_left"),
+            components: [true, false, false],
+            value: [0.0; 3],
+        })
+        .traction(Traction {
+            part: part("a_top"),
+            value: [0.0, -10.0, 0.0],
+        })
+        .contact(ContactBoundary {
+            part: part("a_bottom"),
+            gap: 0.0,
+            obstacle: None,
+            against: Some(MasterPart::new(part("b_top"))),
+            normal: NormalLaw::Signorini,
+            friction: None,
+        })
+        .build();
+    let msg = match refused {
+        Err(e @ hemicontact::Error::RigidMotion { .. }) => e.to_string(),
+        Err(e) => panic!("unexpected error: {e}"),
+        Ok(_) => panic!("accepted"),
+    };
+    println!("{msg}");
+    for words in [
+        "region `b`, mesh component 1 of 2",
+        "region `a`, mesh component 2 of 2",
+        "region `b` (mesh component 1 of 2) and region `a` (mesh component 2 of 2) together: \
+         translation along y",
+    ] {
+        assert!(msg.contains(words), "{words:?} not in {msg}");
     }
 }

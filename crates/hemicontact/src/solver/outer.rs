@@ -280,6 +280,9 @@ pub fn run(
         }
     }
     let relieved_first = relieved.is_some();
+    // A friction-held body whose frozen bound cannot carry its load is first brought to
+    // rest with the static coefficient (see `held::AtRest`).
+    let mut at_rest = held::AtRest::default();
     let mut z = frozen.flatten();
     let z_counts = Frozen::counted(system.share(), n_points, n_locking);
     let mut mixer = Mixer::new(&settings.outer);
@@ -297,6 +300,10 @@ pub fn run(
     let stages = system.continuation.stages();
     for k in 0..settings.outer.max_iterations.max(1) {
         system.continuation.set_stage(k);
+        if k > 0 && at_rest.enter(&sliding, system, problem, u, &mut frozen)? {
+            z = frozen.flatten();
+            mixer = restarted(mixer, &settings.outer);
+        }
         // A relieved first iteration gives the friction limit: solved accurately.
         let tol = if !outer_loop || !settings.outer.inexact || (k == 0 && relieved_first) {
             final_tol
@@ -392,6 +399,7 @@ pub fn run(
                 .contact_assembler(problem)
                 .convexify(u, &next.contact())?;
         }
+        at_rest.apply(&sliding, system, problem, u, &mut next)?;
         let g = next.flatten();
         // Each contact point on its own scale (see `local_scales`).
         point_scale.clear();
@@ -433,6 +441,16 @@ pub fn run(
             && k >= stages
             && (!outer_loop || (change <= tol_outer && fp_rel <= tol_outer))
         {
+            if at_rest.release() {
+                // The problem at rest has converged: the slip-dependent law takes over
+                // from its answer.
+                frozen = frozen.image(system, problem, u)?;
+                z = frozen.flatten();
+                mixer = restarted(mixer, &settings.outer);
+                step.mixing = Mixing::FixedPoint;
+                report.outer.push(step);
+                continue;
+            }
             report.outer.push(step);
             stop = StopReason::Converged;
             break;
@@ -512,4 +530,13 @@ impl StopReason {
             ),
         }
     }
+}
+
+/// A mixer with no history, keeping the counts of `mixer` (the map of the fixed point has
+/// changed: a group of bodies was put at rest or released, see [`held::AtRest`]).
+fn restarted(mixer: Mixer, settings: &OuterSettings) -> Mixer {
+    let mut fresh = Mixer::new(settings);
+    fresh.oscillations = mixer.oscillations;
+    fresh.restarts = mixer.restarts;
+    fresh
 }

@@ -201,29 +201,33 @@ pub fn fresh_dir(prefix: &str) -> std::path::PathBuf {
 /// `{names[0]}_` and `{names[1]}_` and their cells in the regions `names[0]` and `names[1]`:
 /// two bodies that share no node, for contact between them.
 pub fn two_bodies(lower: &Mesh, upper: &Mesh, names: [&str; 2]) -> Mesh {
-    let d = lower.dim();
-    let offset = lower.n_nodes() as u32;
-    let mut coords = lower.coords().to_vec();
-    coords.extend_from_slice(upper.coords());
-    let mut cells = lower.cells().to_vec();
-    cells.extend(upper.cells().iter().map(|&v| v + offset));
-    let mut parts = Vec::new();
-    for (prefix, m, shift) in [(names[0], lower, 0), (names[1], upper, offset)] {
+    several_bodies(&[lower, upper], &names)
+}
+
+/// Several meshes as one (the nodes of `meshes[0]` first, then those of `meshes[1]`, …),
+/// the boundary parts of `meshes[k]` prefixed `{names[k]}_` and its cells in the region
+/// `names[k]`: bodies that share no node, for contact between them.
+pub fn several_bodies(meshes: &[&Mesh], names: &[&str]) -> Mesh {
+    assert_eq!(meshes.len(), names.len());
+    let d = meshes[0].dim();
+    let (mut coords, mut cells, mut parts, mut region) = (vec![], vec![], vec![], vec![]);
+    let mut offset = 0u32;
+    for (k, (m, prefix)) in meshes.iter().zip(names).enumerate() {
+        coords.extend_from_slice(m.coords());
+        cells.extend(m.cells().iter().map(|&v| v + offset));
         for name in m.part_names() {
             let p = m.part_index(name).unwrap();
             let facets = m
                 .part_facets(p)
-                .flat_map(|f| m.facet(f).iter().map(move |&v| v + shift))
+                .flat_map(|f| m.facet(f).iter().map(move |&v| v + offset))
                 .collect();
             parts.push((format!("{prefix}_{name}"), facets));
         }
+        region.extend((0..m.n_cells()).map(|_| k as u16));
+        offset += m.n_nodes() as u32;
     }
-    let region = (0..lower.n_cells())
-        .map(|_| 0u16)
-        .chain((0..upper.n_cells()).map(|_| 1u16))
-        .collect();
     Mesh::from_parts(d, coords, cells, &parts)
         .unwrap()
-        .with_regions(region, names.map(String::from).to_vec())
+        .with_regions(region, names.iter().map(|n| n.to_string()).collect())
         .unwrap()
 }

@@ -27,12 +27,15 @@
 //! friction, a tangent) moves under it: the same construction with one row `ν_i · r(x_i)`
 //! per contact point (and `τ_i · r(x_i)` with friction), restricted to the free motions,
 //! has no null space. A contact pair's point acts on the slave body at its node and on the
-//! master body at its master point `x_m = Σ_j N_j x(m_j)` (one of the two bodies held;
-//! [`ContactNodes::on_body`]). Motions neither prescribed nor carried make the problem singular:
-//! [`RigidMotions::check`] turns them into an [`Error::RigidMotion`] that names the motion
+//! master body at its master point `x_m = Σ_j N_j x(m_j)` ([`ContactNodes::on_body`]); when
+//! both bodies of a pair have free motions, the bodies so linked are analysed together, a
+//! *group* whose unknowns are their stacked coefficients and whose pair rows are
+//! `ν_i · (r_s(x_s) − r_m(x_m))` ([`groups`]; a body in no such pair is a group of one).
+//! Motions neither prescribed nor carried make the problem singular: [`RigidMotions::check`]
+//! turns them into an [`Error::RigidMotion`] that names the bodies and the motion
 //! (translation along x, rotation about z through a point, …) and what would block it.
 //!
-//! The free motions of a body split into two orthogonal subspaces (in the coefficients
+//! The free motions of a group split into two orthogonal subspaces (in the coefficients
 //! `c`): the *sliding* motions, which move no contact point along its normal (the null
 //! space of the normal rows alone: friction, if anything, carries them), and the *pressed*
 //! motions, which move some contact point along its normal (normal contact carries them).
@@ -43,15 +46,19 @@
 //! pressed motions only, and the load along the sliding ones is checked against the
 //! friction limit.
 
+mod dense;
+pub mod groups;
 mod words;
 
+pub use dense::{solve_small, solve_symmetric};
+pub use groups::{Group, Motion, Side};
 pub use words::describe;
-use words::{point, remedy};
 
 use crate::contact::ContactNodes;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::parallel::Share;
+use dense::Normal;
 
 /// Relative tolerance on the eigenvalues of the normal matrices: an eigenvalue at most
 /// `NULL_TOLERANCE · tr N` spans a free motion (see the module documentation).
@@ -68,6 +75,9 @@ pub struct Body {
     pub size: f64,
     /// Bounding box (min, max) of its nodes (m).
     pub bounding_box: ([f64; 3], [f64; 3]),
+    /// The names of the cell regions its cells are in, in the mesh's order (empty for a
+    /// mesh without named regions).
+    pub regions: Vec<String>,
 }
 
 /// The rigid motions of every body of a mesh that the Dirichlet conditions leave free.
@@ -80,16 +90,13 @@ pub struct RigidMotions {
     /// Per body: orthonormal basis of the free motions, as coefficient vectors `c` (first
     /// m = 3 or 6 entries used; see the module documentation).
     pub free: Vec<Vec<[f64; 6]>>,
-    /// Per body: orthonormal basis of the free motions that no contact point carries
-    /// either (a subspace of `free`).
-    pub uncarried: Vec<Vec<[f64; 6]>>,
-    /// Per body: orthonormal basis of the free motions that move no contact point along
-    /// its normal: carried by friction alone, if at all (a subspace of `free` that
-    /// contains `uncarried`; see the module documentation).
-    pub sliding: Vec<Vec<[f64; 6]>>,
-    /// Per body: orthonormal basis of the orthogonal complement of `sliding` in `free`: the
-    /// free motions that normal contact carries.
-    pub pressed: Vec<Vec<[f64; 6]>>,
+    /// The groups of the bodies with free motions, ordered by their smallest body: bodies
+    /// linked by contact pairs between two of them, each with the motions of its bodies
+    /// that contact does not carry, those only friction carries and those normal contact
+    /// carries ([`Group`]; a body in no such pair is a group of one).
+    pub groups: Vec<Group>,
+    /// The group of each body (`u32::MAX` for a body without free motions).
+    pub group_of: Vec<u32>,
     /// The body of each mesh node (`u32::MAX` for a node in no cell).
     pub body_of: Vec<u32>,
 }
@@ -108,10 +115,7 @@ impl RigidMotions {
         let m = n_modes(d);
         let (body_of, bodies) = bodies(mesh);
         let mut free = Vec::with_capacity(bodies.len());
-        let mut uncarried = Vec::with_capacity(bodies.len());
-        let mut sliding = Vec::with_capacity(bodies.len());
-        let mut pressed = Vec::with_capacity(bodies.len());
-        for (b, body) in bodies.iter().enumerate() {
+        for body in &bodies {
             // Constraint rows of the prescribed DOFs.
             let mut normal = Normal::new(m);
             for &v in &body.nodes {
@@ -124,63 +128,25 @@ impl RigidMotions {
                     }
                 }
             }
-            let z = normal.null_space();
-            // Contact rows of this body, restricted to the free motions: all of them
-            // (`carried`), and the normal rows alone (`pressing`).
-            let mut carried = Normal::new(z.len());
-            let mut pressing = Normal::new(z.len());
-            if !z.is_empty() {
-                for p in 0..contact.len() {
-                    // The point's node in this body, or (a contact pair) its master point.
-                    let Some((x, ..)) = contact.on_body(mesh, p, &body_of, b) else {
-                        continue;
-                    };
-                    let restricted = |dir: &[f64; 3]| {
-                        let row = mode_row(d, body, &x[..d], dir);
-                        let mut r = [0.0; 6];
-                        for (l, zl) in z.iter().enumerate() {
-                            r[l] = (0..m).map(|j| row[j] * zl[j]).sum();
-                        }
-                        (r, mode_row_norm2(&row, m))
-                    };
-                    let (r, n2) = restricted(&contact.normal[p]);
-                    carried.add_weighted(&r, n2);
-                    pressing.add_weighted(&r, n2);
-                    if frictional[contact.boundary[p] as usize] {
-                        for t in &contact.tangent[p][..d - 1] {
-                            let (r, n2) = restricted(t);
-                            carried.add_weighted(&r, n2);
-                        }
-                    }
-                }
-            }
-            // Coefficients of the combinations `y` of the free basis `z`.
-            let expand = |ys: Vec<[f64; 6]>| -> Vec<[f64; 6]> {
-                ys.iter()
-                    .map(|yl| {
-                        let mut c = [0.0; 6];
-                        for (l, zl) in z.iter().enumerate() {
-                            for j in 0..m {
-                                c[j] += yl[l] * zl[j];
-                            }
-                        }
-                        c
-                    })
-                    .collect()
-            };
-            uncarried.push(expand(carried.null_space()));
-            let (slide, press) = pressing.split();
-            sliding.push(expand(slide));
-            pressed.push(expand(press));
+            let z: Vec<[f64; 6]> = normal
+                .null_space()
+                .into_iter()
+                .map(|c| {
+                    let mut a = [0.0; 6];
+                    a[..m].copy_from_slice(&c);
+                    a
+                })
+                .collect();
             free.push(z);
         }
+        let (groups, group_of) =
+            groups::analyse(mesh, &bodies, &body_of, &free, contact, frictional);
         RigidMotions {
             dim: d,
             bodies,
             free,
-            uncarried,
-            sliding,
-            pressed,
+            groups,
+            group_of,
             body_of,
         }
     }
@@ -205,57 +171,11 @@ impl RigidMotions {
 
     /// The free motions of body `b` in words, one per basis vector (see [`describe`]).
     pub fn describe_free(&self, b: usize) -> Vec<String> {
-        reduced(self.dim, &self.free[b])
+        let one: Vec<Motion> = self.free[b].iter().map(|c| vec![*c]).collect();
+        words::reduced(self.dim, &one)
             .iter()
-            .map(|c| describe(self.dim, &self.bodies[b], c))
+            .map(|c| describe(self.dim, &self.bodies[b], &c[0]))
             .collect()
-    }
-
-    /// # Errors
-    /// [`Error::RigidMotion`] (with `source` as the file) if some body has a rigid motion
-    /// that is neither prescribed nor carried by contact: the message names the body (when
-    /// the mesh has several), each such motion, and what would block it.
-    pub fn check(&self, source: &str) -> Result<()> {
-        let several = self.bodies.len() > 1;
-        let mut parts = Vec::new();
-        for (b, body) in self.bodies.iter().enumerate() {
-            if self.uncarried[b].is_empty() {
-                continue;
-            }
-            let motions: Vec<String> = reduced(self.dim, &self.uncarried[b])
-                .iter()
-                .map(|c| {
-                    format!(
-                        "{} ({})",
-                        describe(self.dim, body, c),
-                        remedy(self.dim, body, c)
-                    )
-                })
-                .collect();
-            let which = if several {
-                let (lo, hi) = body.bounding_box;
-                let d = self.dim;
-                format!(
-                    "mesh component {} of {} ({} nodes, from node {}, bounding box {} to {}): ",
-                    b + 1,
-                    self.bodies.len(),
-                    body.nodes.len(),
-                    body.nodes[0],
-                    point(&lo[..d]),
-                    point(&hi[..d])
-                )
-            } else {
-                String::new()
-            };
-            parts.push(format!("{which}{}", motions.join("; ")));
-        }
-        if parts.is_empty() {
-            return Ok(());
-        }
-        Err(Error::RigidMotion {
-            file: source.to_string(),
-            motions: parts.join(" | "),
-        })
     }
 }
 
@@ -307,10 +227,26 @@ pub fn bodies(mesh: &Mesh) -> (Vec<u32>, Vec<Body>) {
                 centroid: [0.0; 3],
                 size: 0.0,
                 bounding_box: ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                regions: Vec::new(),
             });
         }
         body_of[v] = index_of_root[r];
         bodies[index_of_root[r] as usize].nodes.push(v as u32);
+    }
+    // The named regions of each body's cells.
+    let names = mesh.region_names();
+    if !names.is_empty() {
+        let mut present = vec![vec![false; names.len()]; bodies.len()];
+        for c in 0..mesh.n_cells() {
+            let b = body_of[mesh.cell(c)[0] as usize] as usize;
+            present[b][mesh.cell_region(c)] = true;
+        }
+        for (body, present) in bodies.iter_mut().zip(present) {
+            body.regions = (0..names.len())
+                .filter(|&r| present[r])
+                .map(|r| names[r].clone())
+                .collect();
+        }
     }
     for body in &mut bodies {
         let k = body.nodes.len() as f64;
@@ -380,161 +316,6 @@ fn mode_row_norm2(row: &[f64; 6], m: usize) -> f64 {
     row[..m].iter().map(|x| x * x).sum()
 }
 
-/// Accumulated normal matrix `Σ r rᵀ` (k × k, k ≤ 6) with its trace reference.
-struct Normal {
-    k: usize,
-    a: [[f64; 6]; 6],
-    /// Sum of the squared norms of the rows in the full coefficient space (the trace
-    /// reference of the tolerance: restricted rows can be shorter).
-    scale: f64,
-}
-
-impl Normal {
-    fn new(k: usize) -> Self {
-        Normal {
-            k,
-            a: [[0.0; 6]; 6],
-            scale: 0.0,
-        }
-    }
-
-    fn add(&mut self, r: &[f64; 6]) {
-        let n2 = mode_row_norm2(r, self.k);
-        self.add_weighted(r, n2);
-    }
-
-    fn add_weighted(&mut self, r: &[f64; 6], full_norm2: f64) {
-        for i in 0..self.k {
-            for j in 0..self.k {
-                self.a[i][j] += r[i] * r[j];
-            }
-        }
-        self.scale += full_norm2;
-    }
-
-    /// Orthonormal basis (k coefficients each) of the eigenvectors with
-    /// eigenvalue at most `NULL_TOLERANCE · scale`; all of them without any row.
-    fn null_space(&self) -> Vec<[f64; 6]> {
-        self.split().0
-    }
-
-    /// The orthonormal eigenvectors (k coefficients each) split into the null space (as
-    /// [`Normal::null_space`]) and its orthogonal complement, the range.
-    fn split(&self) -> (Vec<[f64; 6]>, Vec<[f64; 6]>) {
-        let (values, vectors) = jacobi_eigen(self.a, self.k);
-        let tol = NULL_TOLERANCE * self.scale;
-        let column = |j: usize| {
-            let mut c = [0.0; 6];
-            for (l, cl) in c.iter_mut().enumerate().take(self.k) {
-                *cl = vectors[l][j];
-            }
-            c
-        };
-        let null = (0..self.k).filter(|&j| values[j] <= tol).map(column);
-        let range = (0..self.k).filter(|&j| values[j] > tol).map(column);
-        (null.collect(), range.collect())
-    }
-}
-
-/// Eigenvalues and eigenvectors (columns) of the symmetric `k × k` leading block of `a`
-/// by the cyclic Jacobi method (converges quadratically; at most 50 sweeps).
-fn jacobi_eigen(mut a: [[f64; 6]; 6], k: usize) -> ([f64; 6], [[f64; 6]; 6]) {
-    let mut v = [[0.0; 6]; 6];
-    for (i, row) in v.iter_mut().enumerate() {
-        row[i] = 1.0;
-    }
-    for _ in 0..50 {
-        let off: f64 = (0..k)
-            .flat_map(|i| (0..k).filter(move |&j| j != i).map(move |j| (i, j)))
-            .map(|(i, j)| a[i][j] * a[i][j])
-            .sum();
-        let diag: f64 = (0..k).map(|i| a[i][i] * a[i][i]).sum();
-        if off <= 1e-32 * diag || off == 0.0 {
-            break;
-        }
-        for p in 0..k {
-            for q in p + 1..k {
-                if a[p][q] == 0.0 {
-                    continue;
-                }
-                // Rotation annihilating a[p][q] (Golub–Van Loan, Algorithm 8.4.1).
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for r in 0..k {
-                    let (arp, arq) = (a[r][p], a[r][q]);
-                    a[r][p] = c * arp - s * arq;
-                    a[r][q] = s * arp + c * arq;
-                }
-                for r in 0..k {
-                    let (apr, aqr) = (a[p][r], a[q][r]);
-                    a[p][r] = c * apr - s * aqr;
-                    a[q][r] = s * apr + c * aqr;
-                }
-                for row in v.iter_mut().take(k) {
-                    let (vp, vq) = (row[p], row[q]);
-                    row[p] = c * vp - s * vq;
-                    row[q] = s * vp + c * vq;
-                }
-            }
-        }
-    }
-    let mut values = [0.0; 6];
-    for (i, x) in values.iter_mut().enumerate().take(k) {
-        *x = a[i][i];
-    }
-    (values, v)
-}
-
-/// A basis of the span of `basis` in reduced row echelon form with the rotation
-/// coefficients first: so a span containing pure translations shows them as such, and
-/// every other vector is a rotation (about a point or axis found by [`describe`]).
-fn reduced(d: usize, basis: &[[f64; 6]]) -> Vec<[f64; 6]> {
-    let m = n_modes(d);
-    // Column order: rotations, then translations.
-    let order: Vec<usize> = (d..m).chain(0..d).collect();
-    let mut rows: Vec<[f64; 6]> = basis.to_vec();
-    let mut lead = 0;
-    for &col in &order {
-        if lead == rows.len() {
-            break;
-        }
-        let Some(p) =
-            (lead..rows.len()).max_by(|&i, &j| rows[i][col].abs().total_cmp(&rows[j][col].abs()))
-        else {
-            break;
-        };
-        if rows[p][col].abs() <= 1e-8 {
-            continue;
-        }
-        rows.swap(lead, p);
-        let pivot = rows[lead][col];
-        for x in rows[lead].iter_mut() {
-            *x /= pivot;
-        }
-        for i in 0..rows.len() {
-            if i != lead {
-                let f = rows[i][col];
-                let r = rows[lead];
-                for (x, y) in rows[i].iter_mut().zip(r) {
-                    *x -= f * y;
-                }
-            }
-        }
-        lead += 1;
-    }
-    for r in &mut rows {
-        for x in r.iter_mut() {
-            if x.abs() <= 1e-9 {
-                *x = 0.0;
-            }
-        }
-    }
-    rows
-}
-
 /// Relative size of the shift added to the diagonal of the Newton matrix on bodies with
 /// free rigid motions carried by contact: `α = NEWTON_SHIFT · max_k H_kk` over their free
 /// equations, at the first assembly.
@@ -566,6 +347,7 @@ impl RigidMotions {
                 centroid: b.centroid,
                 size: b.size,
                 bounding_box: b.bounding_box,
+                regions: b.regions.clone(),
             })
             .collect();
         for (l, &b) in body_of.iter().enumerate() {
@@ -577,9 +359,8 @@ impl RigidMotions {
             dim: self.dim,
             bodies,
             free: self.free.clone(),
-            uncarried: self.uncarried.clone(),
-            sliding: self.sliding.clone(),
-            pressed: self.pressed.clone(),
+            groups: self.groups.clone(),
+            group_of: self.group_of.clone(),
             body_of,
         }
     }
@@ -707,21 +488,6 @@ impl RigidMotions {
         describe(self.dim, &body, c)
     }
 
-    /// The share of the rigid motion `c` of body `b` that is sliding (in the span of
-    /// [`RigidMotions::sliding`]): `‖P_sliding c‖ / ‖c‖` in the coefficients, 0 for `c = 0`.
-    pub fn sliding_share(&self, b: usize, c: &[f64; 6]) -> f64 {
-        let norm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if norm == 0.0 {
-            return 0.0;
-        }
-        let projected = self.sliding[b]
-            .iter()
-            .map(|s| (0..6).map(|j| s[j] * c[j]).sum::<f64>().powi(2))
-            .sum::<f64>()
-            .sqrt();
-        projected / norm
-    }
-
     /// The first body with a free rigid motion that has moved by more than its size under
     /// the displacement `u` (DOF order), with the motion it moved along
     /// ([`RigidMotions::fitted_motion`]); `None` if no body has. `length` is the unit of
@@ -791,10 +557,9 @@ impl RigidMotions {
     /// the unit of the mesh's coordinates, `displacement` (m) that of the displacements.
     pub fn contact_lost(&self, r: &Runaway, length: f64, displacement: f64) -> Error {
         let b = r.body;
-        let which = if self.bodies.len() > 1 {
-            format!("mesh component {} of {}: ", b + 1, self.bodies.len())
-        } else {
-            String::new()
+        let which = match self.label(b) {
+            l if l.is_empty() => l,
+            l => format!("{l}: "),
         };
         let motion = if r.motion.iter().any(|&x| x != 0.0) {
             self.describe_in(b, &r.motion, length)
@@ -839,25 +604,7 @@ impl Body {
                 self.bounding_box.0.map(|x| x * length),
                 self.bounding_box.1.map(|x| x * length),
             ),
+            regions: self.regions.clone(),
         }
     }
-}
-
-/// The solution of the `k × k` symmetric positive semidefinite system `a y = b` (k ≤ 6) by
-/// its eigendecomposition, eigenvalues below `10⁻¹²` of the largest treated as zero (the
-/// least-squares solution of least norm).
-pub fn solve_small(a: &[[f64; 6]; 6], b: &[f64; 6], k: usize) -> [f64; 6] {
-    let (values, vectors) = jacobi_eigen(*a, k);
-    let largest = values[..k].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut y = [0.0; 6];
-    for j in 0..k {
-        if values[j] <= 1e-12 * largest || values[j] <= 0.0 {
-            continue;
-        }
-        let proj: f64 = (0..k).map(|l| vectors[l][j] * b[l]).sum::<f64>() / values[j];
-        for (l, yl) in y.iter_mut().enumerate().take(k) {
-            *yl += proj * vectors[l][j];
-        }
-    }
-    y
 }
