@@ -23,6 +23,7 @@ pub mod report;
 pub mod scaling;
 pub mod system;
 pub mod uniqueness;
+pub mod whole;
 
 pub use crate::linalg::{LinearSolver, PetscSettings};
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};
