@@ -12,8 +12,10 @@
 //! - the Newton residual `‖∇E|_b‖` relative to the body's force scale
 //!   `F_b = max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)` (external forces, internal forces reactions
 //!   included, and the force unit of the body's prescribed motions
-//!   `f_D,b = S · max|u_D|_b · diam_b^{d−2}`, S the P-wave modulus, so that a stress-free
-//!   displacement-driven body is measured against the forces its data could cause);
+//!   `f_D,b = max_k S_k |u_D,k| · diam_b^{d−2}` over the body's prescribed components k,
+//!   `S_k` the P-wave modulus of the stiffest material around the node, so that a
+//!   stress-free displacement-driven body is measured against the forces its data could
+//!   cause, and a soft body never against a stiff one's modulus);
 //! - the relative change of u in the energy norm, `‖Δu|_b‖_E / ‖u|_b‖_E`.
 //!
 //! On a mesh of one body each norm is the plain one, computed in the same order.
@@ -71,7 +73,8 @@ pub struct Bodies {
     pub count: usize,
     /// Force unit of the prescribed motions of each body, `f_D,b` (N): the largest
     /// prescribed displacement component on the body, or translation of a frictional
-    /// obstacle touching it, times `S · diam_b^{d−2}`.
+    /// obstacle touching it, each times the P-wave modulus S of the stiffest material
+    /// around its node, times `diam_b^{d−2}`.
     pub force_floor: Vec<f64>,
 }
 
@@ -88,29 +91,31 @@ impl Bodies {
                 of_node[v as usize] = b as u32;
             }
         }
-        // Largest prescribed motion per body.
+        // Largest prescribed motion per body, each times the stiffness of the material it
+        // moves (a soft body is not measured against a stiff one's modulus).
+        let stiffness = super::constraints::node_stiffness(problem);
         let mut motion = vec![0.0f64; count];
         let u_d = problem.prescribed_displacement();
         let dofs = problem.dof_map();
         for (k, x) in u_d.iter().enumerate() {
             let b = of_node[k / d];
             if dofs.is_fixed(k) && b != u32::MAX {
-                motion[b as usize] = motion[b as usize].max(x.abs());
+                let m = &mut motion[b as usize];
+                *m = m.max(stiffness[k / d] * x.abs());
             }
         }
         for i in 0..contact.len() {
-            let b = of_node[contact.node[i] as usize];
+            let v = contact.node[i] as usize;
+            let b = of_node[v];
             let cb = &problem.contact[contact.boundary[i] as usize];
             if b == u32::MAX || cb.friction.is_none() {
                 continue;
             }
             if let Some(t) = cb.obstacle.as_ref().and_then(|o| o.translation(d).ok()) {
-                motion[b as usize] = t[..d]
-                    .iter()
-                    .fold(motion[b as usize], |m, x| m.max(x.abs()));
+                let m = &mut motion[b as usize];
+                *m = t[..d].iter().fold(*m, |m, x| m.max(stiffness[v] * x.abs()));
             }
         }
-        let stiffness = problem.stiffness();
         let force_floor = rigid
             .bodies
             .iter()
@@ -118,7 +123,7 @@ impl Bodies {
             .map(|(body, m)| {
                 let (lo, hi) = body.bounding_box;
                 let diam = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-                stiffness * m * diam.powi(d as i32 - 2)
+                m * diam.powi(d as i32 - 2)
             })
             .collect();
         Bodies {
