@@ -49,6 +49,11 @@
 //! - equilibrium `∇W(u) − f = 0` at the free DOFs of the nodes without a contact point,
 //!   body by body, relative to the body's force scale.
 //!
+//! A residual no larger than its round-off floor ([`super::round_off`]: machine epsilon
+//! times the magnitudes of the terms summed at the node) counts as zero: an entry of
+//! equilibrium, or a law residual against the floor of its node's force. The floor is per
+//! node, so a stiff neighbour's round-off excuses nothing elsewhere.
+//!
 //! A certificate *passes* when every residual is at most `tol`; a solve whose certificate
 //! fails is reported as not converged, naming the law, the contact part and the node.
 //!
@@ -68,9 +73,11 @@
 
 use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
+use super::round_off::{above_floor, body_residuals, point_floor, Floors};
 pub use super::whole::whole_results;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
+use crate::mesh::Mesh;
 use crate::parallel::Share;
 use serde::Serialize;
 
@@ -281,6 +288,12 @@ pub struct Inputs<'a> {
     /// The floor `η L_i` of the force scale of every contact point at `u` (N;
     /// [`super::System::point_scales`]).
     pub floor: &'a [f64],
+    /// The round-off floors of the residual's entries and of its regions' resultants
+    /// ([`super::System::round_off_floors`]): an entry or a law residual within its floor is
+    /// round-off and counts as zero ([`super::round_off`]).
+    pub round_off: &'a Floors,
+    /// The mesh (of this process's part), whose regions' resultants equilibrium checks.
+    pub mesh: &'a Mesh,
     /// The contact data of the last convex problem.
     pub frozen: ContactData<'a>,
     /// Certificate tolerance.
@@ -304,6 +317,8 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         fixed,
         bodies,
         floor,
+        round_off,
+        mesh,
         frozen,
         tolerance,
         share,
@@ -344,15 +359,29 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         on_contact[v as usize] = true;
     }
     let (mut residual, mut external, mut scale) = (Vec::new(), Vec::new(), Vec::new());
-    bodies.residuals(
-        share,
-        d,
-        grad_bulk,
-        |k| fixed(k) || on_contact[k / d],
-        &mut residual,
-    );
+    let excluded = |k: usize| fixed(k) || on_contact[k / d];
+    bodies.residuals(share, d, grad_bulk, excluded, &mut residual);
     bodies.norms(share, d, f_ext.len(), |k| f_ext[k], &mut external);
     bodies.force_scales(share, d, grad_bulk, f_ext, &external, &mut scale);
+    // A body beyond the tolerance may be so by round-off: then over the entries above their
+    // floors, with the regions' resultants of the whole residual (the laws' at the contact
+    // points).
+    let mut whole = grad_bulk.to_vec();
+    for i in 0..ca.nodes.len() {
+        let (v, model) = (ca.nodes.node[i] as usize, ca.point(u, &frozen, i).gradient);
+        for k in 0..d {
+            whole[d * v + k] += model[k];
+        }
+    }
+    let mut above = Vec::new();
+    let row = |k: usize| if excluded(k) { 0.0 } else { grad_bulk[k] };
+    let all = |k: usize| if fixed(k) { 0.0 } else { whole[k] };
+    body_residuals(bodies, mesh, share, round_off, row, all, &mut above);
+    for ((r, a), s) in residual.iter_mut().zip(&above).zip(&scale) {
+        if *r > tolerance * s {
+            *r = r.min(*a);
+        }
+    }
     let equilibrium =
         residual.iter().zip(&scale).fold(
             0.0f64,
@@ -419,14 +448,24 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         for a in 0..m {
             ft[a] = (0..d).map(|k| force[k] * t[a][k]).sum();
         }
-        let normal_residual = (fn_ + w * s.pressure).abs();
+        // The round-off of the force at the node, within which a residual is no residual.
+        let noise = point_floor(&round_off.dof, d, v, fixed);
+        // A residual within the tolerance stands as it is; one beyond it may be round-off.
+        let law = |r: f64| {
+            if r <= tolerance * force_scale {
+                r
+            } else {
+                above_floor(r, noise).abs()
+            }
+        };
+        let normal_residual = law((fn_ + w * s.pressure).abs());
         let ft_norm = (ft[0] * ft[0] + ft[1] * ft[1]).sqrt();
         let normal_state = if s.pressure > 0.0 {
             NormalState::Contact
         } else {
             NormalState::Separated
         };
-        let (friction_state, friction_residual) = match &cb.friction {
+        let (friction_state, raw_friction_residual) = match &cb.friction {
             None => (FrictionState::None, ft_norm),
             Some(fr)
                 if normal_state == NormalState::Separated && fr.bound == FrictionBound::Coulomb =>
@@ -470,6 +509,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 }
             }
         };
+        let friction_residual = law(raw_friction_residual);
         let mut friction_traction = [0.0; 3];
         for a in 0..m {
             for k in 0..d {

@@ -18,7 +18,9 @@
 //!   cause, and a soft body never against a stiff one's modulus);
 //! - the relative change of u in the energy norm, `‖Δu|_b‖_E / ‖u|_b‖_E`.
 //!
-//! On a mesh of one body each norm is the plain one, computed in the same order.
+//! On a mesh of one body each norm is the plain one, computed in the same order. A norm
+//! beyond its tolerance that no longer falls is taken again over the entries above their
+//! round-off floors, with the resultants of the body's regions ([`super::round_off`]).
 //!
 //! # Contact points
 //!
@@ -41,6 +43,7 @@
 //! its stick state against `δ_i` ([`super::certificate`]).
 
 use super::frozen::Frozen;
+use super::regions::Regions;
 use super::system::ideal_locking;
 use super::System;
 use crate::assembly::{element, BulkAssembler};
@@ -76,6 +79,9 @@ pub struct Bodies {
     /// obstacle touching it, each times the P-wave modulus S of the stiffest material
     /// around its node, times `diam_b^{d−2}`.
     pub force_floor: Vec<f64>,
+    /// The regions of one material in the bodies, over which residuals are also summed
+    /// ([`super::regions`]).
+    pub regions: Regions,
 }
 
 impl Bodies {
@@ -126,20 +132,24 @@ impl Bodies {
                 m * diam.powi(d as i32 - 2)
             })
             .collect();
+        let regions = Regions::new(mesh, |c| problem.cell_material(c), &of_node);
         Bodies {
             of_node,
             count,
             force_floor,
+            regions,
         }
     }
 
-    /// These bodies on a part of the mesh whose node `l` is the whole mesh's `nodes[l]`:
-    /// [`Bodies::of_node`] is the part's.
-    pub fn restricted(&self, nodes: &[u32]) -> Bodies {
+    /// These bodies on a part `mesh` of the mesh whose node `l` is the whole mesh's
+    /// `nodes[l]` and whose cell p is its `cells[p]`: [`Bodies::of_node`] and the regions'
+    /// cells and nodes are the part's.
+    pub fn restricted(&self, nodes: &[u32], mesh: &Mesh, cells: &[u32]) -> Bodies {
         Bodies {
             of_node: nodes.iter().map(|&v| self.of_node[v as usize]).collect(),
             count: self.count,
             force_floor: self.force_floor.clone(),
+            regions: self.regions.restricted(mesh, cells),
         }
     }
 

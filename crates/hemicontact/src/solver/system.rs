@@ -290,7 +290,7 @@ impl System {
                     .flat_map(|&v| f_ext[d * v as usize..d * v as usize + d].iter().copied())
                     .collect(),
                 rigid.restricted(&nodes),
-                bodies.restricted(&nodes),
+                bodies.restricted(&nodes, &mesh, &sub.cells),
             );
             part = Some((sub, mesh, nodes, points));
             restricted
@@ -495,6 +495,8 @@ impl System {
             &mut point_force,
             &mut floor,
         );
+        let mut round_off = super::round_off::Floors::default();
+        self.round_off_floors(problem, u, frozen, &eval.normal, &mut round_off);
         let mut ca = self.contact_assembler(problem);
         ca.responses = &eval.normal;
         super::certificate::evaluate(
@@ -507,6 +509,8 @@ impl System {
                 fixed: &|k| self.dofs.is_fixed(k),
                 bodies: &self.bodies,
                 floor: &floor,
+                round_off: &round_off,
+                mesh: &problem.mesh,
                 frozen: frozen.contact(),
                 tolerance,
                 share: &self.share,
