@@ -334,6 +334,10 @@ fn each_entry_is_counted_by_one_process() {
         let (mut norm, mut energy) = (Vec::new(), Vec::new());
         bodies.norms(&whole, d, v.len(), |k| v[k], &mut norm);
         bodies.energy_norms(&whole, mesh, &|_| hooke, &v, &mut energy);
+        let mut resultant = Vec::new();
+        bodies
+            .regions
+            .resultants(mesh, &whole, |k| v[k], &mut resultant);
         let dot = whole.dot_equations(&x, &x);
         let sizes = [mesh.n_nodes(), contact.len(), mesh.n_cells()];
         let parts = 3;
@@ -348,6 +352,7 @@ fn each_entry_is_counted_by_one_process() {
             let mut back = vec![f64::NAN; v.len()];
             let (mut norm2, mut energy2, mut dots) =
                 (vec![0.0; bodies.count], vec![0.0; bodies.count], 0.0);
+            let mut resultant2 = vec![0.0; resultant.len()];
             for rank in 0..parts {
                 let sub = Subdomain::new(mesh, partition.clone(), rank);
                 let (part, ids) = sub.local_mesh(mesh).unwrap();
@@ -404,7 +409,13 @@ fn each_entry_is_counted_by_one_process() {
                             x[dofs.equations()[d * ids[k / d] as usize + k % d] as usize];
                     }
                 }
-                let part_bodies = bodies.restricted(&ids);
+                let part_bodies = bodies.restricted(&ids, &part, &sub.cells);
+                let mut part_resultant = Vec::new();
+                let regions = &part_bodies.regions;
+                regions.resultants(&part, &share, |k| v_part[k], &mut part_resultant);
+                for (r, p) in resultant2.iter_mut().zip(&part_resultant) {
+                    *r += p;
+                }
                 let (mut part_norm, mut part_energy) = (Vec::new(), Vec::new());
                 part_bodies.norms(&share, d, v_part.len(), |k| v_part[k], &mut part_norm);
                 part_bodies.energy_norms(&share, &part, &|_| hooke, &v_part, &mut part_energy);
@@ -432,6 +443,15 @@ fn each_entry_is_counted_by_one_process() {
                 );
             }
             assert!((dots - dot).abs() <= 1e-13 * dot);
+            // The regions' resultants along their rigid modes, summed over the parts.
+            let scale = resultant.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            assert!(scale > 0.0);
+            for (a, b) in resultant.iter().zip(&resultant2) {
+                assert!(
+                    (a - b).abs() <= 1e-13 * scale,
+                    "{resultant:?} {resultant2:?}"
+                );
+            }
         }
     }
 }

@@ -15,6 +15,9 @@
 //! 3. The certificate sees the class: an answer computed with the former global
 //!    regularization (ρ = 1e-8 U_global) on the two-body problem, where the former global
 //!    certificate passes, fails the new certificate.
+//! 4. A small body beside one moved far: body A pressed by 10⁻² down to 10⁻⁸ m converges
+//!    and matches its closed form to 1e-8 while body B is stretched by 1000 m (a strain of
+//!    10³) or lifted by 1000 m, whose forces and energy are known only to their round-off.
 
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -418,4 +421,112 @@ fn the_certificate_fails_an_answer_of_the_former_global_thresholds() {
     let (_, cert) =
         hemicontact::solver::certify(&two_block_compliance(norm, pull), &settings, &now.u).unwrap();
     assert!(cert.passes(), "{:?}", cert.failures());
+}
+
+/// Body A, `[0, 1] × [0, 0.5]` (16 × 8 squares, E = 1000 Pa, ν = 0), its top moved down
+/// by `delta` onto a rigid foundation with Signorini contact and Coulomb friction μ = 0.3
+/// (with the friction keys `friction`); beside it body B, `[2, 3] × [0, 0.5]`, either
+/// stretched by 1000 m (`lifted` false: held on its left side, its right side moved along
+/// x) or lifted by 1000 m as a whole (its top moved up, its bottom a contact part too).
+fn beside_a_far_body(delta: f64, lifted: bool, friction: &str) -> Problem {
+    let block = |x0: f64| {
+        rectangle(&Rectangle {
+            origin: [x0, 0.0],
+            size: [1.0, 0.5],
+            n: [16, 8],
+            pattern: CutPattern::Uniform,
+            progression: [1.0, 1.0],
+        })
+        .unwrap()
+    };
+    let mesh = common::two_bodies(&block(0.0), &block(2.0), ["a", "b"]);
+    let part = |name: &str| mesh.part_index(name).unwrap();
+    let laws = common::problem(&format!(
+        r#"
+[mesh]
+kind = "rectangle"
+size = [1.0, 0.5]
+n = [2, 2]
+[material]
+young = 1000.0
+poisson = 0.0
+[[dirichlet]]
+part = "top"
+[[contact]]
+part = "bottom"
+law = "signorini"
+[contact.friction]
+bound = "coulomb"
+mu = 0.3
+{friction}
+"#
+    ));
+    let held = |name: &str, components: [bool; 3], value: [f64; 3]| Dirichlet {
+        part: part(name),
+        components,
+        value,
+    };
+    let mut contact = laws.contact()[0].clone();
+    contact.part = part("a_bottom");
+    let mut builder = Problem::builder(mesh.clone(), laws.materials()[0].clone())
+        .plane(laws.plane())
+        .dirichlet(held("a_top", [true, true, false], [0.0, -delta, 0.0]))
+        .contact(contact.clone());
+    builder = if lifted {
+        contact.part = part("b_bottom");
+        builder
+            .dirichlet(held("b_top", [true, true, false], [0.0, 1000.0, 0.0]))
+            .contact(contact)
+    } else {
+        builder
+            .dirichlet(held("b_left", [true, true, false], [0.0; 3]))
+            .dirichlet(held("b_right", [true, false, false], [1000.0, 0.0, 0.0]))
+    };
+    builder.build().unwrap()
+}
+
+/// A small body beside one moved far: body A of [`beside_a_far_body`], pressed by δ from
+/// 10⁻² down to 10⁻⁸ m, converges and matches its closed form (ν = 0: uniaxial compression
+/// `u_y = −δ y/H`, `u_x = 0`, nothing slips) to 1e-8 of δ, while body B is stretched by
+/// 1000 m (a strain of 10³) or lifted by 1000 m. B's nodal forces are then known only to
+/// the round-off of terms `E · 1000 m`, and the energy to the round-off of B's: A's
+/// convergence and line search are decided on A's own forces and its own energy's change.
+#[test]
+fn a_small_body_converges_beside_one_moved_far() {
+    let settings = SolverSettings::default();
+    let mut failed = Vec::new();
+    for friction in ["", "exact = true"] {
+        for lifted in [false, true] {
+            for delta in [1e-2, 1e-5, 1e-8] {
+                let problem = beside_a_far_body(delta, lifted, friction);
+                let s = solve(&problem, &settings).unwrap();
+                let case = format!(
+                    "{friction} δ = {delta:e}, B {}",
+                    if lifted { "lifted" } else { "stretched" }
+                );
+                if !s.report.converged {
+                    failed.push(format!("{case}: {}", s.report.message));
+                    continue;
+                }
+                let mesh = problem.mesh();
+                let error = (0..mesh.n_nodes())
+                    .filter(|&v| mesh.node(v)[0] <= 1.0)
+                    .map(|v| {
+                        let exact = -delta * mesh.node(v)[1] / 0.5;
+                        (s.u[2 * v + 1] - exact).abs().max(s.u[2 * v].abs())
+                    })
+                    .fold(0.0f64, f64::max);
+                println!(
+                    "{case}: {} outer iterations, {} Newton steps, A's error {:.1e} δ",
+                    s.report.outer.len(),
+                    s.report.newton.len(),
+                    error / delta
+                );
+                if error > 1e-8 * delta {
+                    failed.push(format!("{case}: A's error {:e} δ", error / delta));
+                }
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
 }

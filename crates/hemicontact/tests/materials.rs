@@ -31,6 +31,12 @@
 //!    different units (the set functions scale like a strain and like its square).
 //! 7. **Refusals:** a region without a material, a material naming no region, a `[locking]`
 //!    table beside `[[material]]` tables, boxes that leave a cell out.
+//! 8. **Contrasts of stiffness up to 10¹²:** the bar (tension and compression, the soft half
+//!    held or loaded) and the layered block (the soft layer below or above) match their
+//!    closed forms to 1e-8, where the stiff part moved as a whole by the soft one has nodal
+//!    forces known only to the round-off of `E_stiff u`; a soft half stretched by 10⁻⁵ too
+//!    much (the stiff half moved along, every node within its round-off floor) still fails
+//!    the certificate at contrast 10¹² as at contrast 1.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::global::Want;
@@ -152,6 +158,12 @@ fn a_bimaterial_bar_stretches_by_the_sum_of_its_halves() {
 
 /// The layered block: two layers of different laws along z, on rollers, pressed by p.
 fn layered_block(contact: bool) -> String {
+    layered_block_of(contact, [10.0, 2000.0])
+}
+
+/// [`layered_block`] with the Young's moduli `young` of the lower (ν = 0.45) and the upper
+/// (ν = 0.3) layer.
+fn layered_block_of(contact: bool, young: [f64; 2]) -> String {
     let bottom = if contact {
         "[[contact]]\npart = \"bottom\"\nlaw = \"signorini\"\n"
     } else {
@@ -173,11 +185,11 @@ min = [0.0, 0.0, 0.5]
 max = [1.0, 1.0, 1.0]
 [[material]]
 part = "rubber"
-young = 10.0
+young = {:e}
 poisson = 0.45
 [[material]]
 part = "steel"
-young = 2000.0
+young = {:e}
 poisson = 0.3
 [[dirichlet]]
 part = "left"
@@ -195,7 +207,8 @@ components = ["y"]
 [[loads.traction]]
 part = "top"
 value = [0.0, 0.0, -0.25]
-"#
+"#,
+        young[0], young[1]
     )
 }
 
@@ -597,4 +610,146 @@ value = [0.02, 0.0]
         // The stress across the layers (σ_yy) vanishes: the locking stress balances it.
         assert!(cells.stress[9 * c + 4].abs() <= 1e-6 * lambda[1] * kappa);
     }
+}
+
+/// [`BAR`] with the moduli `young` of its left half `[0, 1]` (held at x = 0) and its right
+/// half `[1, 2]`, loaded by the traction σ on its right end.
+fn bar_of(young: [f64; 2], sigma: f64) -> Problem {
+    let text = BAR
+        .replacen("young = 1000.0", &format!("young = {:e}", young[0]), 1)
+        .replacen("young = 7000.0", &format!("young = {:e}", young[1]), 1)
+        .replacen(
+            "value = [35.0, 0.0]",
+            &format!("value = [{sigma:e}, 0.0]"),
+            1,
+        );
+    problem_of(&text)
+}
+
+/// The displacement `u_x` of the bar of [`bar_of`] at x: `σ x / E_0` on the left half,
+/// `σ / E_0 + σ (x − 1) / E_1` on the right one.
+fn bar_displacement(young: [f64; 2], sigma: f64, x: f64) -> f64 {
+    if x <= 1.0 {
+        sigma * x / young[0]
+    } else {
+        sigma / young[0] + sigma * (x - 1.0) / young[1]
+    }
+}
+
+/// A bonded bar of two materials of any stiffness contrast up to 10¹², in tension and in
+/// compression, the soft half held or loaded: the closed form to 1e-8 of the end's
+/// displacement, converged and certified. With the soft half held, the stiff half is moved
+/// as a whole by the soft half's stretch: its nodal forces are sums of terms `E_stiff u`
+/// that cancel to σ, 10¹² times smaller, so their round-off lies far above the forces; the
+/// solve then resolves what the stiff half can resolve, its net force.
+#[test]
+fn a_bar_of_two_materials_of_any_contrast_stretches_by_the_sum_of_its_halves() {
+    let settings = SolverSettings::default();
+    let mut failed = Vec::new();
+    for contrast in [1.0, 1e3, 1e6, 1e9, 1e12] {
+        for young in [[1000.0, 1000.0 * contrast], [1000.0 * contrast, 1000.0]] {
+            for sigma in [35.0, -35.0] {
+                let problem = bar_of(young, sigma);
+                let s = solve(&problem, &settings).unwrap();
+                let case = format!("E = {:e}, {:e}, σ = {sigma}", young[0], young[1]);
+                if !s.report.converged {
+                    failed.push(format!("{case}: {}", s.report.message));
+                    continue;
+                }
+                let end = bar_displacement(young, sigma, 2.0).abs();
+                let mesh = problem.mesh();
+                let error = (0..mesh.n_nodes())
+                    .map(|v| {
+                        let exact = bar_displacement(young, sigma, mesh.node(v)[0]);
+                        (s.u[2 * v] - exact).abs().max(s.u[2 * v + 1].abs())
+                    })
+                    .fold(0.0f64, f64::max);
+                println!(
+                    "{case}: {} Newton steps, error {:.1e} of the end's displacement",
+                    s.report.newton.len(),
+                    error / end
+                );
+                if error > 1e-8 * end {
+                    failed.push(format!("{case}: error {:e}", error / end));
+                }
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
+}
+
+/// The floor of the round-off does not blind the certificate. At a contrast of 10¹², the
+/// soft half's stretch changed by 10⁻⁵ (the stiff half moved along with it as a whole, so
+/// that no node beyond the soft half sees a change of strain, and every node's force stays
+/// within its round-off floor) fails equilibrium as it does at a contrast of 1: the stiff
+/// half is no longer balanced, a net force that no single node resolves but their sum along
+/// its translation does. (A change of 10⁻⁶ leaves a residual of 0.7 · 10⁻⁶ of the bar's
+/// forces, within the tolerance 10⁻⁶ at any contrast.) The answer itself passes.
+#[test]
+fn the_certificate_fails_a_soft_half_stretched_too_much_at_any_contrast() {
+    let settings = SolverSettings::default();
+    let mut residual = Vec::new();
+    for contrast in [1.0, 1e12] {
+        let (young, sigma) = ([1000.0, 1000.0 * contrast], 35.0);
+        let problem = bar_of(young, sigma);
+        let s = solve(&problem, &settings).unwrap();
+        assert!(s.report.converged, "{}", s.report.message);
+        let (_, cert) = hemicontact::solver::certify(&problem, &settings, &s.u).unwrap();
+        assert!(cert.passes(), "{:?}", cert.failures());
+        let mesh = problem.mesh();
+        let mut wrong = s.u.clone();
+        for v in 0..mesh.n_nodes() {
+            let x = mesh.node(v)[0];
+            wrong[2 * v] += 1e-5 * sigma * x.min(1.0) / young[0];
+        }
+        let (_, cert) = hemicontact::solver::certify(&problem, &settings, &wrong).unwrap();
+        println!("contrast {contrast:e}: {:?}", cert.failures());
+        assert!(
+            cert.failures().iter().any(|f| f.law == "equilibrium"),
+            "contrast {contrast:e}: {cert:?}"
+        );
+        residual.push(cert.equilibrium);
+    }
+    assert!(residual[1] > 0.5 * residual[0], "{residual:?}");
+}
+
+/// The layered block of [`layered_block`] with stiffness contrasts up to 10¹², the soft
+/// layer below (the stiff one moved as a whole by its compression) or above: the settlement
+/// `p (h₁/M₁ + h₂/M₂)` and the displacement of every node to 1e-8 of it.
+#[test]
+fn a_layered_block_of_any_contrast_settles_by_the_sum_of_its_layers() {
+    let settings = SolverSettings::default();
+    let p = 0.25;
+    let mut failed = Vec::new();
+    for contrast in [1.0, 1e3, 1e6, 1e9, 1e12] {
+        for young in [[10.0, 10.0 * contrast], [10.0 * contrast, 10.0]] {
+            let problem = problem_of(&layered_block_of(false, young));
+            let s = solve(&problem, &settings).unwrap();
+            let case = format!("E = {:e}, {:e}", young[0], young[1]);
+            if !s.report.converged {
+                failed.push(format!("{case}: {}", s.report.message));
+                continue;
+            }
+            let m =
+                [lame_3d(young[0], 0.45), lame_3d(young[1], 0.3)].map(|h| h.lambda + 2.0 * h.mu);
+            let settlement = p * (0.5 / m[0] + 0.5 / m[1]);
+            let mesh = problem.mesh();
+            let error = (0..mesh.n_nodes())
+                .map(|v| {
+                    let z = mesh.node(v)[2];
+                    let exact = -p * (z.min(0.5) / m[0] + (z - 0.5).max(0.0) / m[1]);
+                    (s.u[3 * v + 2] - exact).abs()
+                })
+                .fold(0.0f64, f64::max);
+            println!(
+                "{case}: {} Newton steps, error {:.1e} of the settlement",
+                s.report.newton.len(),
+                error / settlement
+            );
+            if error > 1e-8 * settlement {
+                failed.push(format!("{case}: error {:e}", error / settlement));
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
 }

@@ -37,6 +37,10 @@
 //!    10⁻⁶ Pa) carries the load through every interface exactly; a block clamped by
 //!    friction between a held block and a free one is held with the normal and friction
 //!    forces its equilibrium gives, and refused above the friction limit.
+//! 9. **Contrasts of stiffness up to 10¹²**, either block the slave side: on matching meshes
+//!    the patch test of two materials (displacement and the force through the held block to
+//!    1e-8, the pressure to 1e-8 or to the resolution `r ε δ` of a stiff slave's penalty);
+//!    on non-matching ones every solve converges, the force within node-to-segment's error.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
 mod common;
@@ -1712,4 +1716,164 @@ fn two_free_blocks_that_nothing_holds_together_are_refused_naming_them_and_the_m
     ] {
         assert!(msg.contains(words), "{words:?} not in {msg}");
     }
+}
+
+/// [`sheared_named`] without friction, the lower block `b` of Young's modulus `e_b` and the
+/// upper block `a` of `e_a` (ν = 0 both, the cell regions of [`common::two_bodies`]),
+/// the slave side `a_bottom` against `b_top` or, with `a_slave` false, `b_top` against
+/// `a_bottom`.
+fn pressed_two_materials(mesh: Mesh, e_b: f64, e_a: f64, a_slave: bool) -> Problem {
+    let names = if a_slave {
+        ["b_bottom", "a_top", "a_bottom", "b_top"]
+    } else {
+        ["b_bottom", "a_top", "b_top", "a_bottom"]
+    };
+    let of = |e: f64| {
+        Material::elastic(Elasticity::Hooke(Hooke {
+            lambda: 0.0,
+            mu: e / 2.0,
+        }))
+    };
+    sheared_named(mesh, NormalLaw::Signorini, None, 0.0, names)
+        .to_builder()
+        .materials(vec![of(e_b), of(e_a)], vec![0, 1])
+        .build()
+        .unwrap()
+}
+
+/// The stress `σ = δ / (h/E_b + h/E_a)` (h = H/2) of two blocks of moduli `e_b` and `e_a`
+/// pressed on each other by δ, and the exact `u_y` at height y: `−σ y/E_b` in the lower
+/// block, `−σ h/E_b − σ (y − h)/E_a` in the upper one (`upper`).
+fn series(e_b: f64, e_a: f64, y: f64, upper: bool) -> (f64, f64) {
+    let h = H / 2.0;
+    let sigma = DELTA / (h / e_b + h / e_a);
+    let u = if upper {
+        -sigma * h / e_b - sigma * (y - h) / e_a
+    } else {
+        -sigma * y / e_b
+    };
+    (sigma, u)
+}
+
+/// Two blocks of stiffness contrast up to 10¹², pressed on each other, either block the
+/// slave side, on matching meshes: the patch test of two materials (ν = 0, uniaxial: the
+/// stress σ of [`series`] in both, the pressure σ at every point) to 1e-8 of δ for the
+/// displacement and of σ for the force through the held block. The stiff upper block is
+/// moved by nearly δ as a whole when the lower one is soft: its nodal forces are sums of
+/// terms `E_a δ` that cancel to σ, 10¹² times smaller. As the slave side it then carries
+/// the contact law's pressure `λ + r (u_ν − g)` with the penalty r = γ E_a/h of its own
+/// material, and `u_ν` a difference of two displacements of size δ: the pressure is
+/// resolved only to `r ε δ`, and is checked to 1e-8 or to 16 of those units.
+#[test]
+fn blocks_of_any_stiffness_contrast_pass_the_patch_test_from_either_side() {
+    let settings = SolverSettings::default();
+    let gamma = settings.constraints.contact_penalty;
+    let mut failed = Vec::new();
+    for contrast in [1.0, 1e3, 1e6, 1e9, 1e12] {
+        for (e_b, e_a) in [(E, E * contrast), (E * contrast, E)] {
+            for a_slave in [true, false] {
+                let problem = pressed_two_materials(stacked_2d(4, 4, 2), e_b, e_a, a_slave);
+                let s = solve(&problem, &settings).unwrap();
+                let case = format!(
+                    "E_b = {e_b:e}, E_a = {e_a:e}, slave {}",
+                    if a_slave { "a" } else { "b" }
+                );
+                if !s.report.converged {
+                    failed.push(format!("{case}: {}", s.report.message));
+                    continue;
+                }
+                let mesh = problem.mesh();
+                let first_upper = mesh
+                    .part_nodes(mesh.part_index("a_bottom").unwrap())
+                    .into_iter()
+                    .min()
+                    .unwrap() as usize;
+                let (sigma, _) = series(e_b, e_a, 0.0, false);
+                let mut eu = 0.0f64;
+                for v in 0..mesh.n_nodes() {
+                    let (_, exact) = series(e_b, e_a, mesh.node(v)[1], v >= first_upper);
+                    eu = eu.max((s.u[2 * v + 1] - exact).abs()).max(s.u[2 * v].abs());
+                }
+                let held: f64 = mesh
+                    .part_nodes(mesh.part_index("b_bottom").unwrap())
+                    .iter()
+                    .map(|&v| s.reactions[2 * v as usize + 1])
+                    .sum();
+                let ef = (held - sigma).abs();
+                let ep = s
+                    .contact
+                    .iter()
+                    .map(|c| (c.pressure - sigma).abs())
+                    .fold(0.0f64, f64::max);
+                let e_slave = if a_slave { e_a } else { e_b };
+                let resolution = gamma * e_slave / 0.25 * f64::EPSILON * DELTA;
+                println!(
+                    "{case}: {} Newton steps, displacement error {:.1e} δ, force through the \
+                     held block {:.1e} σ, pressure {:.1e} σ ({:.1e} of r ε δ)",
+                    s.report.newton.len(),
+                    eu / DELTA,
+                    ef / sigma,
+                    ep / sigma,
+                    ep / resolution
+                );
+                if eu > 1e-8 * DELTA
+                    || ef > 1e-8 * sigma
+                    || ep > (1e-8 * sigma).max(16.0 * resolution)
+                {
+                    failed.push(format!(
+                        "{case}: errors {:e} δ, force {:e} σ, pressure {:e} σ",
+                        eu / DELTA,
+                        ef / sigma,
+                        ep / sigma
+                    ));
+                }
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
+}
+
+/// Blocks of stiffness contrast up to 10¹² on non-matching meshes (5 slave segments against
+/// 4 master ones, and 4 against 5), either block the slave side: node-to-segment passes no
+/// patch test here, but every solve converges with a passing certificate, and the force
+/// through the held block is the stress σ of [`series`] within the error of node-to-segment
+/// on these meshes for one material (1e-3).
+#[test]
+fn blocks_of_any_stiffness_contrast_on_non_matching_meshes_converge_from_either_side() {
+    let settings = SolverSettings::default();
+    let mut failed = Vec::new();
+    for contrast in [1.0, 1e3, 1e6, 1e9, 1e12] {
+        for (e_b, e_a) in [(E, E * contrast), (E * contrast, E)] {
+            for a_slave in [true, false] {
+                let (nx_a, nx_b) = if a_slave { (5, 4) } else { (4, 5) };
+                let mesh = stacked_2d(nx_a, nx_b, 2);
+                let problem = pressed_two_materials(mesh, e_b, e_a, a_slave);
+                let s = solve(&problem, &settings).unwrap();
+                let case = format!(
+                    "E_b = {e_b:e}, E_a = {e_a:e}, slave {}",
+                    if a_slave { "a" } else { "b" }
+                );
+                if !s.report.converged {
+                    failed.push(format!("{case}: {}", s.report.message));
+                    continue;
+                }
+                let mesh = problem.mesh();
+                let (sigma, _) = series(e_b, e_a, 0.0, false);
+                let held: f64 = mesh
+                    .part_nodes(mesh.part_index("b_bottom").unwrap())
+                    .iter()
+                    .map(|&v| s.reactions[2 * v as usize + 1])
+                    .sum();
+                let ef = (held - sigma).abs() / sigma;
+                println!(
+                    "{case}: {} Newton steps, force through the held block off by {ef:.1e} σ",
+                    s.report.newton.len()
+                );
+                if ef > 1e-3 {
+                    failed.push(format!("{case}: force {ef:e} σ"));
+                }
+            }
+        }
+    }
+    assert!(failed.is_empty(), "{failed:#?}");
 }

@@ -3,12 +3,14 @@
 //!
 //! The local/global split follows the classical design: [`element`] computes per-cell
 //! quantities into small fixed-size arrays, [`pattern`] owns the global indexing (built
-//! once per mesh and DOF map), and [`global`] loops over cells and scatters.
+//! once per mesh and DOF map), and [`global`] loops over cells and scatters;
+//! [`magnitudes`] sums the magnitudes of the terms of every gradient entry (its round-off).
 
 pub mod contact;
 pub mod element;
 pub mod global;
 pub mod loads;
+pub mod magnitudes;
 pub mod pattern;
 
 pub use global::BulkAssembler;

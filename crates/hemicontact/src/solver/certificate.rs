@@ -49,6 +49,11 @@
 //! - equilibrium `∇W(u) − f = 0` at the free DOFs of the nodes without a contact point,
 //!   body by body, relative to the body's force scale.
 //!
+//! A residual no larger than its round-off floor ([`super::round_off`]: machine epsilon
+//! times the magnitudes of the terms summed at the node) counts as zero: an entry of
+//! equilibrium, or a law residual against the floor of its node's force. The floor is per
+//! node, so a stiff neighbour's round-off excuses nothing elsewhere.
+//!
 //! A certificate *passes* when every residual is at most `tol`; a solve whose certificate
 //! fails is reported as not converged, naming the law, the contact part and the node.
 //!
@@ -68,9 +73,11 @@
 
 use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
+use super::round_off::{above_floor, body_residuals, point_floor, Floors};
+pub use super::whole::whole_results;
 use crate::assembly::contact::{ContactAssembler, ContactData};
 use crate::contact::{FrictionBound, FrictionPotential};
-use crate::parallel::share::Entries;
+use crate::mesh::Mesh;
 use crate::parallel::Share;
 use serde::Serialize;
 
@@ -184,76 +191,6 @@ pub struct ContactResult {
     pub slip_scale: f64,
 }
 
-impl ContactResult {
-    /// The numbers of a [`ContactResult`] as a row ([`ContactResult::to_row`]).
-    pub const ROW: usize = 25;
-
-    /// These results as [`ContactResult::ROW`] numbers (the states as their codes): what
-    /// a process sends of its points.
-    pub fn to_row(&self) -> [f64; Self::ROW] {
-        let mut row = [0.0; Self::ROW];
-        let scalars = [
-            f64::from(self.node),
-            self.boundary as f64,
-            self.weight,
-            self.u_nu,
-            self.gap,
-            self.slip,
-            self.pressure,
-            self.bound,
-            self.force_normal,
-            f64::from(self.normal_state.code()),
-            f64::from(self.friction_state.code()),
-            self.normal_residual,
-            self.friction_residual,
-            self.force_scale,
-            self.slip_scale,
-        ];
-        row[..15].copy_from_slice(&scalars);
-        row[15..17].copy_from_slice(&self.u_tau);
-        row[17..19].copy_from_slice(&self.force_tangential);
-        row[19..22].copy_from_slice(&self.force);
-        row[22..25].copy_from_slice(&self.friction_traction);
-        row
-    }
-
-    /// The results a row of [`ContactResult::to_row`] holds.
-    pub fn from_row(row: &[f64]) -> ContactResult {
-        let pair = |k: usize| [row[k], row[k + 1]];
-        let triple = |k: usize| [row[k], row[k + 1], row[k + 2]];
-        ContactResult {
-            // Node and boundary numbers below 2^32 are exact in floating point.
-            node: row[0] as u32,
-            boundary: row[1] as usize,
-            weight: row[2],
-            u_nu: row[3],
-            gap: row[4],
-            slip: row[5],
-            pressure: row[6],
-            bound: row[7],
-            force_normal: row[8],
-            normal_state: if row[9] == 1.0 {
-                NormalState::Contact
-            } else {
-                NormalState::Separated
-            },
-            friction_state: match row[10] as i32 {
-                1 => FrictionState::Stick,
-                2 => FrictionState::Slip,
-                _ => FrictionState::None,
-            },
-            normal_residual: row[11],
-            friction_residual: row[12],
-            force_scale: row[13],
-            slip_scale: row[14],
-            u_tau: pair(15),
-            force_tangential: pair(17),
-            force: triple(19),
-            friction_traction: triple(22),
-        }
-    }
-}
-
 /// Where a law residual is largest: the point's node, contact boundary and residual.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Worst {
@@ -351,6 +288,12 @@ pub struct Inputs<'a> {
     /// The floor `η L_i` of the force scale of every contact point at `u` (N;
     /// [`super::System::point_scales`]).
     pub floor: &'a [f64],
+    /// The round-off floors of the residual's entries and of its regions' resultants
+    /// ([`super::System::round_off_floors`]): an entry or a law residual within its floor is
+    /// round-off and counts as zero ([`super::round_off`]).
+    pub round_off: &'a Floors,
+    /// The mesh (of this process's part), whose regions' resultants equilibrium checks.
+    pub mesh: &'a Mesh,
     /// The contact data of the last convex problem.
     pub frozen: ContactData<'a>,
     /// Certificate tolerance.
@@ -374,6 +317,8 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         fixed,
         bodies,
         floor,
+        round_off,
+        mesh,
         frozen,
         tolerance,
         share,
@@ -414,15 +359,29 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         on_contact[v as usize] = true;
     }
     let (mut residual, mut external, mut scale) = (Vec::new(), Vec::new(), Vec::new());
-    bodies.residuals(
-        share,
-        d,
-        grad_bulk,
-        |k| fixed(k) || on_contact[k / d],
-        &mut residual,
-    );
+    let excluded = |k: usize| fixed(k) || on_contact[k / d];
+    bodies.residuals(share, d, grad_bulk, excluded, &mut residual);
     bodies.norms(share, d, f_ext.len(), |k| f_ext[k], &mut external);
     bodies.force_scales(share, d, grad_bulk, f_ext, &external, &mut scale);
+    // A body beyond the tolerance may be so by round-off: then over the entries above their
+    // floors, with the regions' resultants of the whole residual (the laws' at the contact
+    // points).
+    let mut whole = grad_bulk.to_vec();
+    for i in 0..ca.nodes.len() {
+        let (v, model) = (ca.nodes.node[i] as usize, ca.point(u, &frozen, i).gradient);
+        for k in 0..d {
+            whole[d * v + k] += model[k];
+        }
+    }
+    let mut above = Vec::new();
+    let row = |k: usize| if excluded(k) { 0.0 } else { grad_bulk[k] };
+    let all = |k: usize| if fixed(k) { 0.0 } else { whole[k] };
+    body_residuals(bodies, mesh, share, round_off, row, all, &mut above);
+    for ((r, a), s) in residual.iter_mut().zip(&above).zip(&scale) {
+        if *r > tolerance * s {
+            *r = r.min(*a);
+        }
+    }
     let equilibrium =
         residual.iter().zip(&scale).fold(
             0.0f64,
@@ -489,14 +448,24 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         for a in 0..m {
             ft[a] = (0..d).map(|k| force[k] * t[a][k]).sum();
         }
-        let normal_residual = (fn_ + w * s.pressure).abs();
+        // The round-off of the force at the node, within which a residual is no residual.
+        let noise = point_floor(&round_off.dof, d, v, fixed);
+        // A residual within the tolerance stands as it is; one beyond it may be round-off.
+        let law = |r: f64| {
+            if r <= tolerance * force_scale {
+                r
+            } else {
+                above_floor(r, noise).abs()
+            }
+        };
+        let normal_residual = law((fn_ + w * s.pressure).abs());
         let ft_norm = (ft[0] * ft[0] + ft[1] * ft[1]).sqrt();
         let normal_state = if s.pressure > 0.0 {
             NormalState::Contact
         } else {
             NormalState::Separated
         };
-        let (friction_state, friction_residual) = match &cb.friction {
+        let (friction_state, raw_friction_residual) = match &cb.friction {
             None => (FrictionState::None, ft_norm),
             Some(fr)
                 if normal_state == NormalState::Separated && fr.bound == FrictionBound::Coulomb =>
@@ -540,6 +509,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
                 }
             }
         };
+        let friction_residual = law(raw_friction_residual);
         let mut friction_traction = [0.0; 3];
         for a in 0..m {
             for k in 0..d {
@@ -612,102 +582,12 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
     }
     if share.is_split() {
         (cert.worst_normal, cert.normal_law) =
-            worst_of_all(share, cert.worst_normal, cert.normal_law);
+            super::whole::worst_of_all(share, cert.worst_normal, cert.normal_law);
         (cert.worst_friction, cert.friction_law) =
-            worst_of_all(share, cert.worst_friction, cert.friction_law);
+            super::whole::worst_of_all(share, cert.worst_friction, cert.friction_law);
         cert.n_contact = share.count(cert.n_contact);
         cert.n_stick = share.count(cert.n_stick);
         cert.n_slip = share.count(cert.n_slip);
     }
     (results, cert)
-}
-
-/// The contact results of the whole problem from every process's `results` of its own
-/// points ([`Share::to_whole`]), with the whole mesh's node numbers; `results` itself on
-/// one process.
-pub fn whole_results(share: &Share, results: Vec<ContactResult>) -> Vec<ContactResult> {
-    if !share.is_split() {
-        return results;
-    }
-    let rows: Vec<f64> = results
-        .into_iter()
-        .flat_map(|mut r| {
-            r.node = share.whole_node(r.node);
-            r.to_row()
-        })
-        .collect();
-    let rows = share.to_whole(rows, ContactResult::ROW, Entries::Points);
-    rows.chunks_exact(ContactResult::ROW)
-        .map(ContactResult::from_row)
-        .collect()
-}
-
-/// The worst point of every process (`worst`, with its relative residual `value`), picked
-/// as one pass over the points would, in rank order: the largest residual, a NaN before
-/// any number, the first of equals.
-fn worst_of_all(share: &Share, worst: Option<Worst>, value: f64) -> (Option<Worst>, f64) {
-    let mine = match worst {
-        Some(w) => [value, 1.0, f64::from(w.node), w.boundary as f64],
-        None => [value, 0.0, 0.0, 0.0],
-    };
-    let all = share.gather(&mine);
-    let (mut worst, mut value) = (None, 0.0f64);
-    for p in all.chunks_exact(4) {
-        let rel = p[0];
-        let better = rel > value || (rel.is_nan() && !value.is_nan());
-        if p[1] > 0.0 && (better || worst.is_none()) {
-            value = rel;
-            // Node and boundary numbers below 2^32 are exact in floating point.
-            worst = Some(Worst {
-                node: p[2] as u32,
-                boundary: p[3] as usize,
-                residual: rel,
-            });
-        }
-    }
-    (worst, value)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// What a process sends of a contact point's results is read back bit for bit, states
-    /// included.
-    #[test]
-    fn a_contact_result_travels_as_a_row() {
-        let mut k = 0.0f64;
-        let mut next = || {
-            k += 1.0;
-            k.sqrt() * if (k as i32) % 2 == 0 { -1.0 } else { 1.0 }
-        };
-        for (normal_state, friction_state) in [
-            (NormalState::Separated, FrictionState::None),
-            (NormalState::Contact, FrictionState::Stick),
-            (NormalState::Contact, FrictionState::Slip),
-        ] {
-            let r = ContactResult {
-                node: 4_000_000_007,
-                boundary: 3,
-                weight: next(),
-                u_nu: next(),
-                gap: next(),
-                u_tau: [next(), next()],
-                slip: next(),
-                pressure: next(),
-                bound: next(),
-                force_normal: next(),
-                force_tangential: [next(), next()],
-                force: [next(), next(), next()],
-                friction_traction: [next(), next(), next()],
-                normal_state,
-                friction_state,
-                normal_residual: next(),
-                friction_residual: next(),
-                force_scale: next(),
-                slip_scale: next(),
-            };
-            assert_eq!(ContactResult::from_row(&r.to_row()), r);
-        }
-    }
 }

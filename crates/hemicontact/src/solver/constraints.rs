@@ -248,6 +248,13 @@ pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
     if problem.materials.len() == 1 {
         return vec![problem.stiffness(); points.len()];
     }
+    let at_node = node_stiffness(problem);
+    points.node.iter().map(|&v| at_node[v as usize]).collect()
+}
+
+/// The stiffness of every node of the mesh (Pa): the largest P-wave modulus `λ + 2G` (at
+/// least G) of the small-strain Hooke laws of the cells around it (0 at a node in no cell).
+pub fn node_stiffness(problem: &Problem) -> Vec<f64> {
     let mesh = &problem.mesh;
     let modulus = problem.moduli();
     let mut at_node = vec![0.0f64; mesh.n_nodes()];
@@ -257,7 +264,7 @@ pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
             at_node[v as usize] = at_node[v as usize].max(s);
         }
     }
-    points.node.iter().map(|&v| at_node[v as usize]).collect()
+    at_node
 }
 
 /// Penalty `r_T = γ S / |∂Q|²` of the ideal-locking set `set` of a material of P-wave

@@ -6,6 +6,7 @@
 use super::frozen::Frozen;
 use super::newton::{ConvexEnergy, NewtonSettings};
 use super::report::Timings;
+use super::round_off::{above_floor, Floors};
 use super::system::{Evaluation, LinearInfo};
 use super::System;
 use crate::error::Result;
@@ -31,6 +32,12 @@ pub struct ConvexProblem<'a> {
     /// Per body at the last evaluation: the residual `‖∇E_k|_b‖` over the free DOFs (N), see
     /// [`super::local_scales`]; its force scale is in the evaluation.
     body_residual: Vec<f64>,
+    /// The round-off floors of the gradient at the last evaluation
+    /// ([`System::round_off_floors`]), if [`ConvexEnergy::discount_round_off`] computed them
+    /// since: the entries within them count as zero, the regions' resultants count.
+    floors: Floors,
+    /// Whether [`ConvexProblem::floors`] are those of the last evaluation.
+    discounted: bool,
     /// Raised by the caller to interrupt the minimization ([`ConvexProblem::with_stop`]).
     stop: Option<&'a AtomicBool>,
     /// The body that moved by more than its size, if the minimization stopped for that
@@ -66,6 +73,8 @@ impl<'a> ConvexProblem<'a> {
             u: u.to_vec(),
             external,
             body_residual: Vec::new(),
+            floors: Floors::default(),
+            discounted: false,
             stop: None,
             runaway: None,
         }
@@ -88,6 +97,18 @@ impl<'a> ConvexProblem<'a> {
     }
 }
 
+impl ConvexProblem<'_> {
+    /// The gradient's entry at DOF `k` at the last evaluation, 0 where it is within its
+    /// round-off floor once the floors are computed ([`ConvexEnergy::discount_round_off`]).
+    fn counted(&self, k: usize) -> f64 {
+        if self.discounted {
+            above_floor(self.eval.grad[k], self.floors.dof[k])
+        } else {
+            self.eval.grad[k]
+        }
+    }
+}
+
 impl ConvexEnergy for ConvexProblem<'_> {
     fn dimension(&self) -> usize {
         self.gradient.len()
@@ -95,6 +116,7 @@ impl ConvexEnergy for ConvexProblem<'_> {
 
     fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64 {
         self.expand(x);
+        self.discounted = false;
         let e = self
             .system
             .evaluate(self.problem, &self.u, self.frozen, self.eval, hessian);
@@ -165,7 +187,7 @@ impl ConvexEnergy for ConvexProblem<'_> {
             let v = v as usize;
             let r = (0..d)
                 .filter(|&k| !dofs.is_fixed(d * v + k))
-                .map(|k| eval.grad[d * v + k].powi(2))
+                .map(|k| self.counted(d * v + k).powi(2))
                 .sum::<f64>()
                 .sqrt();
             let s = eval.point_force[i]
@@ -193,6 +215,55 @@ impl ConvexEnergy for ConvexProblem<'_> {
     /// `newton.pcg_tolerance`).
     fn forcing_residual(&self) -> (f64, f64) {
         super::local_scales::Bodies::worst(&self.body_residual, &self.eval.body_scale)
+    }
+
+    /// The floors of [`System::round_off_floors`] at the last evaluation; the body
+    /// residuals are taken again over what lies above them, regions' resultants included
+    /// ([`super::round_off::body_residuals`]). A body left with nothing but round-off, at
+    /// its entries and at its contact points, gets no Newton step: its gradient entries are
+    /// set to zero.
+    fn discount_round_off(&mut self) {
+        let mut floors = std::mem::take(&mut self.floors);
+        let (problem, frozen) = (self.problem, self.frozen);
+        let normal = &self.eval.normal;
+        self.system
+            .round_off_floors(problem, &self.u, frozen, normal, &mut floors);
+        self.floors = floors;
+        self.discounted = true;
+        let (mesh, system, grad) = (&problem.mesh, &*self.system, &self.eval.grad);
+        let value = |k: usize| {
+            if system.dofs.is_fixed(k) {
+                0.0
+            } else {
+                grad[k]
+            }
+        };
+        let bodies = &system.bodies;
+        let (share, floors) = (system.share(), &self.floors);
+        let mut above = Vec::new();
+        super::round_off::body_residuals(bodies, mesh, share, floors, value, value, &mut above);
+        // Converged either way: plainly, or above the round-off.
+        for (r, a) in self.body_residual.iter_mut().zip(above) {
+            *r = r.min(a);
+        }
+        // The bodies with a contact point whose node's residual is above its floor.
+        let d = mesh.dim();
+        let mut busy = vec![0.0; bodies.count];
+        for &v in &system.contact.node[..system.contact.owned()] {
+            let v = v as usize;
+            if (0..d).any(|k| self.counted(d * v + k) != 0.0 && !system.dofs.is_fixed(d * v + k)) {
+                if let Some(b) = busy.get_mut(bodies.of_node[v] as usize) {
+                    *b = 1.0;
+                }
+            }
+        }
+        share.max(&mut busy);
+        for (dof, &eq) in system.dofs.equations().iter().enumerate() {
+            let b = bodies.of_node[dof / d] as usize;
+            if eq != FIXED && self.body_residual.get(b) == Some(&0.0) && busy[b] == 0.0 {
+                self.gradient[eq as usize] = 0.0;
+            }
+        }
     }
 
     fn newton_direction(

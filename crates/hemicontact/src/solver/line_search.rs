@@ -60,9 +60,10 @@ impl LineSearch {
             let full = iter == 0;
             let hessian = full && hessian_at_full;
             let e_trial = energy.evaluate(trial, hessian);
-            let armijo = e_trial <= value + self.armijo * step * slope;
-            // Below round-off of the energy, the Armijo test is meaningless: accept.
-            if full && (armijo || negligible) {
+            // Below round-off of the energy the Armijo test is meaningless (it holds
+            // whatever the step): the directional derivative decides alone.
+            let armijo = e_trial <= value + self.armijo * step * slope && !negligible;
+            if full && armijo {
                 return Found {
                     step: Some(step),
                     evaluated: Some((e_trial, hessian)),
@@ -72,7 +73,7 @@ impl LineSearch {
             // Near the solution the energy change drowns in the round-off of the energy (a
             // sum over all cells with cancellation): then the directional derivative decides
             // — the step is accepted if it at least halves |φ'|.
-            let noise = (e_trial - value).abs() <= 1e-12 * value.abs();
+            let noise = negligible || (e_trial - value).abs() <= 1e-12 * value.abs();
             if noise && d.abs() <= 0.5 * slope.abs() {
                 if full {
                     evaluated = Some((e_trial, hessian));
@@ -89,7 +90,7 @@ impl LineSearch {
                 step = a + 0.5 * (b - a);
                 continue;
             }
-            if armijo && (d >= 0.9 * slope || negligible) {
+            if armijo && d >= 0.9 * slope {
                 return Found {
                     step: Some(step),
                     evaluated: None,
@@ -124,9 +125,11 @@ impl LineSearch {
                 break;
             }
         }
-        // The longest step with sufficient decrease found, if any.
+        // The longest step with sufficient decrease found, if any; where the energy could
+        // not tell and the derivative did not settle either (both at round-off), the full
+        // step.
         Found {
-            step: best,
+            step: best.or(negligible.then_some(1.0)),
             evaluated: None,
         }
     }

@@ -12,13 +12,17 @@
 //! - the Newton residual `‖∇E|_b‖` relative to the body's force scale
 //!   `F_b = max(‖f_ext|_b‖, ‖∇W|_b‖, f_D,b)` (external forces, internal forces reactions
 //!   included, and the force unit of the body's prescribed motions
-//!   `f_D,b = S · max|u_D − c_b|_b · diam_b^{d−2}`, S the P-wave modulus and `c_b` the
-//!   translation the body's supports carry it by ([`crate::fem::carry`]), so that a
-//!   stress-free displacement-driven body is measured against the forces its data could
-//!   cause);
+//!   `f_D,b = max_k S_k |u_D,k − c_b,k| · diam_b^{d−2}` over the body's prescribed
+//!   components k, `S_k` the P-wave modulus of the stiffest material around the node and
+//!   `c_b` the translation the body's supports carry it by ([`crate::fem::carry`]), so that
+//!   a stress-free displacement-driven body is measured against the forces its data could
+//!   cause, a soft body never against a stiff one's modulus, and a rigid translation, taken
+//!   exactly, asks no force);
 //! - the relative change of u in the energy norm, `‖Δu|_b‖_E / ‖u|_b‖_E`.
 //!
-//! On a mesh of one body each norm is the plain one, computed in the same order.
+//! On a mesh of one body each norm is the plain one, computed in the same order. A norm
+//! beyond its tolerance that no longer falls is taken again over the entries above their
+//! round-off floors, with the resultants of the body's regions ([`super::round_off`]).
 //!
 //! # Contact points
 //!
@@ -40,7 +44,12 @@
 //! multipliers against `f_i` and `δ_i`; the certificate checks its laws against `f_i` and
 //! its stick state against `δ_i` ([`super::certificate`]).
 
-use crate::assembly::element;
+use super::frozen::Frozen;
+use super::regions::Regions;
+use super::system::ideal_locking;
+use super::System;
+use crate::assembly::{element, BulkAssembler};
+use crate::contact::NormalResponse;
 use crate::fem::rigid::RigidMotions;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
@@ -67,9 +76,13 @@ pub struct Bodies {
     /// Number of bodies.
     pub count: usize,
     /// Force unit of the prescribed motions of each body, `f_D,b` (N): the largest
-    /// prescribed displacement component on the body beyond its carried translation, times
-    /// `S · diam_b^{d−2}`.
+    /// prescribed displacement component on the body beyond its carried translation, each
+    /// times the P-wave modulus S of the stiffest material around its node, times
+    /// `diam_b^{d−2}`.
     pub force_floor: Vec<f64>,
+    /// The regions of one material in the bodies, over which residuals are also summed
+    /// ([`super::regions`]).
+    pub regions: Regions,
 }
 
 impl Bodies {
@@ -84,8 +97,11 @@ impl Bodies {
                 of_node[v as usize] = b as u32;
             }
         }
-        // Largest prescribed motion per body, beyond the translation its supports carry it
-        // by (a rigid translation, taken exactly, asks no force of the body).
+        // Largest prescribed motion per body beyond the translation its supports carry it
+        // by (a rigid translation, taken exactly, asks no force of the body), each times the
+        // stiffness of the material it moves (a soft body is not measured against a stiff
+        // one's modulus).
+        let stiffness = super::constraints::node_stiffness(problem);
         let mut motion = vec![0.0f64; count];
         let u_d = problem.prescribed_displacement();
         let carried = problem.carried_displacement();
@@ -94,10 +110,10 @@ impl Bodies {
             let b = of_node[k / d];
             if dofs.is_fixed(k) && b != u32::MAX {
                 let beyond = x - carried.as_ref().map_or(0.0, |c| c[k]);
-                motion[b as usize] = motion[b as usize].max(beyond.abs());
+                let m = &mut motion[b as usize];
+                *m = m.max(stiffness[k / d] * beyond.abs());
             }
         }
-        let stiffness = problem.stiffness();
         let force_floor = rigid
             .bodies
             .iter()
@@ -105,23 +121,27 @@ impl Bodies {
             .map(|(body, m)| {
                 let (lo, hi) = body.bounding_box;
                 let diam = (0..3).map(|i| (hi[i] - lo[i]).powi(2)).sum::<f64>().sqrt();
-                stiffness * m * diam.powi(d as i32 - 2)
+                m * diam.powi(d as i32 - 2)
             })
             .collect();
+        let regions = Regions::new(mesh, |c| problem.cell_material(c), &of_node);
         Bodies {
             of_node,
             count,
             force_floor,
+            regions,
         }
     }
 
-    /// These bodies on a part of the mesh whose node `l` is the whole mesh's `nodes[l]`:
-    /// [`Bodies::of_node`] is the part's.
-    pub fn restricted(&self, nodes: &[u32]) -> Bodies {
+    /// These bodies on a part `mesh` of the mesh whose node `l` is the whole mesh's
+    /// `nodes[l]` and whose cell p is its `cells[p]`: [`Bodies::of_node`] and the regions'
+    /// cells and nodes are the part's.
+    pub fn restricted(&self, nodes: &[u32], mesh: &Mesh, cells: &[u32]) -> Bodies {
         Bodies {
             of_node: nodes.iter().map(|&v| self.of_node[v as usize]).collect(),
             count: self.count,
             force_floor: self.force_floor.clone(),
+            regions: self.regions.restricted(mesh, cells),
         }
     }
 
@@ -251,6 +271,48 @@ impl Bodies {
             } else {
                 s * n.max(0.0).sqrt()
             };
+        }
+    }
+}
+
+impl System {
+    /// The local scales of every contact point counted here ([`ContactNodes::owned`]) at `u`
+    /// for the frozen quantities `frozen`
+    /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
+    /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
+    /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
+    /// force scale of its body, from `body_scale`) into `floor`.
+    pub fn point_scales(
+        &self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        responses: &[NormalResponse],
+        body_scale: &[f64],
+        force: &mut Vec<f64>,
+        floor: &mut Vec<f64>,
+    ) {
+        let n = self.contact.owned();
+        let bulk = BulkAssembler {
+            ideal: ideal_locking(&self.continuation.penalties, problem, frozen),
+            ..BulkAssembler::of(problem, &problem.mesh)
+        };
+        let mut ca = self.contact_assembler(problem);
+        ca.responses = responses;
+        let data = frozen.contact();
+        force.clear();
+        floor.clear();
+        let (offsets, cells) = &self.point_cells;
+        for i in 0..n {
+            let p = ca.state(u, i, &data).pressure;
+            force.push(self.contact.weight[i] * data.bound[i].max(p));
+            let around = &cells[offsets[i]..offsets[i + 1]];
+            let v = self.contact.node[i];
+            let body = body_scale
+                .get(self.bodies.of_node[v as usize] as usize)
+                .copied()
+                .unwrap_or(0.0);
+            floor.push((FLOW_FLOOR * bulk.nodal_force_sum(u, v, around)).max(BODY_FLOOR * body));
         }
     }
 }

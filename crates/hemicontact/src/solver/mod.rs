@@ -19,10 +19,13 @@ pub mod mixing;
 pub mod multipliers;
 pub mod newton;
 pub mod outer;
+pub mod regions;
 pub mod report;
+pub mod round_off;
 pub mod scaling;
 pub mod system;
 pub mod uniqueness;
+pub mod whole;
 
 pub use crate::linalg::{LinearSolver, PetscSettings};
 pub use certificate::{Certificate, ContactResult, FrictionState, NormalState};

@@ -8,7 +8,9 @@
 //! bracketing secant search).
 //! It stops when the residual ‖∇Π(x)‖ is below `residual_tolerance` times the energy's
 //! force scale ([`ConvexEnergy::residual`]: body by body), so the criterion is
-//! dimensionless.
+//! dimensionless. Once the residual stops falling (or a line search fails), it is measured
+//! above the round-off floors of its entries ([`ConvexEnergy::discount_round_off`],
+//! [`super::round_off`]).
 
 use super::line_search::LineSearch;
 use super::report::{NewtonStep, Timings};
@@ -149,6 +151,13 @@ pub trait ConvexEnergy {
     fn forcing_residual(&self) -> (f64, f64) {
         self.residual()
     }
+    /// Discounts the round-off of the last evaluation until the next one (see
+    /// [`super::round_off`]): [`ConvexEnergy::residual`] and
+    /// [`ConvexEnergy::forcing_residual`] count only what lies above the round-off floors
+    /// (where that is less), and a part of the energy left with nothing but round-off may
+    /// be left out of [`ConvexEnergy::gradient`], so that no Newton step moves it. By
+    /// default nothing is discounted.
+    fn discount_round_off(&mut self) {}
     /// Solves `H Δ = rhs` with the Hessian of the last evaluation with one, to the relative
     /// residual `eta` where the solve is iterative; timings go to `timings`.
     ///
@@ -236,6 +245,8 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
     // Energy of an evaluation at `x` left by the line search, if any, and whether it
     // included the Hessian.
     let mut evaluated: Option<(f64, bool)> = None;
+    // Whether the last line search failed at this iterate, which may be round-off.
+    let mut retry = false;
     loop {
         let t = Instant::now();
         let (value, with_hessian) = match evaluated.take() {
@@ -243,13 +254,24 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
             None => (energy.evaluate(x, true), true),
         };
         record.timings.assembly += t.elapsed().as_secs_f64();
-        let (res, force_scale) = energy.residual();
+        let (raw, raw_scale) = energy.residual();
+        // A residual that stopped falling may be round-off: then the entries at their
+        // round-off floor count as zero, and the regions' resultants count
+        // (`discount_round_off`, see `super::round_off`).
+        let stalled = retry || (steps > 0 && raw > 0.5 * prev_res);
+        let discounted = stalled && raw > tolerance * raw_scale;
+        let (res, force_scale) = if discounted {
+            energy.discount_round_off();
+            energy.residual()
+        } else {
+            (raw, raw_scale)
+        };
         let tol = tolerance * force_scale;
         record.residual = res;
         record.residual_tolerance = tol;
-        if !value.is_finite() || !res.is_finite() {
+        if !value.is_finite() || !res.is_finite() || !raw.is_finite() {
             return Err(Error::Breakdown(format!(
-                "energy {value:e} / residual {res:e} at Newton step {}",
+                "energy {value:e} / residual {raw:e} at Newton step {}",
                 record.first_step + record.steps.len()
             )));
         }
@@ -261,11 +283,11 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
         // certificate state.
         let floor = steps > 0
             && last_full
-            && res <= ROUND_OFF_MARGIN * settings.residual_tolerance * force_scale
-            && res > 0.5 * prev_res;
+            && raw <= ROUND_OFF_MARGIN * settings.residual_tolerance * raw_scale
+            && raw > 0.5 * prev_res;
         if res <= tol || floor || steps == settings.max_iterations {
             if floor && res > tol {
-                record.round_off_floor = record.round_off_floor.max(res / force_scale);
+                record.round_off_floor = record.round_off_floor.max(raw / raw_scale);
             }
             return Ok(NewtonOutcome {
                 converged: res <= tol || floor,
@@ -275,12 +297,15 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
                 force_scale,
             });
         }
-        prev_res = res;
+        prev_res = raw;
         if !with_hessian {
             // The line search evaluated this point without the Hessian (it expected the
             // step to converge): evaluate it now.
             let t = Instant::now();
             energy.evaluate(x, true);
+            if discounted {
+                energy.discount_round_off();
+            }
             record.timings.assembly += t.elapsed().as_secs_f64();
         }
         for (d, ri) in r_neg.iter_mut().zip(energy.gradient()) {
@@ -301,6 +326,13 @@ pub fn minimize<E: ConvexEnergy + ?Sized>(
         let found =
             line_search.search(energy, x, &delta, &mut trial, value, slope, hessian_at_full);
         record.timings.line_search += t.elapsed().as_secs_f64();
+        // A line search that fails may fail on round-off (another body's, moved by it): once
+        // more from this iterate with the round-off discounted.
+        retry = found.step.is_none() && !discounted;
+        if retry {
+            evaluated = None;
+            continue;
+        }
         evaluated = found.evaluated;
         steps += 1;
         last_full = found.step == Some(1.0);

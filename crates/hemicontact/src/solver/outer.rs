@@ -376,11 +376,31 @@ pub fn run(
                 &diff,
                 &mut norm_diff,
             );
-            norm_diff
-                .iter()
-                .zip(&norm_u)
-                .map(|(d, n)| d / n.max(f64::MIN_POSITIVE))
-                .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
+            let relative = |floor: &[f64]| {
+                norm_diff
+                    .iter()
+                    .zip(&norm_u)
+                    .enumerate()
+                    .map(|(b, (d, n))| {
+                        let d = if floor.get(b).is_some_and(|f| d <= f) {
+                            0.0
+                        } else {
+                            *d
+                        };
+                        d / n.max(f64::MIN_POSITIVE)
+                    })
+                    .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
+            };
+            let plain = relative(&[]);
+            if plain > settings.outer.tolerance {
+                // A change within the round-off of u itself is no change.
+                let mut floor = Vec::new();
+                let (share, mesh) = (system.share(), &problem.mesh);
+                super::round_off::change_floors(&system.bodies, share, mesh, &hooke, u, &mut floor);
+                relative(&floor)
+            } else {
+                plain
+            }
         };
         u_prev.copy_from_slice(u);
         if k == 0 && relieved_first {

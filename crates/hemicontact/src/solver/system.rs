@@ -8,7 +8,7 @@ use super::certificate::{Certificate, ContactResult};
 use super::constraints::AugmentedLagrangian;
 use super::continuation::Continuation;
 use super::frozen::Frozen;
-use super::local_scales::{Bodies, BODY_FLOOR, FLOW_FLOOR};
+use super::local_scales::Bodies;
 use super::scaling::Scales;
 use crate::assembly::contact::{contact_slots, ContactAssembler};
 use crate::assembly::global::{IdealLocking, Want, Workspace};
@@ -292,7 +292,7 @@ impl System {
                     .flat_map(|&v| f_ext[d * v as usize..d * v as usize + d].iter().copied())
                     .collect(),
                 rigid.restricted(&nodes),
-                bodies.restricted(&nodes),
+                bodies.restricted(&nodes, &mesh, &sub.cells),
             );
             part = Some((sub, mesh, nodes, points));
             restricted
@@ -493,46 +493,6 @@ impl System {
         }
     }
 
-    /// The local scales of every contact point counted here ([`ContactNodes::owned`]) at `u`
-    /// for the frozen quantities `frozen`
-    /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
-    /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
-    /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
-    /// force scale of its body, from `body_scale`) into `floor`.
-    pub fn point_scales(
-        &self,
-        problem: &Problem,
-        u: &[f64],
-        frozen: &Frozen,
-        responses: &[NormalResponse],
-        body_scale: &[f64],
-        force: &mut Vec<f64>,
-        floor: &mut Vec<f64>,
-    ) {
-        let n = self.contact.owned();
-        let bulk = BulkAssembler {
-            ideal: ideal_locking(&self.continuation.penalties, problem, frozen),
-            ..BulkAssembler::of(problem, &problem.mesh)
-        };
-        let mut ca = self.contact_assembler(problem);
-        ca.responses = responses;
-        let data = frozen.contact();
-        force.clear();
-        floor.clear();
-        let (offsets, cells) = &self.point_cells;
-        for i in 0..n {
-            let p = ca.state(u, i, &data).pressure;
-            force.push(self.contact.weight[i] * data.bound[i].max(p));
-            let around = &cells[offsets[i]..offsets[i + 1]];
-            let v = self.contact.node[i];
-            let body = body_scale
-                .get(self.bodies.of_node[v as usize] as usize)
-                .copied()
-                .unwrap_or(0.0);
-            floor.push((FLOW_FLOOR * bulk.nodal_force_sum(u, v, around)).max(BODY_FLOOR * body));
-        }
-    }
-
     /// The contact results and the certificate ([`super::certificate::evaluate`]) of `u` for
     /// the frozen quantities `frozen`, from the evaluation `eval` at `u` (its bulk gradient
     /// and the responses of user-defined compliance laws), the force scales of the bodies
@@ -558,6 +518,8 @@ impl System {
             &mut point_force,
             &mut floor,
         );
+        let mut round_off = super::round_off::Floors::default();
+        self.round_off_floors(problem, u, frozen, &eval.normal, &mut round_off);
         let mut ca = self.contact_assembler(problem);
         ca.responses = &eval.normal;
         super::certificate::evaluate(
@@ -570,6 +532,8 @@ impl System {
                 fixed: &|k| self.dofs.is_fixed(k),
                 bodies: &self.bodies,
                 floor: &floor,
+                round_off: &round_off,
+                mesh: &problem.mesh,
                 frozen: frozen.contact(),
                 tolerance,
                 share: &self.share,
@@ -823,7 +787,7 @@ fn cells_around(mesh: &crate::mesh::Mesh, nodes: &[u32]) -> (Vec<usize>, Vec<u32
 
 /// The ideal-locking term of `problem` with the penalties `penalties` and the cell
 /// multipliers of `frozen`.
-fn ideal_locking<'a>(
+pub(super) fn ideal_locking<'a>(
     penalties: &'a AugmentedLagrangian,
     problem: &Problem,
     frozen: &'a Frozen,
