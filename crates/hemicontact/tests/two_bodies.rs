@@ -38,8 +38,8 @@
 //!    friction between a held block and a free one is held with the normal and friction
 //!    forces its equilibrium gives, and refused above the friction limit.
 //! 9. **Contrasts of stiffness up to 10¹²**, either block the slave side: on matching meshes
-//!    the patch test of two materials (displacement and the force through the held block to
-//!    1e-8, the pressure to 1e-8 or to the resolution `r ε δ` of a stiff slave's penalty);
+//!    the patch test of two materials (displacement, the force through the held block and
+//!    the pressure to 1e-8, the pair's penalty the softer body's);
 //!    on non-matching ones every solve converges, the force within node-to-segment's error.
 #![allow(clippy::unwrap_used, clippy::expect_used)]
 
@@ -1758,16 +1758,15 @@ fn series(e_b: f64, e_a: f64, y: f64, upper: bool) -> (f64, f64) {
 /// Two blocks of stiffness contrast up to 10¹², pressed on each other, either block the
 /// slave side, on matching meshes: the patch test of two materials (ν = 0, uniaxial: the
 /// stress σ of [`series`] in both, the pressure σ at every point) to 1e-8 of δ for the
-/// displacement and of σ for the force through the held block. The stiff upper block is
-/// moved by nearly δ as a whole when the lower one is soft: its nodal forces are sums of
-/// terms `E_a δ` that cancel to σ, 10¹² times smaller. As the slave side it then carries
-/// the contact law's pressure `λ + r (u_ν − g)` with the penalty r = γ E_a/h of its own
-/// material, and `u_ν` a difference of two displacements of size δ: the pressure is
-/// resolved only to `r ε δ`, and is checked to 1e-8 or to 16 of those units.
+/// displacement, of σ for the force through the held block and for the pressure at every
+/// point. The stiff upper block is moved by nearly δ as a whole when the lower one is soft:
+/// its nodal forces are sums of terms `E_a δ` that cancel to σ, 10¹² times smaller. The
+/// pair's penalty is the softer body's (`r = γ S/h` with S the smaller of the two sides'
+/// moduli): with the stiff side's, the pressure `λ + r (u_ν − g)` of a stiff slave was
+/// resolved only to `r ε δ`, 5.7e-3 σ at contrast 10¹².
 #[test]
 fn blocks_of_any_stiffness_contrast_pass_the_patch_test_from_either_side() {
     let settings = SolverSettings::default();
-    let gamma = settings.constraints.contact_penalty;
     let mut failed = Vec::new();
     for contrast in [1.0, 1e3, 1e6, 1e9, 1e12] {
         for (e_b, e_a) in [(E, E * contrast), (E * contrast, E)] {
@@ -1805,21 +1804,15 @@ fn blocks_of_any_stiffness_contrast_pass_the_patch_test_from_either_side() {
                     .iter()
                     .map(|c| (c.pressure - sigma).abs())
                     .fold(0.0f64, f64::max);
-                let e_slave = if a_slave { e_a } else { e_b };
-                let resolution = gamma * e_slave / 0.25 * f64::EPSILON * DELTA;
                 println!(
                     "{case}: {} Newton steps, displacement error {:.1e} δ, force through the \
-                     held block {:.1e} σ, pressure {:.1e} σ ({:.1e} of r ε δ)",
+                     held block {:.1e} σ, pressure {:.1e} σ",
                     s.report.newton.len(),
                     eu / DELTA,
                     ef / sigma,
-                    ep / sigma,
-                    ep / resolution
+                    ep / sigma
                 );
-                if eu > 1e-8 * DELTA
-                    || ef > 1e-8 * sigma
-                    || ep > (1e-8 * sigma).max(16.0 * resolution)
-                {
+                if eu > 1e-8 * DELTA || ef > 1e-8 * sigma || ep > 1e-8 * sigma {
                     failed.push(format!(
                         "{case}: errors {:e} δ, force {:e} σ, pressure {:e} σ",
                         eu / DELTA,

@@ -243,13 +243,32 @@ pub fn has_multipliers(problem: &Problem) -> bool {
 
 /// The stiffness `S_i` (Pa) of every contact point of `points`: the largest P-wave modulus
 /// `λ + 2G` (at least G) of the small-strain Hooke laws of the cells around its node, the
-/// material its surface deforms; [`Problem::stiffness`] for a body of one material.
+/// material its surface deforms; [`Problem::stiffness`] for a body of one material. At a
+/// point of a contact pair the relative displacement deforms both bodies, in series, and
+/// the softer one governs: the smaller of its node's stiffness and the largest of its
+/// master facet's nodes' (a stiff punch on a soft block has the block's stiffness, so that
+/// the pair's penalty and slip scale are those of the body that gives way, not 10¹² times
+/// theirs).
 pub fn point_stiffness(problem: &Problem, points: &ContactNodes) -> Vec<f64> {
     if problem.materials.len() == 1 {
         return vec![problem.stiffness(); points.len()];
     }
     let at_node = node_stiffness(problem);
-    points.node.iter().map(|&v| at_node[v as usize]).collect()
+    let d = problem.mesh.dim();
+    (0..points.len())
+        .map(|i| {
+            let (n, nodes, _) = points.stencil(d, i);
+            let slave = at_node[nodes[0] as usize];
+            if n == 1 {
+                return slave;
+            }
+            let master = nodes[1..n]
+                .iter()
+                .map(|&m| at_node[m as usize])
+                .fold(0.0f64, f64::max);
+            slave.min(master)
+        })
+        .collect()
 }
 
 /// The stiffness of every node of the mesh (Pa): the largest P-wave modulus `λ + 2G` (at
