@@ -68,17 +68,21 @@ fn stacked_2d(nx_a: usize, nx_b: usize, ny: usize) -> Mesh {
 
 /// [`stacked_2d`] with the upper block raised by `gap`.
 fn stacked_2d_apart(nx_a: usize, nx_b: usize, ny: usize, gap: f64) -> Mesh {
-    let block = |y0: f64, nx: usize| {
-        rectangle(&Rectangle {
-            origin: [0.0, y0],
-            size: [1.0, H / 2.0],
-            n: [nx, ny],
-            pattern: CutPattern::Uniform,
-            progression: [1.0, 1.0],
-        })
-        .unwrap()
-    };
+    let block = |y0: f64, nx: usize| layer([0.0, y0], 1.0, [nx, ny]);
     merged(&block(0.0, nx_b), &block(H / 2.0 + gap, nx_a))
+}
+
+/// The rectangle `[x0, x0 + width] × [y0, y0 + H/2]` (`origin` = (x0, y0)) of `n` squares
+/// (or rectangles) across and up, its parts `bottom`, `top`, `left`, `right`.
+fn layer(origin: [f64; 2], width: f64, n: [usize; 2]) -> Mesh {
+    rectangle(&Rectangle {
+        origin,
+        size: [width, H / 2.0],
+        n,
+        pattern: CutPattern::Uniform,
+        progression: [1.0, 1.0],
+    })
+    .unwrap()
 }
 
 /// Two boxes `[0, 1]² × [0, H/2]` (`b`, `n_b` cubes across) and `[0, 1]² × [H/2, H]` (`a`,
@@ -1016,16 +1020,7 @@ fn a_crack_closed_by_compression_transmits_the_pressure_exactly() {
 /// (`x ∈ [1.002, 1.048]`) has no contact point: refused naming the two parts.
 #[test]
 fn slave_nodes_beyond_the_edge_of_the_master_surface_are_no_contact_points() {
-    let rect = |x0: f64, y0: f64, w: f64, nx: usize| {
-        rectangle(&Rectangle {
-            origin: [x0, y0],
-            size: [w, H / 2.0],
-            n: [nx, 2],
-            pattern: CutPattern::Uniform,
-            progression: [1.0, 1.0],
-        })
-        .unwrap()
-    };
+    let rect = |x0: f64, y0: f64, w: f64, nx: usize| layer([x0, y0], w, [nx, 2]);
     let overhang = merged(&rect(0.0, 0.0, 1.0, 1), &rect(0.2, H / 2.0, 0.84, 4));
     let problem = pressed(overhang, NormalLaw::Signorini);
     let s = solve(&problem, &SolverSettings::default()).unwrap();
@@ -1140,16 +1135,7 @@ fn in_3d_an_overhang_beyond_the_master_surface_has_no_contact_points() {
 /// the corner's force by 45 %), and the printed corner pressure is the same.
 #[test]
 fn a_slave_part_that_turns_a_corner_weighs_its_faces_apart() {
-    let rect = |x0: f64, y0: f64, w: f64, nx: usize| {
-        rectangle(&Rectangle {
-            origin: [x0, y0],
-            size: [w, H / 2.0],
-            n: [nx, 2],
-            pattern: CutPattern::Uniform,
-            progression: [1.0, 1.0],
-        })
-        .unwrap()
-    };
+    let rect = |x0: f64, y0: f64, w: f64, nx: usize| layer([x0, y0], w, [nx, 2]);
     let mesh = merged(&rect(0.0, 0.0, 2.0, 8), &rect(0.5, H / 2.0, 1.0, 4));
     // The same mesh with the part `a_corner`: `a_bottom` and `a_right` together.
     let mut parts: Vec<(String, Vec<u32>)> = Vec::new();

@@ -1,7 +1,7 @@
 //! The rigid drop: bodies resting across a gap moved along their pressed motions onto their
 //! contact before Newton (see the module documentation of [`super`]).
 
-use super::{describe, norm, ROUND_OFF};
+use super::{describe, load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
@@ -48,21 +48,11 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
         }
         let k = basis.len();
         // The load along each pressed motion, and the size of the group's load.
-        let mut load = vec![0.0; k];
+        let mut load = load_along(system, mesh, group, basis);
         let mut total = 0.0;
-        for (j, &b) in group.bodies.iter().enumerate() {
+        for &b in &group.bodies {
             let nodes = rigid.bodies[b].nodes.iter();
             for &v in nodes.filter(|&&v| share.counts_node(v as usize)) {
-                let x = mesh.node(v as usize);
-                for (l, c) in basis.iter().enumerate() {
-                    let r = rigid.displacement(b, &c[j], x);
-                    for i in 0..d {
-                        let dof = d * v as usize + i;
-                        if !system.dofs.is_fixed(dof) {
-                            load[l] += r[i] * f[dof];
-                        }
-                    }
-                }
                 for i in 0..d {
                     total += f[d * v as usize + i].abs();
                 }

@@ -2,7 +2,7 @@
 //! relief of the first outer iteration, the recentring of its answer and the check of the
 //! load against the largest friction force (see the module documentation of [`super`]).
 
-use super::{norm, ROUND_OFF};
+use super::{load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
@@ -200,21 +200,7 @@ impl Sliding {
             let basis = &group.sliding;
             let k = basis.len();
             // The load along each sliding motion.
-            let mut load = vec![0.0; k];
-            for (j, &b) in group.bodies.iter().enumerate() {
-                for &v in rigid.bodies[b].nodes.iter().filter(counted) {
-                    let x = mesh.node(v as usize);
-                    for (l, c) in basis.iter().enumerate() {
-                        let r = rigid.displacement(b, &c[j], x);
-                        for i in 0..d {
-                            let dof = d * v as usize + i;
-                            if !system.dofs.is_fixed(dof) {
-                                load[l] += r[i] * f[dof];
-                            }
-                        }
-                    }
-                }
-            }
+            let mut load = load_along(system, mesh, group, basis);
             // ψ_l: w_i (ρ_l)_τ(x_i) at the frictional points, free DOFs only (at a master
             // point, spread onto its facet's nodes by N_j).
             let mut psi = vec![vec![0.0; f.len()]; k];
