@@ -276,7 +276,7 @@ impl Bodies {
 }
 
 impl System {
-    /// The local scales of every contact point counted here ([`ContactNodes::owned`]) at `u`
+    /// The local scales of every contact point counted here ([`crate::contact::ContactNodes::owned`]) at `u`
     /// for the frozen quantities `frozen`
     /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
     /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
