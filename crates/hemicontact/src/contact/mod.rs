@@ -13,6 +13,7 @@
 
 pub mod compliance_law;
 mod describe;
+pub mod directions;
 pub mod field_law;
 pub mod friction;
 pub mod interpenetration;

@@ -83,8 +83,9 @@
 //! on its stencil: its node with coefficient 1 and the master nodes with −N_j
 //! ([`ContactNodes::stencil`]).
 
+use super::directions::{direction_groups, lumped_weight};
+pub use super::directions::{tangent_basis, CORNER_ANGLE_DEG};
 use super::{ContactBoundary, ContactObstacle};
-use crate::fem::simplex::cross;
 use crate::mesh::Mesh;
 
 /// The contact points of a mesh; see the module documentation.
@@ -137,10 +138,6 @@ pub struct ContactNodes {
     /// (energy, residuals, results) by the slave node's owner only. Zero on one process.
     pub ghosts: usize,
 }
-
-/// Angle between facet normals above which one contact boundary is split at a node into
-/// one contact point per direction (degrees); see the module documentation.
-pub const CORNER_ANGLE_DEG: f64 = 30.0;
 
 /// How finely a rigid obstacle must place the nodes of a body, relative to the body's size
 /// (the diagonal of the mesh's bounding box): an obstacle's translation relative to the
@@ -623,84 +620,4 @@ fn paired_points(
         }
     }
     Ok(())
-}
-
-/// The facets `around` a node ((node, facet) pairs; `facets` the measures and outward
-/// normals of the part's facets) grouped by direction (see *Corners* in the module
-/// documentation): the lumped weight `Σ |F| / d` and the averaged unit normal of each group,
-/// in the order of each group's first facet. `group` is scratch space (the group of each
-/// facet).
-fn direction_groups(
-    around: &[(u32, u32)],
-    facets: &[(f64, [f64; 3])],
-    d: usize,
-    group: &mut Vec<usize>,
-) -> Vec<(f64, [f64; 3])> {
-    let cos_corner = CORNER_ANGLE_DEG.to_radians().cos();
-    let normal = |k: usize| &facets[around[k].1 as usize].1;
-    group.clear();
-    group.resize(around.len(), usize::MAX);
-    let mut n_groups = 0;
-    let mut stack = Vec::new();
-    for seed in 0..around.len() {
-        if group[seed] != usize::MAX {
-            continue;
-        }
-        group[seed] = n_groups;
-        stack.push(seed);
-        while let Some(k) = stack.pop() {
-            for m in 0..around.len() {
-                let cos: f64 = (0..3).map(|i| normal(k)[i] * normal(m)[i]).sum();
-                if group[m] == usize::MAX && cos >= cos_corner {
-                    group[m] = n_groups;
-                    stack.push(m);
-                }
-            }
-        }
-        n_groups += 1;
-    }
-    (0..n_groups)
-        .map(|g| {
-            let mut w = 0.0;
-            let mut n = [0.0; 3];
-            for (&(_, f), _) in around.iter().zip(group.iter()).filter(|(_, &k)| k == g) {
-                let (measure, nf) = &facets[f as usize];
-                w += measure / d as f64;
-                for i in 0..3 {
-                    n[i] += measure * nf[i];
-                }
-            }
-            let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
-            (w, n.map(|x| x / len))
-        })
-        .collect()
-}
-
-/// The lumped weight `Σ |F| / d` of a node over all its facets `around` ((node, facet)
-/// pairs; `facets` the measures and normals of the part's facets).
-fn lumped_weight(around: &[(u32, u32)], facets: &[(f64, [f64; 3])], d: usize) -> f64 {
-    around
-        .iter()
-        .map(|&(_, f)| facets[f as usize].0)
-        .sum::<f64>()
-        / d as f64
-}
-
-/// Orthonormal tangent basis of the unit normal `n`; see the module documentation.
-pub fn tangent_basis(dim: usize, n: &[f64; 3]) -> [[f64; 3]; 2] {
-    if dim == 2 {
-        return [[-n[1], n[0], 0.0], [0.0; 3]];
-    }
-    let k = (0..3)
-        .min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
-        .unwrap_or(0);
-    let mut e = [0.0; 3];
-    e[k] = 1.0;
-    let mut t1 = cross(&e, n);
-    let len = t1.iter().map(|x| x * x).sum::<f64>().sqrt();
-    for x in t1.iter_mut() {
-        *x /= len;
-    }
-    let t2 = cross(n, &t1);
-    [t1, t2]
 }

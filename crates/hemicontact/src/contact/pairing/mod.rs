@@ -19,7 +19,7 @@
 //! the point then taken on its edge), the nearest.
 //! Two such facets at the same distance with distinct closest points make the pairing
 //! ambiguous: it is refused, naming the node, unless the two are neighbours whose normals
-//! differ by less than the corner angle ([`super::nodes::CORNER_ANGLE_DEG`], 30°): above
+//! differ by less than the corner angle ([`super::directions::CORNER_ANGLE_DEG`], 30°): above
 //! the nearly flat crease between two triangles of a curved surface either point is as
 //! good, and the one of the lower facet index is taken. Two facets at the same distance with
 //! the same closest point (a slave node at a concave corner of the master surface) are not
@@ -517,7 +517,7 @@ fn decide(
         // facets are neighbours that meet at a nearly flat crease (a triangulated curved
         // surface), where either closest point is as good.
         let (_, best_normal) = mesh.facet_measure_normal(best.facet);
-        let cos_crease = super::nodes::CORNER_ANGLE_DEG.to_radians().cos();
+        let cos_crease = super::directions::CORNER_ANGLE_DEG.to_radians().cos();
         let flat_neighbour = |c: &Candidate| {
             let (_, n) = mesh.facet_measure_normal(c.facet);
             let cos: f64 = (0..3).map(|k| n[k] * best_normal[k]).sum();
