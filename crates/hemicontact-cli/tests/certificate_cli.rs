@@ -4,11 +4,8 @@
 //! the certificate tolerance is set below what the equilibrium iteration delivers (Newton
 //! stops at a relative residual of 1e-10): exit 3, the results written and marked
 //! `"converged": false`, and the message naming the law that failed.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::bin;
+use crate::common::bin;
 
 const SCENARIO: &str = r#"
 [mesh]

@@ -30,14 +30,11 @@
 //!   interpreter is `$HEMICONTACT_PYTHON` (CI points it at the venv that `.ci/run` creates),
 //!   else `python3`. Under `CI=true` a missing meshio FAILS the test; elsewhere the test is
 //!   skipped with a loud, uncaptured `SKIPPED` line saying it is no evidence.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-mod common;
-
-use common::{assert_success, repo_root, run, text};
+use crate::common::{assert_success, repo_root, run, text};
 
 fn paper_elastic_toml() -> PathBuf {
     repo_root().join("scenarios/paper-elastic.toml")

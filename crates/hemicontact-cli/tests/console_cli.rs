@@ -23,13 +23,10 @@
 //!   whose properties are the scenario's top-level tables).
 //! - **`scenarios/paper3d.toml` reaches its walls** at its own resolution (contact points
 //!   in contact), which its gap was chosen for.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::{Path, PathBuf};
 
-mod common;
-
-use common::{assert_success, repo_root, run, text};
+use crate::common::{assert_success, repo_root, run, text};
 
 /// A small scenario with frictional contact on the left side; `MU` is replaced by the
 /// coefficient.

@@ -8,13 +8,10 @@
 //! - **A bad mesh** makes `check` exit with code 1 (invalid input) and a message naming the
 //!   mesh file, the line and the problem; a missing mesh file names the field `mesh.file`
 //!   and the path; `convergence` refuses a read mesh (it cannot be refined).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::{Path, PathBuf};
 
-mod common;
-
-use common::{repo_root, run, text};
+use crate::common::{repo_root, run, text};
 
 #[test]
 fn check_half_disc_reads_the_mesh_next_to_the_scenario() {

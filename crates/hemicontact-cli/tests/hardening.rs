@@ -1,14 +1,11 @@
 //! Hardening of the command-line program: oversized requests fail fast with a memory
 //! estimate; Ctrl-C leaves no partial files and exits with 130; a device as scenario,
 //! contradictory boundary conditions and a study without load are refused with a message.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-mod common;
-
-use common::bin;
+use crate::common::bin;
 
 /// A mesh whose solve would need more memory than the machine has is refused before
 /// anything is allocated, naming the field and the estimate.

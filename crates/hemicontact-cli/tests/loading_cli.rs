@@ -2,13 +2,10 @@
 //! collection listing them in step order with the load factors as time values, one row of
 //! `load_path.csv` per step, and a step that does not converge ending the path with exit
 //! code 3.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::path::Path;
 
-mod common;
-
-use common::{assert_success, run, text};
+use crate::common::{assert_success, run, text};
 
 const BLOCK: &str = r#"
 [mesh]

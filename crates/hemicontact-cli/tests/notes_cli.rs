@@ -9,11 +9,8 @@
 //! - **An obstacle smaller than the mesh** (a circle of radius 1 mm poking 0.5 mm into the
 //!   block between two nodes 0.125 m apart) is noted by `check` and `solve`, and recorded
 //!   in `summary.json`.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{assert_success, run, text};
+use crate::common::{assert_success, run, text};
 use std::path::Path;
 
 const DEEP: &str = r#"

@@ -1,10 +1,7 @@
 //! End-to-end runs of the paper command and of the non-convergence path through the
 //! command-line program.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::bin;
+use crate::common::bin;
 
 /// `hemicontact paper` writes, for both cases, the VTU, the contact table, the summary and
 /// the figures, plus the side-by-side figure; the summaries say converged and certify.

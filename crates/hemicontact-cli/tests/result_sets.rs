@@ -20,16 +20,13 @@
 //!   solving, the file untouched.
 //! - Two runs into one folder at the same time: one fails at once naming the folder and the
 //!   other process, the other completes.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-mod common;
-
-use common::{assert_success, bin, text, Rng};
+use crate::common::{assert_success, bin, text, Rng};
 
 /// A 4 m square on an n × n mesh, clamped at the bottom, pressed on top; with a contact part
 /// on the right if `contact`.

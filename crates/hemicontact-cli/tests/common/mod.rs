@@ -2,7 +2,8 @@
 //! runs and their output, and the deterministic pseudo-random generator of the library's
 //! tests (included by path: one definition for both crates).
 //!
-//! Every test file includes this module with `mod common;` and uses only part of it.
+//! The test binaries declare this module once (`tests/main.rs`, `tests/mpi_cli.rs`); each
+//! test module uses part of it.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};

@@ -24,11 +24,9 @@
 //!    regularized agree, the uniqueness condition holds as the scenario's comment says, and
 //!    the fault slips in its middle and sticks at its ends.
 //!
-//! `cargo test --test fault -- --nocapture` prints the tables of docs/benchmarks.md.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+//! `cargo test --test main bodies::fault:: -- --nocapture` prints the tables of docs/benchmarks.md.
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalLaw,

@@ -47,10 +47,8 @@
 //! nonzero side load failed with "the load pulls the body off its contact" (the first
 //! outer iteration freezes the bound μ p at zero pressure, so nothing held the block), and
 //! so did every case above the limit, without saying why.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalLaw,

@@ -19,11 +19,9 @@
 //! its vertical translation is carried by the pair. The force is thus exact by construction
 //! (checked: the pair passes it whole); the half-width within one element and the peak
 //! pressure within 5 % of Hertz are checked at the finest level, and the refinement table
-//! is printed (`cargo test --release --test hertz_two_bodies -- --nocapture`).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
+//! is printed (`cargo test --release --test main bodies::hertz_two_bodies:: -- --nocapture`).
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalLaw,
@@ -175,10 +173,6 @@ fn level(n: usize, r: f64) -> (f64, f64, f64, f64, usize) {
 }
 
 #[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "66k DOFs at the finest level: run with --release (CI does)"
-)]
 fn two_cylinders_half_width_and_peak_pressure_against_hertz() {
     let e_star = 1.0 / ((1.0 - NU1 * NU1) / E1 + (1.0 - NU2 * NU2) / E2);
     let r_star = 1.0 / (1.0 / R1 + 1.0 / R2);
@@ -283,10 +277,6 @@ fn mirrored(half: &Mesh) -> Mesh {
 /// `q(x) = μ p₀ √(1 − x²/a²)` in the slip zones c ≤ |x| ≤ a and
 /// `q(x) = μ p₀ [√(1 − x²/a²) − (c/a) √(1 − x²/c²)]` in the stick zone (Johnson, §7.1).
 #[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "33k DOFs with exact friction: run with --release (CI does)"
-)]
 fn cattaneo_mindlin_stick_zone_and_traction_of_two_cylinders() {
     let (e, nu, radius, mu) = (10.0, 0.3, 20.0, 0.3);
     let (n, r) = (64, 1.017f64.powi(2));
@@ -504,10 +494,6 @@ fn level_3d(n: usize, r: f64, radii: [f64; 2], q: f64) -> (f64, f64, f64, f64, u
 /// materials of the cylinders above, F = 4 q on the whole pair, the quarter of each body
 /// graded toward the contact point (cells growing by a factor 20 across the body).
 #[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "30k DOFs in 3D: run with --release (CI does)"
-)]
 fn two_spheres_contact_radius_and_peak_pressure_against_hertz() {
     let radii = [5.0, 10.0];
     let q = 0.000306;
@@ -638,10 +624,6 @@ fn reflected(mesh: &Mesh) -> Mesh {
 /// c within one element, the traction along y = 0 within 5 % of μ p₀ away from the
 /// stick–slip edge.
 #[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "3D with exact friction: run with --release (CI does)"
-)]
 fn cattaneo_mindlin_stick_zone_and_traction_of_two_spheres() {
     let (e, nu, radius, mu) = (10.0, 0.3, 20.0, 0.3);
     // n = 16 (111k DOFs) in the test; `CM3D_N=12` for the coarser level of

@@ -19,11 +19,9 @@
 //!    free rigid motions is balanced to 1e-10 of the force scale.
 //! 4. **The load pulls the body off its contact:** the block on rollers pulled upwards has no
 //!    equilibrium: the solve fails with `Error::ContactLost`.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{lame, problem};
+use crate::common;
+use crate::common::{lame, problem};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem};
 use hemicontact::scenario::Scenario;

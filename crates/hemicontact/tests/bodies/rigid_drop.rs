@@ -33,10 +33,8 @@
 //! load path stopped at its first step. Below about 10⁻¹⁵⁴ Pa across 1 mm the drop was
 //! silently skipped (the norm of its coefficients, 10¹⁵⁵ displacement units, overflowed
 //! when squared), with the same exit 3.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::loading::load_path;
 use hemicontact::problem::Problem;
 use hemicontact::solver::{solve, Solution};

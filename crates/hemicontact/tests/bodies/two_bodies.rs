@@ -41,10 +41,8 @@
 //!    the patch test of two materials (displacement, the force through the held block and
 //!    the pressure to 1e-8, the pair's penalty the softer body's);
 //!    on non-matching ones every solve converges, the force within node-to-segment's error.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential, MasterPart,
     NormTreatment, NormalCompliance, NormalLaw,

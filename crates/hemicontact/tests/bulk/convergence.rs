@@ -30,11 +30,9 @@
 //!   `‖u_h − I_h u‖_E > 0`.
 //! - **The library energy norm** `hemicontact::norms::energy_norm` equals the hand-computed
 //!   `(Σ_T |T| W(ε_T))^{1/2}` on a discrete field.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{lame, problem, solve_with_prescribed_field};
+use crate::common;
+use crate::common::{lame, problem, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::fem::simplex;
 use hemicontact::material::{Hooke, Plane, StrainEnergy};

@@ -16,11 +16,8 @@
 //! order 1 in the mesh size (±0.1), and the Galerkin solution must beat the interpolant.
 //! The energy error is integrated exactly (the integrand is quadratic on each tetrahedron;
 //! the 4-point rule with weights ¼ is exact for quadratics).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{lame, problem, solve_with_prescribed_field};
+use crate::common::{lame, problem, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::fem::simplex;
 use hemicontact::problem::Problem;

@@ -14,11 +14,8 @@
 //!   of a constant traction on a side sum to `t |side|`, and — since `x = Σ_a x_a φ_a` for
 //!   P1 — their first moments `Σ_a F_a x_a` equal `f_0 ∫_Ω x` and `t ∫_side x` exactly.
 //!   Checked on generated rectangles and on a mesh with randomly perturbed interior nodes.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use hemicontact::assembly::{element, loads};
 use hemicontact::fem::simplex;
 use hemicontact::material::{Hooke, StrainEnergy};

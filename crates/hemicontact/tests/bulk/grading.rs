@@ -16,11 +16,8 @@
 //!   `mesh.progression[k]` and the value; the symmetric pattern refuses a graded x axis;
 //! - a scenario with `progression` survives a TOML round trip, and refinement
 //!   (`with_resolution`) keeps `r^n`, so doubling `n` splits every cell in two (nested).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{problem, solve_with_prescribed_field};
+use crate::common::{problem, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;

@@ -20,11 +20,8 @@
 //! For a quadratic energy the central differences are exact up to round-off, so the
 //! tolerances are round-off tolerances (1e-7 relative), far below any modelling error
 //! (a missing √2 or factor 2 would show as an O(1) relative error).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{random_strain, Rng};
+use crate::common::{random_strain, Rng};
 use hemicontact::material::{Hooke, Plane, StrainEnergy};
 use hemicontact::tensor::{mandel_len, Sym};
 

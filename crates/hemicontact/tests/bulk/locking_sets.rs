@@ -3,7 +3,6 @@
 //! `|∂Q|²` at strains on ∂B = {Q = 0} (Frobenius norm of `∂Q/∂ε` for Prager's set and the
 //! ball; for limited compressibility the derivative of Q with respect to `tr ε`, ±1), in 2D
 //! and 3D; and the material's one encoding of locking.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::material::{
     Elasticity, Hooke, Locking, LockingPenalty, LockingSet, Material, StrainEnergy,

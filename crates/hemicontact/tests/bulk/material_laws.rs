@@ -26,7 +26,6 @@
 //!   `λ = K − 2G/d`. The Hencky operator is strongly monotone and Lipschitz with the
 //!   constants it advertises; these inequalities are checked on random pairs of strains
 //!   (including large deviatoric strains where the stiffening is active).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::material::{
     AugmentedLocking, Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material,
@@ -34,9 +33,7 @@ use hemicontact::material::{
 };
 use hemicontact::tensor::{apply, mandel_len, Sym, Tangent};
 
-mod common;
-
-use common::{random_strain, Rng};
+use crate::common::{random_strain, Rng};
 
 /// Unit vector `e_k` in Mandel components.
 fn unit(dim: usize, k: usize) -> Sym {

@@ -37,7 +37,6 @@
 //!    forces known only to the round-off of `E_stiff u`; a soft half stretched by 10⁻⁵ too
 //!    much (the stiff half moved along, every node within its round-off floor) still fails
 //!    the certificate at contrast 10¹² as at contrast 1.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::global::Want;
 use hemicontact::assembly::{BulkAssembler, SystemPattern};

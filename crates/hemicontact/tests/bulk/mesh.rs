@@ -15,7 +15,6 @@
 //!   `nx` with the mirror-symmetric pattern.
 //! - **Node adjacency** lists, for every node, exactly the other nodes it shares a cell
 //!   with, sorted and once each (against sets built cell by cell), in 2D and 3D.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::fem::simplex;
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};

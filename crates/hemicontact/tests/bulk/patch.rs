@@ -24,11 +24,8 @@
 //!    the P1 fields `v = (0, y)` and `v = (y, 0)` vanish on Γ_D, so the discrete equilibrium
 //!    gives `Σ_T |T| σ_yy,T = ∫_top t_y y = −900 · 4 · 4` and `Σ_T |T| σ_xy,T = 0` exactly,
 //!    and the reactions balance the load: `Σ R_y = 900 · 4`, `Σ R_x = 0`.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{lame, problem, rel, solve_with_prescribed_field};
+use crate::common::{lame, problem, rel, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::material::StrainEnergy;
 use hemicontact::problem::Problem;

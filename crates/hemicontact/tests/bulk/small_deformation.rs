@@ -14,7 +14,6 @@
 //! - a block whose bottom must reach a rigid plane 2 m up while its top stays at y = 1
 //!   (Signorini: the bottom nodes end at y ≥ 2) is displaced by at least 2 m, 2/√2 of its
 //!   size, and inverts cells: its summary has the three notes.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::BulkAssembler;
 use hemicontact::io::summary::Summary;

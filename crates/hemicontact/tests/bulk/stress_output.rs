@@ -16,11 +16,9 @@
 //!   `tr ε` and `ε:ε`; σ_zz is the derivative of that function with respect to ε_zz at
 //!   ε_zz = 0. It is checked by a central difference of the law's own 2D energy, evaluated
 //!   at the 2D strain with the same two invariants as the 3D strain `ε + h e_z⊗e_z`.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{lame, problem};
+use crate::common;
+use crate::common::{lame, problem};
 use hemicontact::io::vtu::solution_vtu;
 use hemicontact::material::{
     AugmentedLocking, Elasticity, Hencky, Hooke, Locking, LockingPenalty, LockingSet, Material,

@@ -29,7 +29,6 @@
 //!   twice makes its facets shared by three cells: the error names them and the repeat.
 //! - **The round-off tolerance does not reject good meshes**: generated rectangles and boxes
 //!   far from the origin (coordinates 10⁶ times the cell size) are accepted.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};

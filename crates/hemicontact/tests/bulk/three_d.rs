@@ -1,16 +1,14 @@
 //! The solver in 3D (P1 tetrahedra on generated boxes): patch test, a closed-form uniform
 //! state, and frictionless normal-compliance contact against a hand solution — the same
 //! code paths as 2D with `LD = 12` element kernels and 2D tangent planes at contact nodes.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common;
 use hemicontact::solver::convex::minimize;
 use hemicontact::solver::newton::{NewtonRecord, NewtonSettings};
 use hemicontact::solver::SolverSettings;
 use hemicontact::solver::{solve, System};
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;

@@ -2,7 +2,7 @@
 //! scenario construction, closed-form Lamé constants, a solve with a prescribed
 //! displacement field on the Dirichlet DOFs, and the harness of the fuzz tests.
 //!
-//! Every test file includes this module with `mod common;` and uses only part of it.
+//! The test binary declares this module once (`tests/main.rs`); each test module uses part of it.
 #![allow(dead_code)]
 
 pub mod fuzz;
@@ -230,4 +230,14 @@ pub fn several_bodies(meshes: &[&Mesh], names: &[&str]) -> Mesh {
         .unwrap()
         .with_regions(region, names.iter().map(|n| n.to_string()).collect())
         .unwrap()
+}
+
+/// The name by which the test harness knows the test `test` of the module `module_path`
+/// (`module_path!()` there): the module's path without the binary's own name, so that a
+/// test can run another test of its binary in a child process with `--exact`.
+pub fn test_path(module_path: &str, test: &str) -> String {
+    match module_path.split_once("::") {
+        Some((_, module)) => format!("{module}::{test}"),
+        None => test.to_string(),
+    }
 }

@@ -30,7 +30,6 @@
 //!   `F_i ≥ 0` the energy is a sum of convex functions of u, so every second difference
 //!   along a line is ≥ 0; with negative bounds this must fail somewhere (the check is
 //!   sensitive).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::contact::{contact_slots, ContactAssembler, FrictionData};
 use hemicontact::assembly::SystemPattern;
@@ -43,9 +42,7 @@ use hemicontact::contact::{
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::{Frozen, Multipliers};
 
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 
 // ---------------------------------------------------------------------------------------
 // Normal compliance

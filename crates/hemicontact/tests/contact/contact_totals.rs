@@ -3,10 +3,8 @@
 //! foundation carries, by equilibrium, the total normal force q × (loaded length or area)
 //! through its contact face, entirely in contact, with the pressure q everywhere on it; a
 //! body that does not reach its foundation carries no contact force.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::io::contact_totals::{contact_totals, ContactTotals};
 use hemicontact::io::summary::Summary;
 use hemicontact::problem::Problem;

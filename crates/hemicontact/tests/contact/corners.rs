@@ -19,10 +19,8 @@
 //!   10⁻⁸ of the gap). Averaging the two normals let it penetrate far beyond the gap.
 //! - **A smooth curved boundary stays one point per node**: the half-disc's arc
 //!   (`scenarios/half-disc.toml`) has one contact point per contact node, and no note.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::nodes::CORNER_ANGLE_DEG;
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::Problem;

@@ -15,7 +15,6 @@
 //! 4. Validation samples the law at 0 and 10^(k/10) m, k = −100 … 20, and refuses a
 //!    negative sample, naming the law and the first such slip; `sup μ` and `L_μ` of a custom
 //!    law are estimates from those samples and the uniqueness check says so.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{ContactBoundary, CustomCoefficient, FrictionCoefficient, SlipFunction};
 use hemicontact::problem::Problem;

@@ -24,7 +24,6 @@
 //!    positions reach the function in metres through the solver's scaling).
 //! 8. The uniqueness check takes μ₀ as the largest value at the part's nodes; a negative
 //!    value is refused at validation, naming the law and the point.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{
     ComplianceFunction, ContactBoundary, CustomCompliance, CustomField, FrictionCoefficient,

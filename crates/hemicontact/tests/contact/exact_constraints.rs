@@ -9,11 +9,8 @@
 //!   c_ν → ∞, regularized friction (19) → exact friction as ρ → 0, each at the rate 1/C,
 //!   1/c_ν, ρ;
 //! - the KKT certificate of the paper's example with exact constraints.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{assert_certified, lame, problem, rel};
+use crate::common::{assert_certified, lame, problem, rel};
 use hemicontact::solver::SolverSettings;
 use hemicontact::solver::{solve, FrictionState, NormalState, Solution};
 

@@ -12,7 +12,6 @@
 //!   stick/slip, with the smooth law (19) and outside (0, 0.01).
 //! - **Exact stick/slip only for the norm's potentials**: `exact = true` with the
 //!   regularized law is refused.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{Friction, FrictionPotential, NormTreatment};
 use hemicontact::problem::Problem;

@@ -30,7 +30,6 @@
 //! 6. **Refusals** naming the field: a node whose closest point is not unique, a
 //!    degenerate obstacle, a shape of the wrong dimension, and a gap given with an
 //!    obstacle.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
@@ -141,10 +140,6 @@ fn hertz_2d_cylinder_half_width_and_peak_pressure() {
 }
 
 #[test]
-#[cfg_attr(
-    debug_assertions,
-    ignore = "a 3D solve of this size takes minutes without optimizations: run with --release"
-)]
 fn hertz_3d_paraboloid_contact_radius_and_equilibrium() {
     let (v, problem, settings) = committed("hertz3d.toml");
     let (e, nu) = (

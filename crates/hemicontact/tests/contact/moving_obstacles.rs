@@ -21,10 +21,7 @@
 //!    slid along its surface in load steps; wherever every point in contact slips, the
 //!    tangential force is μ times the normal force (Coulomb) to 1e-6.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)]
-
-mod common;
-
+use crate::common;
 use hemicontact::solver::{FrictionState, Solution};
 
 /// One frame of a block pressed by its top onto an obstacle: the top moved by `top`, the

@@ -13,11 +13,7 @@
 //! - invalid shapes and points are refused naming the field; points with no unique closest
 //!   point are refused; the serde form accepts the scenario syntax and refuses unknown keys.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)]
-
-mod common;
-
-use common::Rng;
+use crate::common::Rng;
 use hemicontact::contact::obstacle::{Obstacle, ObstacleSpec, Projection};
 use hemicontact::Error;
 

@@ -13,7 +13,6 @@
 //!    its centre to the face (the depth the note states); a large circle crossing the face
 //!    between nodes is noted for the penetration only; a circle just apart from the face,
 //!    or touching it at a node, raises no penetration note.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{ContactBoundary, ContactObstacle, NormalLaw, Obstacle, ObstacleSpec};
 use hemicontact::material::{Elasticity, Hooke, Material};

@@ -23,7 +23,7 @@
 //!
 //! The number of cases is `HEMICONTACT_FUZZ_CASES` (default 2000, well under a second); a campaign
 //! is, for instance,
-//! `HEMICONTACT_FUZZ_CASES=20000 cargo test --release -p hemicontact --test fuzz_gmsh -- --nocapture`,
+//! `HEMICONTACT_FUZZ_CASES=20000 cargo test --release -p hemicontact --test main input::fuzz_gmsh:: -- --nocapture`,
 //! which prints the number of cases, distinct inputs, results by kind, the slowest case and
 //! the peak memory. `HEMICONTACT_FUZZ_COLLECT=1` collects every failure (one per kind)
 //! instead of stopping at the first; `HEMICONTACT_FUZZ_SEED=<u64>` explores other inputs.
@@ -33,7 +33,6 @@
 //! rejected, `any-*` files only must not panic. Proptest records the seeds of failing cases
 //! in `tests/data/fuzz/gmsh/proptest-regressions.txt` (replayed first; commit it with the
 //! fix).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
@@ -49,10 +48,9 @@ use std::path::PathBuf;
 use std::sync::{Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
-mod common;
-
-use common::facet_set;
-use common::fuzz::{
+use crate::common;
+use crate::common::facet_set;
+use crate::common::fuzz::{
     catch_panic, digits_as_hash, install_panic_hook, peak_rss_kib, Campaign, Panic, Tally,
 };
 
@@ -679,7 +677,7 @@ fn fuzz_gmsh_reader() {
             .arg(format!("--as={ADDRESS_SPACE_LIMIT}"))
             .arg(&exe)
             .args([
-                "fuzz_gmsh_reader",
+                common::test_path(module_path!(), "fuzz_gmsh_reader").as_str(),
                 "--exact",
                 "--nocapture",
                 "--test-threads=1",

@@ -14,7 +14,7 @@
 //!
 //! The number of cases is `HEMICONTACT_FUZZ_CASES` (default 256, a second or two); the
 //! campaign is, for instance,
-//! `HEMICONTACT_FUZZ_CASES=20000 cargo test --release -p hemicontact --test fuzz_scenario -- --nocapture`,
+//! `HEMICONTACT_FUZZ_CASES=20000 cargo test --release -p hemicontact --test main input::fuzz_scenario:: -- --nocapture`,
 //! which prints statistics and the "soft" findings (inputs accepted by `into_problem` whose
 //! data are not usable, errors that name no field). `HEMICONTACT_FUZZ_COLLECT=1` collects
 //! every panicking input (one per panic location) instead of stopping at the first, and
@@ -31,7 +31,6 @@
 //! `tests/data/fuzz/bugs/`, each with an ignored test. A failing fuzz case is printed with its
 //! recipe and recorded by proptest in `tests/data/fuzz/proptest-regressions.txt` (replayed
 //! first on the next run; commit it with the fix).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::Error;
@@ -44,9 +43,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-mod common;
-
-use common::fuzz::{
+use crate::common;
+use crate::common::fuzz::{
     catch_panic, digits_as_hash, install_panic_hook, peak_rss_kib, Campaign, Panic, Tally,
 };
 
@@ -2166,7 +2164,10 @@ fn bug_box_without_memory_limit_aborts() {
     let exe = std::env::current_exe().unwrap();
     let out = std::process::Command::new("sh")
         .arg("-c")
-        .arg(r#"ulimit -v 4000000 && exec "$0" --exact child_box_without_memory_limit --ignored --nocapture"#)
+        .arg(format!(
+            r#"ulimit -v 4000000 && exec "$0" --exact {} --ignored --nocapture"#,
+            common::test_path(module_path!(), "child_box_without_memory_limit")
+        ))
         .arg(exe)
         .env("HEMICONTACT_FUZZ_CHILD", "1")
         .output()

@@ -14,7 +14,7 @@
 //!   writes 16 significant digits in ASCII, the exact double in binary).
 //! - **Gmsh's numbering is kept or mapped**: the hand-written `tiny.msh` (sparse node tags
 //!   10…40, an unused geometry node 99) gives 4 nodes in file order, its cells as written,
-//!   the unused node dropped with a note. (Orientation: see `tests/tangled.rs`.)
+//!   the unused node dropped with a note. (Orientation: see `tests/bulk/tangled.rs`.)
 //! - **Every bad file gives its error**, naming the file and (ASCII) the line or (binary)
 //!   the byte offset, and saying what is wrong: format 2.2, quadrangles, second-order
 //!   elements, truncation, undefined or duplicate node tags, a degenerate triangle, a
@@ -28,7 +28,6 @@
 //! - **Scenarios** with `kind = "gmsh"` resolve the file relative to the scenario, reject
 //!   the generator fields, refuse refinement (`with_resolution`), and note contact parts
 //!   sharing nodes with Dirichlet parts; `scenarios/half-disc.toml` solves.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::io::msh::{write_msh, MshEncoding};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
@@ -39,9 +38,7 @@ use hemicontact::solver::SolverSettings;
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
 
-mod common;
-
-use common::facet_set;
+use crate::common::facet_set;
 
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))

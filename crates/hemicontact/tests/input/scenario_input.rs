@@ -10,12 +10,10 @@
 //!   component a Dirichlet entry prescribes on the same part; a contact part that is also a
 //!   Dirichlet part. Consistent redundancy (equal values, disjoint components, a traction
 //!   on the free component of a roller) is accepted.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common;
 use hemicontact::scenario::{Scenario, MAX_SCENARIO_BYTES};
 use hemicontact::Error;
-
-mod common;
 
 /// A 2 × 2 square (parts bottom, right, top, left) with `extra` TOML appended.
 fn square(extra: &str) -> String {

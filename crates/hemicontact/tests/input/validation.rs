@@ -6,7 +6,6 @@
 //! Rust or Python user builds a problem), checked for an [`Error::Invalid`] naming the
 //! field; then the same datum through a scenario file, checked for an [`Error::Scenario`]
 //! naming the field of the file.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::contact::{
     ContactBoundary, Friction, FrictionBound, FrictionCoefficient, FrictionPotential,

@@ -12,13 +12,11 @@
 //!   its sub-folders.
 //! - File names must be plain relative names; `files_in` lists a sub-folder's files; a
 //!   target without a name of its own (`.`) or a file in the way is refused.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common;
 use hemicontact::io::result_set::{ResultSet, SYNC_EACH_LIMIT};
 use hemicontact::Error;
 use std::path::{Path, PathBuf};
-
-mod common;
 
 /// A fresh empty folder under the system temporary folder.
 fn work() -> PathBuf {

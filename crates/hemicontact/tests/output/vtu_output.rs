@@ -27,11 +27,9 @@
 //!   prescribed top displacement is the load factor times (0.02, −0.01). The interpreter is
 //!   `$HEMICONTACT_PYTHON`, else `python3`; under `CI=true` a missing `vtk` fails the
 //!   tests, elsewhere they are skipped with a loud line saying they are no evidence.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::vtu::{attr, f64s, i32s, text};
+use crate::common;
+use crate::common::vtu::{attr, f64s, i32s, text};
 use hemicontact::io::{pvd, vtu::solution_vtu};
 use hemicontact::problem::Problem;
 use hemicontact::solver::{FrictionState, Solution};

@@ -25,10 +25,8 @@
 //! The interpreter is `$HEMICONTACT_PYTHON`, else `python3`; under `CI=true` a missing
 //! meshio or vtk fails the test, elsewhere the reader comparison is skipped with a loud line
 //! saying it is no evidence (the Rust checks still run).
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::io::vtu::{solution_vtu, VtuWriter};
 use hemicontact::io::zlib_blocks;
 use hemicontact::loading::load_path;

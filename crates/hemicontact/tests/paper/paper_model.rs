@@ -8,10 +8,8 @@
 //! the frozen quantities the solver iterated on. (With a compliance c_ν = 10¹², whose
 //! forces are known only to about 10⁻⁵, the certificate's own tolerance is checked
 //! instead.)
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
+use crate::common;
 use hemicontact::contact::FrictionPotential;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::builtin;

@@ -21,11 +21,10 @@
 //! errors by far more than 1e-9.
 //!
 //! Re-blessing, only deliberately: run
-//! `HEMICONTACT_BLESS=paper_study cargo test --release -p hemicontact --test paper_study_regression`;
+//! `HEMICONTACT_BLESS=paper_study cargo test --release -p hemicontact --test main paper::paper_study_regression::`;
 //! the run rewrites the table and then fails on purpose (a blessing run checks nothing).
 //! Review the diff of the JSON and commit it with a message that says why the numbers
 //! changed.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::study::{run, StudySettings};

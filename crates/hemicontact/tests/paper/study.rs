@@ -9,7 +9,6 @@
 //!
 //! The paper's study against its committed table is the regression test
 //! `paper_study_regression.rs`.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::study::{run, Study, StudySettings};

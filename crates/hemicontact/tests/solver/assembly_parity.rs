@@ -3,7 +3,6 @@
 //! loop's energy, gradient and Hessian for any number of tasks, on meshes numbered well
 //! and badly, with ideal locking active; the assembly of a subdomain (what one of several
 //! processes assembles) gives its rows of the whole.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::assembly::global::{IdealLocking, Want, Workspace};
 use hemicontact::assembly::{BulkAssembler, SystemPattern};

@@ -8,11 +8,8 @@
 //!   foundation is *separated* (and not counted in contact) whatever its friction state.
 //! - A certificate above its tolerance is not a converged solve: a tolerance below what the
 //!   equilibrium iteration delivers fails the run, naming the law.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 use hemicontact::solver::{solve, FrictionState, NormalState, SolverSettings};
 
 /// A unit square on rollers at the bottom (u_y = 0) and at the right (u_x = 0), pushed to

@@ -1,7 +1,6 @@
 //! Determinism: the same scenario gives bitwise-identical results run to run, and across
 //! assembly thread counts: each parallel task of the assembly writes the entries of its own
 //! nodes, adding the cells' terms in the serial loop's order.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::solve;

@@ -8,14 +8,12 @@
 //! - one changed matrix solved again and again (the active sets settled): a fresh factor
 //!   would solve it directly, so the solver refactorizes once the PCG iterations have cost
 //!   about a factorization, and solves directly from then on.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common;
 use hemicontact::linalg::{DirectSolver, Ordering, SolveRequest, SpdSolver};
 use hemicontact::solver::{SolverSettings, System};
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 
 /// The elastic Newton matrix of a clamped square of `n × n` squares: its system and values.
 fn square(n: usize) -> (hemicontact::problem::Problem, System, Vec<f64>) {

@@ -1,8 +1,6 @@
 //! Interrupting a solve: a caller (the Python package on Ctrl-C) raises a stop flag, and
 //! the solve returns `Error::Interrupted` instead of a result, within one Newton step.
 
-#![allow(clippy::expect_used)]
-
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::{solve_interruptible, SolverSettings};
 use hemicontact::Error;

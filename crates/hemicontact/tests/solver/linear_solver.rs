@@ -3,7 +3,6 @@
 //! checked against the memory limit is the one of the solver that the system prepares —
 //! also near the threshold, where the number of DOFs `d · n_nodes` is above it and the
 //! number of free equations below.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::linalg::LinearSolver;
 use hemicontact::resources::{estimate_box, estimate_box_iterative};

@@ -2,16 +2,13 @@
 //! facts known without the program: linearity without contact, the global equilibrium of
 //! a body resting on its foundation, uniqueness of convex problems, and the identity of a
 //! one-step path with the plain solve.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::loading::{for_each_step, load_path, LoadStep, PathRow};
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::{solve, Solution};
 use std::sync::atomic::AtomicBool;
 
-mod common;
-
-use common::setup;
+use crate::common::setup;
 
 /// Solves `text` along its `[loading]` path.
 fn path_of(text: &str) -> Vec<LoadStep> {

@@ -19,10 +19,7 @@
 //!    and matches its closed form to 1e-8 while body B is stretched by 1000 m (a strain of
 //!    10³) or lifted by 1000 m, whose forces and energy are known only to their round-off.
 
-#![allow(clippy::unwrap_used, clippy::expect_used)]
-
-mod common;
-
+use crate::common;
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::{Dirichlet, Problem};

@@ -4,7 +4,6 @@
 //! solver reproduces the direct one. Lagged set-ups (new fine operator, old coarse levels)
 //! solve changed matrices to the requested residual, and give way to a full set-up when
 //! they stop paying or stop converging.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::linalg::{Cholesky, Multigrid};
 use hemicontact::problem::Problem;
@@ -18,9 +17,7 @@ fn setup(text: &str) -> (Problem, SolverSettings) {
     (problem, scenario.settings().unwrap())
 }
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 
 /// A box `(0,2)×(0,1)×(0,1)` with `n` cells per unit length, clamped at the bottom.
 fn box_problem(n: usize) -> Problem {

@@ -9,8 +9,6 @@
 //! - The residual shown is the larger of the two relative residuals, the fixed-point
 //!   residual alone at the first iteration (where the change is ∞).
 
-#![allow(clippy::expect_used, clippy::unwrap_used)]
-
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::{solve, solve_observed, OuterProgress};
 use std::cell::RefCell;

@@ -16,11 +16,8 @@
 //!
 //! The scaled scenarios are written out here from the physics (which quantity has which
 //! unit), independently of the library's own change of variables.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
-mod common;
-
-use common::{rel, solve_text};
+use crate::common::{rel, solve_text};
 use hemicontact::solver::{FrictionState, NormalState, Solution};
 use proptest::prelude::*;
 

@@ -5,15 +5,13 @@
 //! even when only the Schur complement shows it; and the automatic layout takes it where
 //! the separator is small next to the factorization (2D) and two threads can run it, and
 //! not where the separator is large (a cube) or the pool has one thread.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
+use crate::common;
 use hemicontact::linalg::{Cholesky, Layout, Ordering};
 use hemicontact::problem::Problem;
 use hemicontact::solver::{SolverSettings, System};
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 
 /// The Newton matrix of `p` at the displacement `u` (upper values on the system pattern).
 fn newton_matrix(p: &Problem, u: &[f64]) -> (System, Vec<f64>) {

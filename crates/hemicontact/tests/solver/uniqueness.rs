@@ -1,14 +1,11 @@
 //! The uniqueness check of the paper's Theorem 4: the discrete trace constant ‖γ‖ against
 //! a hand bound and under mesh refinement, and the condition's bookkeeping.
-#![allow(clippy::unwrap_used, clippy::expect_used)]
 
 use hemicontact::scenario::{builtin, Scenario};
 use hemicontact::solver::uniqueness::{check, trace_constant};
 use hemicontact::solver::SolverSettings;
 
-mod common;
-
-use common::problem;
+use crate::common::problem;
 
 /// The validated problem and `[solver]` settings of a scenario text.
 fn setup(text: &str) -> (hemicontact::problem::Problem, SolverSettings) {

@@ -46,7 +46,7 @@ dimension d - 1, and one physical group of dimension d for the domain):
   "upper_bottom", "upper_top", "upper_sides"; element size 0.25.
 
 The files with errors (bad-*.msh) are hand-written variants of tiny.msh (a unit square of
-two triangles, also hand-written); see tests/gmsh.rs for the error each must give.
+two triangles, also hand-written); see tests/input/gmsh.rs for the error each must give.
 """
 
 import os
