@@ -4,7 +4,7 @@ between two elastic spheres, and Cattaneo–Mindlin between two elastic cylinder
 two elastic spheres, under mesh refinement, with the contact pressure and the friction
 traction against the closed forms.
 
-The meshes are built as in ``crates/hemicontact/tests/hertz_two_bodies.rs``, so the numbers
+The meshes are built as in ``crates/hemicontact/tests/bodies/hertz_two_bodies.rs``, so the numbers
 reproduce its tables: each body is the generated block [0, 1] × [y0, y0 + 1] (a quarter box
 [0, 1]² × [z0, z0 + 1] in 3D, cells cut "uniform"), graded towards the contact point, its
 contact face moved onto the circle (sphere) of its radius through the origin by the lift
