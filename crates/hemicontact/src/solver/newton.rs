@@ -13,115 +13,12 @@
 //! [`super::round_off`]).
 
 use super::line_search::LineSearch;
-use super::report::{NewtonStep, Timings};
+pub use super::settings::{NewtonSettings, MAX_BACKTRACKS, MAX_PCG_ITERATIONS};
 use super::system::LinearInfo;
+use super::timings::Timings;
 use crate::error::{Error, Result};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::time::Instant;
-
-/// Newton method settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct NewtonSettings {
-    /// Maximum number of Newton steps. Default 50: a convex piecewise-quadratic energy
-    /// converges in far fewer; hitting the cap signals a modelling problem.
-    pub max_iterations: usize,
-    /// Relative residual tolerance (dimensionless, relative to the force scale).
-    /// Default 1e-10, a few orders above round-off for the systems solved here.
-    pub residual_tolerance: f64,
-    /// Armijo sufficient-decrease constant in (0, ½). Default 1e-4 (Nocedal–Wright).
-    pub armijo: f64,
-    /// Maximum number of trial steps per line search beyond the full step. Default 40.
-    pub max_backtracks: usize,
-    /// Maximum conjugate-gradient iterations preconditioned by the last factorization
-    /// before the Hessian is refactorized. Default 8: one triangular solve costs about a
-    /// tenth of a factorization, and changes of the active sets (locking cells, contact and
-    /// stick nodes) are low-rank updates that PCG resolves in about as many iterations as
-    /// their rank. 0 disables PCG (every changed Hessian is refactorized) and, with the
-    /// iterative solver, the lagged multigrid set-up (every changed Hessian is set up
-    /// fully).
-    pub pcg_iterations: usize,
-    /// Largest relative residual PCG may stop at (the loosest forcing term of the inexact
-    /// Newton method; the actual one is `min(pcg_tolerance, 0.1 · tolerance / residual)`, so
-    /// the last steps are solved as accurately as the convergence criterion needs). Default
-    /// 1e-3: near the solution Newton then still gains three digits per step.
-    pub pcg_tolerance: f64,
-}
-
-impl Default for NewtonSettings {
-    fn default() -> Self {
-        NewtonSettings {
-            max_iterations: 50,
-            residual_tolerance: 1e-10,
-            armijo: 1e-4,
-            max_backtracks: 40,
-            pcg_iterations: 8,
-            pcg_tolerance: 1e-3,
-        }
-    }
-}
-
-impl NewtonSettings {
-    /// Checks every setting against its range.
-    ///
-    /// # Errors
-    /// [`Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
-    /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1, `max_backtracks` ≤
-    /// [`MAX_BACKTRACKS`], `pcg_iterations` ≤ [`MAX_PCG_ITERATIONS`]).
-    pub fn validate(&self) -> Result<()> {
-        use crate::error::require;
-        let tol = self.residual_tolerance;
-        require(
-            tol.is_finite() && tol > 0.0 && tol < 1.0,
-            "residual_tolerance",
-            tol,
-            "a number in (0, 1)",
-        )?;
-        require(
-            self.armijo > 0.0 && self.armijo < 0.5,
-            "armijo",
-            self.armijo,
-            "a number in (0, 0.5)",
-        )?;
-        require(
-            self.pcg_tolerance >= 1e-12 && self.pcg_tolerance < 1.0,
-            "pcg_tolerance",
-            self.pcg_tolerance,
-            "a number in [1e-12, 1)",
-        )?;
-        require(
-            self.max_iterations > 0,
-            "max_iterations",
-            0,
-            "a positive integer",
-        )?;
-        require(
-            self.max_backtracks <= MAX_BACKTRACKS,
-            "max_backtracks",
-            self.max_backtracks,
-            &format!(
-                "an integer from 0 (the full step only) to {MAX_BACKTRACKS} (trial steps \
-                 beyond the full step)"
-            ),
-        )?;
-        require(
-            self.pcg_iterations <= MAX_PCG_ITERATIONS,
-            "pcg_iterations",
-            self.pcg_iterations,
-            &format!(
-                "an integer from 0 (every changed Hessian is refactorized) to \
-                 {MAX_PCG_ITERATIONS}"
-            ),
-        )
-    }
-}
-
-/// Largest [`NewtonSettings::max_backtracks`]: 200 trial steps shrink the step far below
-/// any representable change of a displacement.
-pub const MAX_BACKTRACKS: usize = 200;
-
-/// Largest [`NewtonSettings::pcg_iterations`] before a refactorization.
-pub const MAX_PCG_ITERATIONS: usize = 10_000;
 
 /// A convex energy `Π(x)` of n free unknowns, with what Newton's method needs of it.
 pub trait ConvexEnergy {
@@ -176,6 +73,23 @@ pub trait ConvexEnergy {
     /// # Errors
     /// Whatever the energy refuses at `x`.
     fn accept(&mut self, x: &[f64]) -> Result<()>;
+}
+
+/// One Newton step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NewtonStep {
+    /// Outer iteration this step belongs to.
+    pub outer: usize,
+    /// Euclidean norm of the residual (gradient on free DOFs) before the step (N).
+    pub residual: f64,
+    /// Energy before the step (J).
+    pub energy: f64,
+    /// Line-search step length taken (1 = full Newton step).
+    pub step_length: f64,
+    /// Whether the Hessian was refactorized for this step.
+    pub refactorized: bool,
+    /// Conjugate-gradient iterations (0: direct solve with the factorization).
+    pub pcg_iterations: usize,
 }
 
 /// How far above the tolerance a stagnating residual may be taken as the round-off floor.

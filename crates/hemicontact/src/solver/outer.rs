@@ -31,143 +31,15 @@ use super::frozen::Frozen;
 use super::held;
 use super::mixing::{Counted, Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
+pub use super::report::StopReason;
 use super::report::{OuterStep, SolveReport};
+use super::settings::SolverSettings;
+pub use super::settings::{Acceleration, OuterSettings, MAX_DEPTH};
 use super::system::Evaluation;
-use super::{constraints, SolverSettings, System};
+use super::{constraints, System};
 use crate::error::Result;
 use crate::problem::Problem;
-use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Acceleration of the outer fixed-point iteration; see the module documentation.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Acceleration {
-    /// Plain (relaxed) fixed point with oscillation detection.
-    None,
-    /// Safeguarded Anderson acceleration.
-    #[default]
-    Anderson,
-}
-
-/// Outer-loop settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct OuterSettings {
-    /// Maximum number of outer iterations (convex solves). Default 100.
-    pub max_iterations: usize,
-    /// Tolerance on the relative change of u in the energy norm. Default 1e-10.
-    pub tolerance: f64,
-    /// Acceleration. Default Anderson.
-    pub acceleration: Acceleration,
-    /// Anderson depth (number of differences kept). Default 5.
-    pub depth: usize,
-    /// Initial relaxation factor ω ∈ (0, 1] of the plain fixed point. Default 1.
-    pub relaxation: f64,
-    /// Deprecated: the numerical regularization of the norm in the friction potential of
-    /// every contact part, now a parameter of the friction law
-    /// ([`crate::contact::NormTreatment::Smoothed`], scenario key `[contact.friction]
-    /// regularization`); read by the scenario loader only. `None` unless given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub friction_regularization: Option<f64>,
-    /// Solve early convex problems inexactly. Default true.
-    pub inexact: bool,
-}
-
-impl Default for OuterSettings {
-    fn default() -> Self {
-        OuterSettings {
-            max_iterations: 100,
-            tolerance: 1e-10,
-            acceleration: Acceleration::Anderson,
-            depth: 5,
-            relaxation: 1.0,
-            friction_regularization: None,
-            inexact: true,
-        }
-    }
-}
-
-/// Largest Anderson depth [`OuterSettings::validate`] accepts: the history is a dense
-/// least-squares problem of this size per outer iteration, and depths beyond a few tens
-/// only add round-off.
-pub const MAX_DEPTH: usize = 50;
-
-impl OuterSettings {
-    /// Checks every setting against its range.
-    ///
-    /// # Errors
-    /// [`crate::Error::Invalid`] naming the setting (`tolerance` in (0, 1), `depth` from 1
-    /// to [`MAX_DEPTH`], `max_iterations` ≥ 1, `relaxation` in (0, 1],
-    /// the deprecated `friction_regularization`, if given, in (0, 0.01)).
-    pub fn validate(&self) -> crate::Result<()> {
-        use crate::error::require;
-        let tol = self.tolerance;
-        require(
-            tol.is_finite() && tol > 0.0 && tol < 1.0,
-            "tolerance",
-            tol,
-            "a number in (0, 1)",
-        )?;
-        require(
-            (1..=MAX_DEPTH).contains(&self.depth),
-            "depth",
-            self.depth,
-            &format!("an Anderson depth from 1 to {MAX_DEPTH}"),
-        )?;
-        require(
-            self.max_iterations > 0,
-            "max_iterations",
-            0,
-            "a positive integer",
-        )?;
-        require(
-            self.relaxation > 0.0 && self.relaxation <= 1.0,
-            "relaxation",
-            self.relaxation,
-            "a factor in (0, 1]",
-        )?;
-        match self.friction_regularization {
-            Some(rho) => require(
-                rho.is_finite() && rho > 0.0 && rho < 1e-2,
-                "friction_regularization",
-                rho,
-                "a number in (0, 0.01)",
-            ),
-            None => Ok(()),
-        }
-    }
-}
-
-/// Why the outer loop stopped.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "reason", rename_all = "kebab-case")]
-pub enum StopReason {
-    /// The stopping test held after a convex solve at the final Newton tolerance.
-    Converged,
-    /// The convex solve of outer iteration `outer`, at the final Newton tolerance, did not
-    /// reach it.
-    NewtonNotConverged {
-        /// The outer iteration.
-        outer: usize,
-        /// The Newton residual reached (N, in the solver's units).
-        residual: f64,
-        /// The residual tolerance (N, in the solver's units).
-        tolerance: f64,
-    },
-    /// A numerical breakdown in a Newton step after some step succeeded; the last good
-    /// iterate is kept.
-    Breakdown {
-        /// The outer iteration.
-        outer: usize,
-        /// The Newton step of that iteration (1-based).
-        step: usize,
-        /// The error.
-        error: String,
-    },
-    /// `max_iterations` outer iterations without meeting the stopping test.
-    IterationCap,
-}
 
 /// What the outer loop leaves for the certificate and the solution.
 #[derive(Clone, Debug)]
@@ -506,50 +378,6 @@ pub fn run(
         last,
         oscillations: mixer.oscillations,
     })
-}
-
-impl StopReason {
-    /// The stop in words, for the report, given the report of the loop and its settings.
-    pub fn message(
-        &self,
-        report: &SolveReport,
-        settings: &OuterSettings,
-        oscillations: usize,
-    ) -> String {
-        match self {
-            StopReason::Converged => format!(
-                "converged: {} outer iterations, {} Newton steps{}",
-                report.outer.len(),
-                report.newton.len(),
-                if report.round_off_floor > 0.0 {
-                    format!(
-                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
-                        report.round_off_floor
-                    )
-                } else {
-                    String::new()
-                }
-            ),
-            StopReason::NewtonNotConverged {
-                outer,
-                residual,
-                tolerance,
-            } => format!(
-                "Newton did not converge in outer iteration {outer}: residual {residual:e} > tolerance {tolerance:e}"
-            ),
-            StopReason::Breakdown { outer, step, error } => format!(
-                "not converged: numerical breakdown in outer iteration {outer}, Newton step {step}: {error}"
-            ),
-            StopReason::IterationCap => format!(
-                "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
-                report.outer.len(),
-                report.outer.last().map_or(f64::NAN, |o| o.change),
-                report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
-                settings.tolerance,
-                if oscillations > 0 { "; oscillation was detected" } else { "" }
-            ),
-        }
-    }
 }
 
 /// A mixer with no history, keeping the counts of `mixer` (the map of the fixed point has
