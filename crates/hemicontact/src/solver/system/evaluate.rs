@@ -1,67 +1,14 @@
 //! The evaluation of the convexified energy of a [`System`] ([`System::evaluate`]): energy,
 //! gradient and generalized Hessian for given frozen contact quantities, into the work
-//! arrays of an [`Evaluation`], which the outer loop owns.
+//! arrays of an [`Evaluation`].
 
-use super::System;
+use super::{Evaluation, System};
 use crate::assembly::global::{IdealLocking, Want};
 use crate::assembly::BulkAssembler;
-use crate::contact::NormalResponse;
 use crate::fem::rigid::NEWTON_SHIFT;
 use crate::problem::Problem;
 use crate::solver::constraints::AugmentedLagrangian;
 use crate::solver::frozen::Frozen;
-
-/// The derivatives of the convexified energy at the last evaluation
-/// ([`System::evaluate`]): the work arrays of the Newton iteration, allocated once per solve.
-#[derive(Debug)]
-pub struct Evaluation {
-    /// Gradient of the total energy, DOF order (N); in a distributed run, of this process's
-    /// part, known at its own nodes only (NaN at its ghost nodes).
-    pub grad: Vec<f64>,
-    /// Gradient of the bulk energy minus the external forces (the negative of the interface
-    /// forces plus residual), DOF order (N); in a distributed run, of this process's part,
-    /// known at its own nodes only (NaN at its ghost nodes).
-    pub grad_bulk: Vec<f64>,
-    /// Hessian values at the last evaluation with a Hessian (upper triangle, on
-    /// [`System::pattern`]: in a distributed run, of this process's part; N/m).
-    pub hess: Vec<f64>,
-    /// Shift α added to the Newton matrix on the bodies with free rigid motions (0 until
-    /// the first Hessian; see [`crate::fem::rigid::NEWTON_SHIFT`]).
-    pub rigid_shift: f64,
-    /// The responses of user-defined compliance laws at the last evaluation (empty without
-    /// such laws).
-    pub normal: Vec<NormalResponse>,
-    /// The error of a user-defined compliance law at the last evaluation, which then
-    /// returned a NaN energy; the outer loop ends the solve with it.
-    pub law_error: Option<crate::Error>,
-    /// The force `w_i max(F_i, p_i)` of every contact point at the last evaluation of a
-    /// convex problem (N; [`System::point_scales`]).
-    pub point_force: Vec<f64>,
-    /// The floor `η L_i` of the force scale of every contact point at the last evaluation
-    /// of a convex problem (N; [`System::point_scales`]).
-    pub point_floor: Vec<f64>,
-    /// The force scale `F_b` of every body at the last evaluation of a convex problem (N;
-    /// [`super::local_scales::Bodies::force_scales`]).
-    pub body_scale: Vec<f64>,
-}
-
-impl Evaluation {
-    /// Zeroed work arrays for `system`.
-    pub fn new(system: &System) -> Self {
-        let n = system.dofs.n_dofs();
-        Evaluation {
-            grad: vec![0.0; n],
-            grad_bulk: vec![0.0; n],
-            hess: vec![0.0; system.pattern.nnz()],
-            rigid_shift: 0.0,
-            normal: Vec::new(),
-            law_error: None,
-            point_force: Vec::new(),
-            point_floor: Vec::new(),
-            body_scale: Vec::new(),
-        }
-    }
-}
 
 impl System {
     /// Convexified energy `E_k(u) = Σ_T |T| (W + Ψ)(ε_T(u)) + contact terms − f·u` for the
@@ -181,7 +128,7 @@ fn subtract_external(
 
 /// The ideal-locking term of `problem` with the penalties `penalties` and the cell
 /// multipliers of `frozen`.
-pub(in crate::solver) fn ideal_locking<'a>(
+pub(crate) fn ideal_locking<'a>(
     penalties: &'a AugmentedLagrangian,
     problem: &Problem,
     frozen: &'a Frozen,
