@@ -11,6 +11,7 @@ pub mod certificate;
 pub mod constraints;
 pub mod continuation;
 pub mod convex;
+pub mod convex_energy;
 pub mod frozen;
 pub mod held;
 pub mod line_search;
