@@ -95,7 +95,7 @@ impl Problem {
     }
 
     /// The positions of the nodes of boundary part `part` (m, unused coordinates 0), in the
-    /// order of [`Mesh::part_nodes`].
+    /// order of [`crate::mesh::Mesh::part_nodes`].
     pub fn part_positions(&self, part: usize) -> Vec<[f64; 3]> {
         let d = self.mesh.dim();
         self.mesh

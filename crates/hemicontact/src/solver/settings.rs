@@ -166,7 +166,7 @@ impl NewtonSettings {
     /// Checks every setting against its range.
     ///
     /// # Errors
-    /// [`Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
+    /// [`crate::Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
     /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1, `max_backtracks` ≤
     /// [`MAX_BACKTRACKS`], `pcg_iterations` ≤ [`MAX_PCG_ITERATIONS`]).
     pub fn validate(&self) -> Result<()> {

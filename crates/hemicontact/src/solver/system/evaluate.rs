@@ -22,7 +22,7 @@ impl System {
     /// points complete its master nodes' rows), so the gradients are complete at its own
     /// nodes; their entries at its ghost nodes are set to NaN (partial there, never read).
     /// The energies and the work of the loads are summed over the processes
-    /// ([`Processes::sum`] of three numbers, the one exchange of an evaluation).
+    /// ([`crate::parallel::Processes::sum`] of three numbers, the one exchange of an evaluation).
     pub fn evaluate(
         &mut self,
         problem: &Problem,
