@@ -9,9 +9,11 @@
 pub mod contact;
 pub mod element;
 pub mod global;
-pub mod loads;
 pub mod magnitudes;
 pub mod pattern;
 
+/// The consistent nodal loads of constant data, which the problem's external forces sum
+/// ([`crate::problem::loads`], where they live: the problem's own data).
+pub use crate::problem::loads;
 pub use global::BulkAssembler;
 pub use pattern::SystemPattern;

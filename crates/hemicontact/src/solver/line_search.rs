@@ -9,7 +9,7 @@
 //! below the kink where a stiff penalty or contact term switches on, one Newton step per
 //! halving.
 
-use super::newton::ConvexEnergy;
+use super::convex_energy::ConvexEnergy;
 
 /// Settings of the line search.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -9,7 +9,7 @@
 //!   fails to drop by 5 % over two iterations, three times in a row) and cured by halving
 //!   the relaxation factor ω (down to 1/8); the report records it.
 
-use super::outer::{Acceleration, OuterSettings};
+use super::settings::{Acceleration, OuterSettings};
 use crate::parallel::Share;
 use serde::{Serialize, Serializer};
 

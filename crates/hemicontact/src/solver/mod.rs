@@ -11,6 +11,7 @@ pub mod certificate;
 pub mod constraints;
 pub mod continuation;
 pub mod convex;
+pub mod convex_energy;
 pub mod frozen;
 pub mod held;
 pub mod line_search;
@@ -23,7 +24,9 @@ pub mod regions;
 pub mod report;
 pub mod round_off;
 pub mod scaling;
+pub mod settings;
 pub mod system;
+pub mod timings;
 pub mod uniqueness;
 pub mod whole;
 
@@ -33,117 +36,20 @@ pub use constraints::ConstraintSettings;
 pub use frozen::Frozen;
 pub use mixing::Mixing;
 pub use multipliers::{KktCertificate, Multipliers};
-pub use newton::NewtonSettings;
-pub use outer::{needs_outer_loop, Acceleration, OuterProgress, OuterSettings, StopReason};
-pub use report::{NewtonStep, OuterStep, SolveReport, Timings};
+pub use newton::NewtonStep;
+pub use outer::{needs_outer_loop, OuterProgress};
+pub use report::StopReason;
+pub use report::{OuterStep, SolveReport};
+pub use settings::{parallelism, NewtonSettings, SolverSettings, MAX_THREADS};
+pub use settings::{Acceleration, OuterSettings};
 pub use system::{Evaluation, System};
+pub use timings::Timings;
 
 use crate::error::Result;
-use crate::linalg::Ordering;
 use crate::parallel::share::Entries;
 use crate::problem::Problem;
-use serde::{Deserialize, Serialize};
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
-
-/// Solver settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct SolverSettings {
-    /// Fill-reducing ordering of the sparse Cholesky factorization. Default: nested
-    /// dissection, which gives the smallest factor on the meshes measured by
-    /// `hemicontact bench`.
-    pub ordering: Ordering,
-    /// Parallel tasks for the assembly (0: one per core; each task a range of nodes, the
-    /// result the same to the last bit for any number). Default 0: on the 2-core target,
-    /// two tasks assemble 1.2 to 1.9 times faster than one, the machine's noise included
-    /// (`cargo run --release -p hemicontact --example assembly_threads`).
-    pub threads: usize,
-    /// Threads inside the dense blocks of the sparse Cholesky factorization and solves (0:
-    /// all cores). Default 1: faer's parallel supernodal factorization was measured *slower*
-    /// than the sequential one on the 2-core target (paper square, n = 512: 1.5–1.7 s
-    /// against 1.1 s; n = 128: 80 ms against 35 ms), the two cores contending for memory
-    /// bandwidth. A factorization laid out as two substructures
-    /// ([`crate::linalg::substructures`]) runs them side by side on rayon's pool whatever
-    /// this setting.
-    pub factorization_threads: usize,
-    /// Linear solver of the Newton systems (`[solver] linear_solver = "direct"`,
-    /// `"iterative"`, `"auto"` or `"petsc"`). Default `auto`; see [`LinearSolver`].
-    pub linear_solver: LinearSolver,
-    /// Settings of the PETSc linear solver (`[solver.petsc]`), used with
-    /// `linear_solver = "petsc"`.
-    pub petsc: PetscSettings,
-    /// Newton method settings.
-    pub newton: NewtonSettings,
-    /// Outer (convexification) loop settings.
-    pub outer: OuterSettings,
-    /// Exact constraints (augmented Lagrangian) settings.
-    pub constraints: ConstraintSettings,
-    /// Tolerance of the certificate (dimensionless): every residual of the contact laws,
-    /// of equilibrium and of the exact constraints, relative to the solution's own scales,
-    /// must be at most this for a solve to count as converged. Default 1e-6; see
-    /// [`certificate`].
-    pub certificate_tolerance: f64,
-}
-
-impl Default for SolverSettings {
-    fn default() -> Self {
-        SolverSettings {
-            ordering: Ordering::default(),
-            threads: 0,
-            factorization_threads: 1,
-            linear_solver: LinearSolver::default(),
-            petsc: PetscSettings::default(),
-            newton: NewtonSettings::default(),
-            outer: OuterSettings::default(),
-            constraints: ConstraintSettings::default(),
-            certificate_tolerance: 1e-6,
-        }
-    }
-}
-
-/// Most threads a setting may ask for: far above any core count this solver runs on, low
-/// enough that the per-thread buffers of a mistyped count cannot exhaust memory.
-pub const MAX_THREADS: usize = 1024;
-
-impl SolverSettings {
-    /// Checks every setting against its range, the nested ones included.
-    ///
-    /// # Errors
-    /// [`crate::Error::Invalid`] naming the setting by its path from here (e.g.
-    /// `newton.armijo`): `certificate_tolerance` in [1e-14, 1), thread counts up to
-    /// [`MAX_THREADS`], `linear_solver` available in this build ([`LinearSolver::validate`]),
-    /// [`PetscSettings::validate`], and the ranges of [`NewtonSettings::validate`],
-    /// [`OuterSettings::validate`] and [`ConstraintSettings::validate`].
-    pub fn validate(&self) -> Result<()> {
-        use crate::error::require;
-        let tol = self.certificate_tolerance;
-        require(
-            tol.is_finite() && (1e-14..1.0).contains(&tol),
-            "certificate_tolerance",
-            tol,
-            "a relative tolerance in [1e-14, 1)",
-        )?;
-        for (field, n) in [
-            ("threads", self.threads),
-            ("factorization_threads", self.factorization_threads),
-        ] {
-            require(
-                n <= MAX_THREADS,
-                field,
-                n,
-                &format!("a thread count from 0 (all cores) to {MAX_THREADS}"),
-            )?;
-        }
-        self.linear_solver.validate()?;
-        self.petsc.validate().map_err(|e| e.within("petsc"))?;
-        self.newton.validate().map_err(|e| e.within("newton"))?;
-        self.outer.validate().map_err(|e| e.within("outer"))?;
-        self.constraints
-            .validate()
-            .map_err(|e| e.within("constraints"))
-    }
-}
 
 /// A solved (or not converged) problem: displacement, reactions, contact results, report.
 #[derive(Clone, Debug)]
@@ -512,18 +418,4 @@ pub fn certify(
         })
         .collect();
     Ok((contact, certificate))
-}
-
-/// Builds the faer parallelism for `threads` (0: all available cores).
-pub fn parallelism(threads: usize) -> faer::Par {
-    let threads = if threads == 0 {
-        rayon::current_num_threads()
-    } else {
-        threads
-    };
-    if threads <= 1 {
-        faer::Par::Seq
-    } else {
-        faer::Par::rayon(threads)
-    }
 }

@@ -12,170 +12,29 @@
 //! above the round-off floors of its entries ([`ConvexEnergy::discount_round_off`],
 //! [`super::round_off`]).
 
+pub use super::convex_energy::ConvexEnergy;
 use super::line_search::LineSearch;
-use super::report::{NewtonStep, Timings};
-use super::system::LinearInfo;
+pub use super::settings::{NewtonSettings, MAX_BACKTRACKS, MAX_PCG_ITERATIONS};
+use super::timings::Timings;
 use crate::error::{Error, Result};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::time::Instant;
 
-/// Newton method settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct NewtonSettings {
-    /// Maximum number of Newton steps. Default 50: a convex piecewise-quadratic energy
-    /// converges in far fewer; hitting the cap signals a modelling problem.
-    pub max_iterations: usize,
-    /// Relative residual tolerance (dimensionless, relative to the force scale).
-    /// Default 1e-10, a few orders above round-off for the systems solved here.
-    pub residual_tolerance: f64,
-    /// Armijo sufficient-decrease constant in (0, ½). Default 1e-4 (Nocedal–Wright).
-    pub armijo: f64,
-    /// Maximum number of trial steps per line search beyond the full step. Default 40.
-    pub max_backtracks: usize,
-    /// Maximum conjugate-gradient iterations preconditioned by the last factorization
-    /// before the Hessian is refactorized. Default 8: one triangular solve costs about a
-    /// tenth of a factorization, and changes of the active sets (locking cells, contact and
-    /// stick nodes) are low-rank updates that PCG resolves in about as many iterations as
-    /// their rank. 0 disables PCG (every changed Hessian is refactorized) and, with the
-    /// iterative solver, the lagged multigrid set-up (every changed Hessian is set up
-    /// fully).
+/// One Newton step.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NewtonStep {
+    /// Outer iteration this step belongs to.
+    pub outer: usize,
+    /// Euclidean norm of the residual (gradient on free DOFs) before the step (N).
+    pub residual: f64,
+    /// Energy before the step (J).
+    pub energy: f64,
+    /// Line-search step length taken (1 = full Newton step).
+    pub step_length: f64,
+    /// Whether the Hessian was refactorized for this step.
+    pub refactorized: bool,
+    /// Conjugate-gradient iterations (0: direct solve with the factorization).
     pub pcg_iterations: usize,
-    /// Largest relative residual PCG may stop at (the loosest forcing term of the inexact
-    /// Newton method; the actual one is `min(pcg_tolerance, 0.1 · tolerance / residual)`, so
-    /// the last steps are solved as accurately as the convergence criterion needs). Default
-    /// 1e-3: near the solution Newton then still gains three digits per step.
-    pub pcg_tolerance: f64,
-}
-
-impl Default for NewtonSettings {
-    fn default() -> Self {
-        NewtonSettings {
-            max_iterations: 50,
-            residual_tolerance: 1e-10,
-            armijo: 1e-4,
-            max_backtracks: 40,
-            pcg_iterations: 8,
-            pcg_tolerance: 1e-3,
-        }
-    }
-}
-
-impl NewtonSettings {
-    /// Checks every setting against its range.
-    ///
-    /// # Errors
-    /// [`Error::Invalid`] naming the setting (`residual_tolerance` in (0, 1), `armijo` in
-    /// (0, ½), `pcg_tolerance` in [1e-12, 1), `max_iterations` ≥ 1, `max_backtracks` ≤
-    /// [`MAX_BACKTRACKS`], `pcg_iterations` ≤ [`MAX_PCG_ITERATIONS`]).
-    pub fn validate(&self) -> Result<()> {
-        use crate::error::require;
-        let tol = self.residual_tolerance;
-        require(
-            tol.is_finite() && tol > 0.0 && tol < 1.0,
-            "residual_tolerance",
-            tol,
-            "a number in (0, 1)",
-        )?;
-        require(
-            self.armijo > 0.0 && self.armijo < 0.5,
-            "armijo",
-            self.armijo,
-            "a number in (0, 0.5)",
-        )?;
-        require(
-            self.pcg_tolerance >= 1e-12 && self.pcg_tolerance < 1.0,
-            "pcg_tolerance",
-            self.pcg_tolerance,
-            "a number in [1e-12, 1)",
-        )?;
-        require(
-            self.max_iterations > 0,
-            "max_iterations",
-            0,
-            "a positive integer",
-        )?;
-        require(
-            self.max_backtracks <= MAX_BACKTRACKS,
-            "max_backtracks",
-            self.max_backtracks,
-            &format!(
-                "an integer from 0 (the full step only) to {MAX_BACKTRACKS} (trial steps \
-                 beyond the full step)"
-            ),
-        )?;
-        require(
-            self.pcg_iterations <= MAX_PCG_ITERATIONS,
-            "pcg_iterations",
-            self.pcg_iterations,
-            &format!(
-                "an integer from 0 (every changed Hessian is refactorized) to \
-                 {MAX_PCG_ITERATIONS}"
-            ),
-        )
-    }
-}
-
-/// Largest [`NewtonSettings::max_backtracks`]: 200 trial steps shrink the step far below
-/// any representable change of a displacement.
-pub const MAX_BACKTRACKS: usize = 200;
-
-/// Largest [`NewtonSettings::pcg_iterations`] before a refactorization.
-pub const MAX_PCG_ITERATIONS: usize = 10_000;
-
-/// A convex energy `Π(x)` of n free unknowns, with what Newton's method needs of it.
-pub trait ConvexEnergy {
-    /// Number of free unknowns n.
-    fn dimension(&self) -> usize;
-    /// Evaluates `Π(x)` (J), keeping the gradient for [`ConvexEnergy::gradient`] and, with
-    /// `hessian`, the (generalized) Hessian for [`ConvexEnergy::newton_direction`].
-    fn evaluate(&mut self, x: &[f64], hessian: bool) -> f64;
-    /// `∇Π` at the last evaluation (N), length n.
-    fn gradient(&self) -> &[f64];
-    /// The dot product `Σ_e a_e b_e` of two vectors of the n unknowns (a force and a
-    /// displacement: J), added in order; an energy distributed over several processes
-    /// completes it over them.
-    fn dot(&self, a: &[f64], b: &[f64]) -> f64 {
-        a.iter().zip(b).map(|(x, y)| x * y).sum()
-    }
-    /// The residual norm and the force scale (N) that makes it dimensionless, at the last
-    /// evaluation: for an energy of independent parts (the bodies of a mesh,
-    /// [`super::local_scales`]), those of the part farthest from equilibrium relative to its own
-    /// scale.
-    fn residual(&self) -> (f64, f64);
-    /// The residual norm and force scale (N) that set the accuracy of the linear solves
-    /// (the forcing term of the inexact Newton method): by default those of
-    /// [`ConvexEnergy::residual`]. An energy whose convergence test also holds small parts
-    /// to their own scales may return the coarse parts here, so that an iterative solver
-    /// is not driven to the accuracy of the smallest part at every step.
-    fn forcing_residual(&self) -> (f64, f64) {
-        self.residual()
-    }
-    /// Discounts the round-off of the last evaluation until the next one (see
-    /// [`super::round_off`]): [`ConvexEnergy::residual`] and
-    /// [`ConvexEnergy::forcing_residual`] count only what lies above the round-off floors
-    /// (where that is less), and a part of the energy left with nothing but round-off may
-    /// be left out of [`ConvexEnergy::gradient`], so that no Newton step moves it. By
-    /// default nothing is discounted.
-    fn discount_round_off(&mut self) {}
-    /// Solves `H Δ = rhs` with the Hessian of the last evaluation with one, to the relative
-    /// residual `eta` where the solve is iterative; timings go to `timings`.
-    ///
-    /// # Errors
-    /// A Hessian that cannot be factorized, or an iterative solve that fails.
-    fn newton_direction(
-        &mut self,
-        rhs: &[f64],
-        delta: &mut [f64],
-        eta: f64,
-        timings: &mut Timings,
-    ) -> Result<LinearInfo>;
-    /// Called with every accepted iterate; an error stops the minimization (e.g. a body
-    /// running away along a rigid motion).
-    ///
-    /// # Errors
-    /// Whatever the energy refuses at `x`.
-    fn accept(&mut self, x: &[f64]) -> Result<()>;
 }
 
 /// How far above the tolerance a stagnating residual may be taken as the round-off floor.

@@ -31,143 +31,15 @@ use super::frozen::Frozen;
 use super::held;
 use super::mixing::{Counted, Mixer, Mixing};
 use super::newton::{NewtonOutcome, NewtonRecord};
+pub use super::report::StopReason;
 use super::report::{OuterStep, SolveReport};
+use super::settings::SolverSettings;
+pub use super::settings::{Acceleration, OuterSettings, MAX_DEPTH};
 use super::system::Evaluation;
-use super::{constraints, SolverSettings, System};
+use super::{constraints, System};
 use crate::error::Result;
 use crate::problem::Problem;
-use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// Acceleration of the outer fixed-point iteration; see the module documentation.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Acceleration {
-    /// Plain (relaxed) fixed point with oscillation detection.
-    None,
-    /// Safeguarded Anderson acceleration.
-    #[default]
-    Anderson,
-}
-
-/// Outer-loop settings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct OuterSettings {
-    /// Maximum number of outer iterations (convex solves). Default 100.
-    pub max_iterations: usize,
-    /// Tolerance on the relative change of u in the energy norm. Default 1e-10.
-    pub tolerance: f64,
-    /// Acceleration. Default Anderson.
-    pub acceleration: Acceleration,
-    /// Anderson depth (number of differences kept). Default 5.
-    pub depth: usize,
-    /// Initial relaxation factor ω ∈ (0, 1] of the plain fixed point. Default 1.
-    pub relaxation: f64,
-    /// Deprecated: the numerical regularization of the norm in the friction potential of
-    /// every contact part, now a parameter of the friction law
-    /// ([`crate::contact::NormTreatment::Smoothed`], scenario key `[contact.friction]
-    /// regularization`); read by the scenario loader only. `None` unless given.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub friction_regularization: Option<f64>,
-    /// Solve early convex problems inexactly. Default true.
-    pub inexact: bool,
-}
-
-impl Default for OuterSettings {
-    fn default() -> Self {
-        OuterSettings {
-            max_iterations: 100,
-            tolerance: 1e-10,
-            acceleration: Acceleration::Anderson,
-            depth: 5,
-            relaxation: 1.0,
-            friction_regularization: None,
-            inexact: true,
-        }
-    }
-}
-
-/// Largest Anderson depth [`OuterSettings::validate`] accepts: the history is a dense
-/// least-squares problem of this size per outer iteration, and depths beyond a few tens
-/// only add round-off.
-pub const MAX_DEPTH: usize = 50;
-
-impl OuterSettings {
-    /// Checks every setting against its range.
-    ///
-    /// # Errors
-    /// [`crate::Error::Invalid`] naming the setting (`tolerance` in (0, 1), `depth` from 1
-    /// to [`MAX_DEPTH`], `max_iterations` ≥ 1, `relaxation` in (0, 1],
-    /// the deprecated `friction_regularization`, if given, in (0, 0.01)).
-    pub fn validate(&self) -> crate::Result<()> {
-        use crate::error::require;
-        let tol = self.tolerance;
-        require(
-            tol.is_finite() && tol > 0.0 && tol < 1.0,
-            "tolerance",
-            tol,
-            "a number in (0, 1)",
-        )?;
-        require(
-            (1..=MAX_DEPTH).contains(&self.depth),
-            "depth",
-            self.depth,
-            &format!("an Anderson depth from 1 to {MAX_DEPTH}"),
-        )?;
-        require(
-            self.max_iterations > 0,
-            "max_iterations",
-            0,
-            "a positive integer",
-        )?;
-        require(
-            self.relaxation > 0.0 && self.relaxation <= 1.0,
-            "relaxation",
-            self.relaxation,
-            "a factor in (0, 1]",
-        )?;
-        match self.friction_regularization {
-            Some(rho) => require(
-                rho.is_finite() && rho > 0.0 && rho < 1e-2,
-                "friction_regularization",
-                rho,
-                "a number in (0, 0.01)",
-            ),
-            None => Ok(()),
-        }
-    }
-}
-
-/// Why the outer loop stopped.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-#[serde(tag = "reason", rename_all = "kebab-case")]
-pub enum StopReason {
-    /// The stopping test held after a convex solve at the final Newton tolerance.
-    Converged,
-    /// The convex solve of outer iteration `outer`, at the final Newton tolerance, did not
-    /// reach it.
-    NewtonNotConverged {
-        /// The outer iteration.
-        outer: usize,
-        /// The Newton residual reached (N, in the solver's units).
-        residual: f64,
-        /// The residual tolerance (N, in the solver's units).
-        tolerance: f64,
-    },
-    /// A numerical breakdown in a Newton step after some step succeeded; the last good
-    /// iterate is kept.
-    Breakdown {
-        /// The outer iteration.
-        outer: usize,
-        /// The Newton step of that iteration (1-based).
-        step: usize,
-        /// The error.
-        error: String,
-    },
-    /// `max_iterations` outer iterations without meeting the stopping test.
-    IterationCap,
-}
 
 /// What the outer loop leaves for the certificate and the solution.
 #[derive(Clone, Debug)]
@@ -263,22 +135,7 @@ pub fn run(
     let outer_loop = needs_outer_loop(problem);
     let final_tol = settings.newton.residual_tolerance;
     let mut frozen = Frozen::initial(system, problem, u)?;
-    // Bodies held by friction alone (see `held`): a first bound that cannot carry the load
-    // along their sliding motions (a Coulomb bound at zero pressure) is given one iteration
-    // with that load balanced by uniform friction; a fixed bound is checked now.
-    let sliding = held::Sliding::of(system, problem);
-    let mut relieved = None;
-    if !sliding.is_empty() && sliding.exceeds(system, &frozen.friction.bound) {
-        if outer_loop {
-            let relief = sliding.relief(system, problem);
-            relieved = Some(system.f_ext.clone());
-            for (f, r) in system.f_ext.iter_mut().zip(&relief) {
-                *f += r;
-            }
-        } else {
-            sliding.check(system, problem, u, &frozen)?;
-        }
-    }
+    let (sliding, mut relieved) = held_by_friction(system, problem, u, &frozen, outer_loop)?;
     let relieved_first = relieved.is_some();
     // A friction-held body whose frozen bound cannot carry its load is first brought to
     // rest with the static coefficient (see `held::AtRest`).
@@ -289,13 +146,7 @@ pub fn run(
     let mut u_prev = u.to_vec();
     let (mut norm_u, mut norm_diff, mut point_scale) = (Vec::new(), Vec::new(), Vec::new());
     let mut change = f64::INFINITY;
-    let mut last = NewtonOutcome {
-        converged: false,
-        steps: 0,
-        residual: f64::NAN,
-        energy: f64::NAN,
-        force_scale: f64::NAN,
-    };
+    let mut last = no_convex_solve();
     let mut stop = StopReason::IterationCap;
     let stages = system.continuation.stages();
     for k in 0..settings.outer.max_iterations.max(1) {
@@ -304,29 +155,21 @@ pub fn run(
             z = frozen.flatten();
             mixer = restarted(mixer, &settings.outer);
         }
-        // A relieved first iteration gives the friction limit: solved accurately.
-        let tol = if !outer_loop || !settings.outer.inexact || (k == 0 && relieved_first) {
-            final_tol
-        } else {
-            (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
-        };
+        let relieved_now = k == 0 && relieved_first;
+        let tol = newton_tolerance(settings, outer_loop, relieved_now, change);
         // The tolerance never falls below the final one: at it, this solve can conclude.
         let final_solve = tol <= final_tol;
-        let steps_before = report.newton.len();
-        let mut record = NewtonRecord {
-            outer: k,
-            first_step: steps_before,
-            ..NewtonRecord::default()
-        };
-        if interrupt.load(Ordering::Relaxed) {
-            return Err(crate::Error::Interrupted);
-        }
-        let mut energy =
-            convex::ConvexProblem::new(system, eval, problem, &frozen, &settings.newton, u)
-                .with_stop(interrupt);
-        let result = convex::minimize(&mut energy, tol, u, &mut record);
-        let runaway = energy.runaway;
-        report.add_newton(record);
+        let (convex_solve, result) = ConvexSolve::solve(
+            (k, tol),
+            system,
+            eval,
+            problem,
+            &frozen,
+            &settings.newton,
+            u,
+            interrupt,
+            report,
+        )?;
         if let Some(f_ext) = relieved.take() {
             system.f_ext = f_ext;
         }
@@ -334,102 +177,26 @@ pub fn run(
         if let Some(e) = eval.law_error.take() {
             return Err(e);
         }
-        last = match result {
+        last = match convex_solve
+            .outcome(result, &sliding, system, problem, &u_prev, &frozen, report)?
+        {
             Ok(outcome) => outcome,
-            // The load pulls a body off the contact carrying its free rigid motions, or
-            // slides it beyond what friction holds: no solution to report.
-            Err(e @ crate::Error::ContactLost { .. }) => {
-                let slid = match runaway {
-                    Some(r) => sliding.slid_away(system, problem, &r, &u_prev, &frozen, k)?,
-                    None => None,
-                };
-                return Err(slid.unwrap_or(e));
-            }
-            // The caller asked to stop: no result.
-            Err(crate::Error::Interrupted) => return Err(crate::Error::Interrupted),
-            // Before any step succeeded there is no iterate worth keeping: the problem
-            // itself is at fault (e.g. rigid motions not blocked).
-            Err(e) if steps_before == 0 && report.newton.is_empty() => return Err(e),
-            // Later, a breakdown keeps the last good iterate (Newton only updates `u`
-            // after an accepted step), reported as not converged with where it happened.
-            Err(e) => {
-                stop = StopReason::Breakdown {
-                    outer: k,
-                    step: report.newton.len() - steps_before + 1,
-                    error: e.to_string(),
-                };
+            Err(breakdown) => {
+                stop = breakdown;
                 break;
             }
         };
-        let diff: Vec<f64> = u.iter().zip(&u_prev).map(|(a, b)| a - b).collect();
         change = if k == 0 {
             f64::INFINITY
         } else {
-            // Body by body: the largest relative change of a body.
-            system
-                .bodies
-                .energy_norms(system.share(), &problem.mesh, &hooke, u, &mut norm_u);
-            system.bodies.energy_norms(
-                system.share(),
-                &problem.mesh,
-                &hooke,
-                &diff,
-                &mut norm_diff,
-            );
-            let relative = |floor: &[f64]| {
-                norm_diff
-                    .iter()
-                    .zip(&norm_u)
-                    .enumerate()
-                    .map(|(b, (d, n))| {
-                        let d = if floor.get(b).is_some_and(|f| d <= f) {
-                            0.0
-                        } else {
-                            *d
-                        };
-                        d / n.max(f64::MIN_POSITIVE)
-                    })
-                    .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
-            };
-            let plain = relative(&[]);
-            if plain > settings.outer.tolerance {
-                // A change within the round-off of u itself is no change.
-                let mut floor = Vec::new();
-                let (share, mesh) = (system.share(), &problem.mesh);
-                super::round_off::change_floors(&system.bodies, share, mesh, &hooke, u, &mut floor);
-                relative(&floor)
-            } else {
-                plain
-            }
+            let norms = (&mut norm_u, &mut norm_diff);
+            relative_change(system, problem, &hooke, u, &u_prev, norms, &settings.outer)
         };
         u_prev.copy_from_slice(u);
-        if k == 0 && relieved_first {
-            // The pressures of the relieved iteration give the friction limit; the slips
-            // start from its answer centred on the contact.
-            sliding.check(system, problem, u, &frozen)?;
-            sliding.recenter(system, problem, u);
-            u_prev.copy_from_slice(u);
-        }
-        // A user-defined friction law that fails ends the solve with its error.
-        let mut next = frozen.image(system, problem, u)?;
-        if k == 0 && relieved_first {
-            // A Coulomb bound at a Signorini point takes its pressure from the multiplier,
-            // zero in this first iteration: take the updated one.
-            next.friction = system
-                .contact_assembler(problem)
-                .convexify(u, &next.contact())?;
-        }
-        at_rest.apply(&sliding, system, problem, u, &mut next)?;
+        let held = (&sliding, &at_rest, relieved_now);
+        let next = image(held, system, problem, u, &mut u_prev, &frozen)?;
         let g = next.flatten();
-        // Each contact point on its own scale (see `local_scales`).
-        point_scale.clear();
-        point_scale.extend(
-            eval.point_force
-                .iter()
-                .zip(&eval.point_floor)
-                .map(|(f, floor)| f.max(*floor).max(f64::MIN_POSITIVE)),
-        );
-        let fp_rel = frozen.residual(&next, system, problem, &point_scale);
+        let fp_rel = fixed_point_residual(system, problem, eval, &frozen, &next, &mut point_scale);
         let mut step = OuterStep {
             change,
             fixed_point_residual: fp_rel,
@@ -475,28 +242,17 @@ pub fn run(
             stop = StopReason::Converged;
             break;
         }
-        if k == 0 && relieved_first {
-            step.mixing = Mixing::Relieved;
-            z = g;
-            frozen = next;
-        } else if outer_loop && k + 1 < stages {
-            // Continuation (penalties, friction regularization): the map changes with each
-            // stage, so no mixing yet.
-            step.mixing = Mixing::Continuation {
-                next: k + 1,
-                stages,
-            };
-            z = g;
-            frozen = next;
-        } else if outer_loop {
-            let counted = Counted {
-                counts: &z_counts,
-                share: system.share(),
-            };
-            let (mixed, how) = mixer.next(&z, &g, counted);
-            step.mixing = how;
-            z = mixed;
-            frozen = Frozen::unflatten(&z, n_points, n_locking);
+        let counted = Counted {
+            counts: &z_counts,
+            share: system.share(),
+        };
+        let stage = (k, stages, relieved_now, outer_loop);
+        let sizes = (n_points, n_locking);
+        let (mixing, mixed) = next_iterate(stage, &mut mixer, &z, g, next, counted, sizes);
+        step.mixing = mixing;
+        if let Some((mixed_z, mixed_frozen)) = mixed {
+            z = mixed_z;
+            frozen = mixed_frozen;
         }
         report.outer.push(step);
     }
@@ -508,47 +264,304 @@ pub fn run(
     })
 }
 
-impl StopReason {
-    /// The stop in words, for the report, given the report of the loop and its settings.
-    pub fn message(
-        &self,
-        report: &SolveReport,
-        settings: &OuterSettings,
-        oscillations: usize,
-    ) -> String {
-        match self {
-            StopReason::Converged => format!(
-                "converged: {} outer iterations, {} Newton steps{}",
-                report.outer.len(),
-                report.newton.len(),
-                if report.round_off_floor > 0.0 {
-                    format!(
-                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
-                        report.round_off_floor
-                    )
-                } else {
-                    String::new()
-                }
-            ),
-            StopReason::NewtonNotConverged {
-                outer,
-                residual,
-                tolerance,
-            } => format!(
-                "Newton did not converge in outer iteration {outer}: residual {residual:e} > tolerance {tolerance:e}"
-            ),
-            StopReason::Breakdown { outer, step, error } => format!(
-                "not converged: numerical breakdown in outer iteration {outer}, Newton step {step}: {error}"
-            ),
-            StopReason::IterationCap => format!(
-                "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
-                report.outer.len(),
-                report.outer.last().map_or(f64::NAN, |o| o.change),
-                report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
-                settings.tolerance,
-                if oscillations > 0 { "; oscillation was detected" } else { "" }
-            ),
+/// The outcome before any convex solve: not converged, no step, no residual.
+fn no_convex_solve() -> NewtonOutcome {
+    NewtonOutcome {
+        converged: false,
+        steps: 0,
+        residual: f64::NAN,
+        energy: f64::NAN,
+        force_scale: f64::NAN,
+    }
+}
+
+/// The image `G(z)` of the frozen quantities `frozen` at the iterate `u`, for the bodies
+/// held by friction `held` (their sliding motions, those at rest, and whether this
+/// iteration was relieved: then the friction limit is checked, the slips recentred on the
+/// contact, `u` and `u_prev` with them, and the bound of a Signorini point takes the
+/// updated pressure).
+///
+/// # Errors
+/// A user-defined friction law that fails, and those of [`held::Sliding::check`].
+fn image(
+    (sliding, at_rest, relieved): (&held::Sliding, &held::AtRest, bool),
+    system: &System,
+    problem: &Problem,
+    u: &mut [f64],
+    u_prev: &mut [f64],
+    frozen: &Frozen,
+) -> Result<Frozen> {
+    if relieved {
+        // The pressures of the relieved iteration give the friction limit; the slips
+        // start from its answer centred on the contact.
+        sliding.check(system, problem, u, frozen)?;
+        sliding.recenter(system, problem, u);
+        u_prev.copy_from_slice(u);
+    }
+    // A user-defined friction law that fails ends the solve with its error.
+    let mut next = frozen.image(system, problem, u)?;
+    if relieved {
+        // A Coulomb bound at a Signorini point takes its pressure from the multiplier,
+        // zero in this first iteration: take the updated one.
+        next.friction = system
+            .contact_assembler(problem)
+            .convexify(u, &next.contact())?;
+    }
+    at_rest.apply(sliding, system, problem, u, &mut next)?;
+    Ok(next)
+}
+
+/// Bodies held by friction alone (see `held`): a first bound that cannot carry the load
+/// along their sliding motions (a Coulomb bound at zero pressure) is given one iteration
+/// with that load balanced by uniform friction (`system.f_ext` relieved; the external
+/// forces to restore after it are returned); a fixed bound (no outer loop) is checked now.
+///
+/// # Errors
+/// Those of [`held::Sliding::check`].
+fn held_by_friction(
+    system: &mut System,
+    problem: &Problem,
+    u: &[f64],
+    frozen: &Frozen,
+    outer_loop: bool,
+) -> Result<(held::Sliding, Option<Vec<f64>>)> {
+    let sliding = held::Sliding::of(system, problem);
+    let mut relieved = None;
+    if !sliding.is_empty() && sliding.exceeds(system, &frozen.friction.bound) {
+        if outer_loop {
+            let relief = sliding.relief(system, problem);
+            relieved = Some(system.f_ext.clone());
+            for (f, r) in system.f_ext.iter_mut().zip(&relief) {
+                *f += r;
+            }
+        } else {
+            sliding.check(system, problem, u, frozen)?;
         }
+    }
+    Ok((sliding, relieved))
+}
+
+/// The relative residual tolerance of the convex solve after a relative change `change`:
+/// the final one without an outer loop, without inexact solves, or in a relieved first
+/// iteration (`relieved`: it gives the friction limit, solved accurately); else a hundredth
+/// of the change, between the final tolerance and 1e-3.
+fn newton_tolerance(
+    settings: &SolverSettings,
+    outer_loop: bool,
+    relieved: bool,
+    change: f64,
+) -> f64 {
+    let final_tol = settings.newton.residual_tolerance;
+    // A relieved first iteration gives the friction limit: solved accurately.
+    if !outer_loop || !settings.outer.inexact || relieved {
+        final_tol
+    } else {
+        (1e-2 * change).clamp(final_tol, 1e-3_f64.max(final_tol))
+    }
+}
+
+/// Which convex solve an outcome is of: the outer iteration `k`, the Newton steps before
+/// it, and the body that ran away along a free rigid motion, if one did.
+struct ConvexSolve {
+    /// The outer iteration.
+    k: usize,
+    /// Newton steps of the solve before this convex solve.
+    steps_before: usize,
+    /// The runaway the convex solve stopped at, if any.
+    runaway: Option<crate::fem::rigid::Runaway>,
+}
+
+impl ConvexSolve {
+    /// Minimizes the convex energy of the frozen quantities `frozen` by Newton from `u`,
+    /// in outer iteration `k` to the relative residual `tol`, the steps recorded in
+    /// `report`: the solve, and its result.
+    ///
+    /// # Errors
+    /// [`crate::Error::Interrupted`] if `interrupt` is raised before it.
+    #[allow(clippy::too_many_arguments)]
+    fn solve(
+        (k, tol): (usize, f64),
+        system: &mut System,
+        eval: &mut Evaluation,
+        problem: &Problem,
+        frozen: &Frozen,
+        settings: &super::settings::NewtonSettings,
+        u: &mut [f64],
+        interrupt: &AtomicBool,
+        report: &mut SolveReport,
+    ) -> Result<(ConvexSolve, Result<NewtonOutcome>)> {
+        let steps_before = report.newton.len();
+        let mut record = NewtonRecord {
+            outer: k,
+            first_step: steps_before,
+            ..NewtonRecord::default()
+        };
+        if interrupt.load(Ordering::Relaxed) {
+            return Err(crate::Error::Interrupted);
+        }
+        let mut energy = convex::ConvexProblem::new(system, eval, problem, frozen, settings, u)
+            .with_stop(interrupt);
+        let result = convex::minimize(&mut energy, tol, u, &mut record);
+        let runaway = energy.runaway;
+        report.add_newton(record);
+        let solve = ConvexSolve {
+            k,
+            steps_before,
+            runaway,
+        };
+        Ok((solve, result))
+    }
+
+    /// The outcome of the convex solve, `Ok(Err(stop))` for a breakdown after some step
+    /// succeeded (the last good iterate is kept: Newton only updates `u` after an
+    /// accepted step).
+    ///
+    /// # Errors
+    /// A body pulled off the contact carrying its free rigid motions, or slid beyond what
+    /// friction holds ([`held::Sliding::slid_away`]); an interruption; an error before any
+    /// step succeeded (the problem itself is at fault, e.g. rigid motions not blocked).
+    #[allow(clippy::too_many_arguments)]
+    fn outcome(
+        &self,
+        result: Result<NewtonOutcome>,
+        sliding: &held::Sliding,
+        system: &System,
+        problem: &Problem,
+        u_prev: &[f64],
+        frozen: &Frozen,
+        report: &SolveReport,
+    ) -> Result<std::result::Result<NewtonOutcome, StopReason>> {
+        let (k, steps_before) = (self.k, self.steps_before);
+        match result {
+            Ok(outcome) => Ok(Ok(outcome)),
+            // The load pulls a body off the contact carrying its free rigid motions, or
+            // slides it beyond what friction holds: no solution to report.
+            Err(e @ crate::Error::ContactLost { .. }) => {
+                let slid = match &self.runaway {
+                    Some(r) => sliding.slid_away(system, problem, r, u_prev, frozen, k)?,
+                    None => None,
+                };
+                Err(slid.unwrap_or(e))
+            }
+            // The caller asked to stop: no result.
+            Err(crate::Error::Interrupted) => Err(crate::Error::Interrupted),
+            // Before any step succeeded there is no iterate worth keeping: the problem
+            // itself is at fault (e.g. rigid motions not blocked).
+            Err(e) if steps_before == 0 && report.newton.is_empty() => Err(e),
+            // Later, a breakdown keeps the last good iterate (Newton only updates `u`
+            // after an accepted step), reported as not converged with where it happened.
+            Err(e) => Ok(Err(StopReason::Breakdown {
+                outer: k,
+                step: report.newton.len() - steps_before + 1,
+                error: e.to_string(),
+            })),
+        }
+    }
+}
+
+/// The relative change of `u` since `u_prev`, body by body: the largest over the bodies of
+/// `‖u − u_prev‖_E / ‖u‖_E` in the energy norm of the small-strain Hooke laws `hooke`
+/// (the work arrays `norms` hold the bodies' norms of u and of the change); beyond the
+/// outer tolerance, a change within the round-off of u itself counts as none.
+fn relative_change(
+    system: &System,
+    problem: &Problem,
+    hooke: &dyn Fn(usize) -> crate::material::Hooke,
+    u: &[f64],
+    u_prev: &[f64],
+    norms: (&mut Vec<f64>, &mut Vec<f64>),
+    settings: &OuterSettings,
+) -> f64 {
+    let (norm_u, norm_diff) = norms;
+    let diff: Vec<f64> = u.iter().zip(u_prev).map(|(a, b)| a - b).collect();
+    // Body by body: the largest relative change of a body.
+    system
+        .bodies
+        .energy_norms(system.share(), &problem.mesh, hooke, u, norm_u);
+    system
+        .bodies
+        .energy_norms(system.share(), &problem.mesh, hooke, &diff, norm_diff);
+    let relative = |floor: &[f64]| {
+        norm_diff
+            .iter()
+            .zip(norm_u.iter())
+            .enumerate()
+            .map(|(b, (d, n))| {
+                let d = if floor.get(b).is_some_and(|f| d <= f) {
+                    0.0
+                } else {
+                    *d
+                };
+                d / n.max(f64::MIN_POSITIVE)
+            })
+            .fold(0.0, |c: f64, x| if x.is_nan() { x } else { c.max(x) })
+    };
+    let plain = relative(&[]);
+    if plain > settings.tolerance {
+        // A change within the round-off of u itself is no change.
+        let mut floor = Vec::new();
+        let (share, mesh) = (system.share(), &problem.mesh);
+        super::round_off::change_floors(&system.bodies, share, mesh, hooke, u, &mut floor);
+        relative(&floor)
+    } else {
+        plain
+    }
+}
+
+/// The relative fixed-point residual of the frozen quantities `next` (the image) against
+/// `frozen`, each contact point on its own scale (see `local_scales`: the larger of its
+/// force and its floor at the last evaluation `eval`, into the work array `point_scale`).
+fn fixed_point_residual(
+    system: &System,
+    problem: &Problem,
+    eval: &Evaluation,
+    frozen: &Frozen,
+    next: &Frozen,
+    point_scale: &mut Vec<f64>,
+) -> f64 {
+    // Each contact point on its own scale (see `local_scales`).
+    point_scale.clear();
+    point_scale.extend(
+        eval.point_force
+            .iter()
+            .zip(&eval.point_floor)
+            .map(|(f, floor)| f.max(*floor).max(f64::MIN_POSITIVE)),
+    );
+    frozen.residual(next, system, problem, point_scale)
+}
+
+/// How the next iterate is formed after outer iteration `k` of `stages` continuation
+/// stages (`relieved`: a relieved first iteration; `outer_loop`: whether the outer loop is
+/// needed), from the current `z` and its image `g` (the frozen quantities `next`): the
+/// image itself after a relieved iteration and during continuation (the map changes with
+/// each stage, so no mixing yet), else `mixer`'s next iterate; `None` without an outer
+/// loop (the iterate stays). `n_points` contact points and `n_locking` cell multipliers
+/// make up an iterate.
+fn next_iterate(
+    (k, stages, relieved, outer_loop): (usize, usize, bool, bool),
+    mixer: &mut Mixer,
+    z: &[f64],
+    g: Vec<f64>,
+    next: Frozen,
+    counted: Counted<'_>,
+    (n_points, n_locking): (usize, usize),
+) -> (Mixing, Option<(Vec<f64>, Frozen)>) {
+    if relieved {
+        (Mixing::Relieved, Some((g, next)))
+    } else if outer_loop && k + 1 < stages {
+        // Continuation (penalties, friction regularization): the map changes with each
+        // stage, so no mixing yet.
+        let mixing = Mixing::Continuation {
+            next: k + 1,
+            stages,
+        };
+        (mixing, Some((g, next)))
+    } else if outer_loop {
+        let (mixed, how) = mixer.next(z, &g, counted);
+        let frozen = Frozen::unflatten(&mixed, n_points, n_locking);
+        (how, Some((mixed, frozen)))
+    } else {
+        (Mixing::None, None)
     }
 }
 

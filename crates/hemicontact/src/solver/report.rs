@@ -1,47 +1,10 @@
 //! What a solve did: iterations, residuals, timings, sizes.
 
+pub use super::newton::NewtonStep;
+use super::settings::OuterSettings;
+pub use super::timings::Timings;
 use super::System;
 use serde::Serialize;
-
-/// Wall-clock time per phase (s).
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Timings {
-    /// Sparsity pattern and DOF map.
-    pub pattern: f64,
-    /// Fill-reducing ordering and symbolic factorization (iterative linear solver: the
-    /// multigrid grids and prolongations).
-    pub symbolic: f64,
-    /// Assembly of energy, gradient and Hessian (all Newton steps).
-    pub assembly: f64,
-    /// Numeric factorizations (all Newton steps); with the iterative linear solver, the
-    /// multigrid set-ups (Galerkin operators, smoother intervals, coarsest factor).
-    pub factorization: f64,
-    /// Triangular solves and PCG iterations (all Newton steps).
-    pub solve: f64,
-    /// Number of numeric factorizations (iterative linear solver: multigrid set-ups).
-    pub n_factorizations: usize,
-    /// Line searches (energy evaluations).
-    pub line_search: f64,
-    /// Whole solve, end to end.
-    pub total: f64,
-}
-
-/// One Newton step.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct NewtonStep {
-    /// Outer iteration this step belongs to.
-    pub outer: usize,
-    /// Euclidean norm of the residual (gradient on free DOFs) before the step (N).
-    pub residual: f64,
-    /// Energy before the step (J).
-    pub energy: f64,
-    /// Line-search step length taken (1 = full Newton step).
-    pub step_length: f64,
-    /// Whether the Hessian was refactorized for this step.
-    pub refactorized: bool,
-    /// Conjugate-gradient iterations (0: direct solve with the factorization).
-    pub pcg_iterations: usize,
-}
 
 /// One outer (convexification) iteration.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -67,10 +30,10 @@ pub struct SolveReport {
     pub converged: bool,
     /// Why the solve stopped, in words.
     pub message: String,
-    /// Why the outer loop stopped ([`super::StopReason`]); a converged loop whose
+    /// Why the outer loop stopped ([`StopReason`]); a converged loop whose
     /// certificate fails is reported with `converged = false` and the failing law in
     /// `message`.
-    pub stop: super::StopReason,
+    pub stop: StopReason,
     /// Number of DOFs (d · nodes).
     pub n_dofs: usize,
     /// Number of free DOFs (equations).
@@ -144,7 +107,7 @@ impl SolveReport {
         SolveReport {
             converged: false,
             message: "not started".into(),
-            stop: super::StopReason::IterationCap,
+            stop: StopReason::IterationCap,
             n_dofs: system.whole.dofs,
             n_equations: system.whole.equations,
             nnz_matrix: system.nnz,
@@ -169,6 +132,80 @@ impl SolveReport {
                 symbolic: system.setup_time.1,
                 ..Timings::default()
             },
+        }
+    }
+}
+
+/// Why the outer loop stopped.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "reason", rename_all = "kebab-case")]
+pub enum StopReason {
+    /// The stopping test held after a convex solve at the final Newton tolerance.
+    Converged,
+    /// The convex solve of outer iteration `outer`, at the final Newton tolerance, did not
+    /// reach it.
+    NewtonNotConverged {
+        /// The outer iteration.
+        outer: usize,
+        /// The Newton residual reached (N, in the solver's units).
+        residual: f64,
+        /// The residual tolerance (N, in the solver's units).
+        tolerance: f64,
+    },
+    /// A numerical breakdown in a Newton step after some step succeeded; the last good
+    /// iterate is kept.
+    Breakdown {
+        /// The outer iteration.
+        outer: usize,
+        /// The Newton step of that iteration (1-based).
+        step: usize,
+        /// The error.
+        error: String,
+    },
+    /// `max_iterations` outer iterations without meeting the stopping test.
+    IterationCap,
+}
+
+impl StopReason {
+    /// The stop in words, for the report, given the report of the loop and its settings.
+    pub fn message(
+        &self,
+        report: &SolveReport,
+        settings: &OuterSettings,
+        oscillations: usize,
+    ) -> String {
+        match self {
+            StopReason::Converged => format!(
+                "converged: {} outer iterations, {} Newton steps{}",
+                report.outer.len(),
+                report.newton.len(),
+                if report.round_off_floor > 0.0 {
+                    format!(
+                        " (a Newton solve stopped at the round-off floor, relative residual {:.1e})",
+                        report.round_off_floor
+                    )
+                } else {
+                    String::new()
+                }
+            ),
+            StopReason::NewtonNotConverged {
+                outer,
+                residual,
+                tolerance,
+            } => format!(
+                "Newton did not converge in outer iteration {outer}: residual {residual:e} > tolerance {tolerance:e}"
+            ),
+            StopReason::Breakdown { outer, step, error } => format!(
+                "not converged: numerical breakdown in outer iteration {outer}, Newton step {step}: {error}"
+            ),
+            StopReason::IterationCap => format!(
+                "not converged: {} outer iterations (cap); last relative change {:e}, fixed-point residual {:e} (tolerance {:e}){}",
+                report.outer.len(),
+                report.outer.last().map_or(f64::NAN, |o| o.change),
+                report.outer.last().map_or(f64::NAN, |o| o.fixed_point_residual),
+                settings.tolerance,
+                if oscillations > 0 { "; oscillation was detected" } else { "" }
+            ),
         }
     }
 }

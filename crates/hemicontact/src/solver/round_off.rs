@@ -160,7 +160,11 @@ impl System {
             }
         }
         let bulk = BulkAssembler {
-            ideal: super::system::ideal_locking(&self.continuation.penalties, problem, frozen),
+            ideal: super::system::evaluate::ideal_locking(
+                &self.continuation.penalties,
+                problem,
+                frozen,
+            ),
             ..BulkAssembler::of(problem, mesh)
         };
         bulk.cell_magnitudes(u, |c, m| {

@@ -2,7 +2,10 @@
 //! how the whole problem's are put together from every process's ([`Share::to_whole`],
 //! [`Share::gather`]); on one process every function here returns its input.
 
-use super::certificate::{ContactResult, FrictionState, NormalState, Worst};
+use super::certificate::ContactResult;
+use super::certificate::FrictionState;
+use super::certificate::NormalState;
+use super::certificate::Worst;
 use crate::parallel::share::Entries;
 use crate::parallel::Share;
 

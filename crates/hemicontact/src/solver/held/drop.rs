@@ -1,7 +1,7 @@
 //! The rigid drop: bodies resting across a gap moved along their pressed motions onto their
 //! contact before Newton (see the module documentation of [`super`]).
 
-use super::{describe, load_along, norm, ROUND_OFF};
+use super::motions::{describe, load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};

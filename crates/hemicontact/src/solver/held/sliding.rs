@@ -2,7 +2,7 @@
 //! relief of the first outer iteration, the recentring of its answer and the check of the
 //! load against the largest friction force (see the module documentation of [`super`]).
 
-use super::{load_along, norm, ROUND_OFF};
+use super::motions::{load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};

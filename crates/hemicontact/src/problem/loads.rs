@@ -2,8 +2,10 @@
 //!
 //! A constant body force `f_0` on a cell T gives `f_0 |T| / (d+1)` to each vertex; a constant
 //! traction `f_N` on a boundary facet F gives `f_N |F| / d` to each of its vertices (since
-//! `∫_T φ_a = |T|/(d+1)` and `∫_F φ_a = |F|/d`).
+//! `∫_T φ_a = |T|/(d+1)` and `∫_F φ_a = |F|/d`). [`Problem::external_forces`] sums them
+//! over the problem's body force and tractions. (Also at [`crate::assembly::loads`].)
 
+use super::Problem;
 use crate::mesh::Mesh;
 
 /// Adds the consistent load of a constant body force `f0` (N/m³; length ≥ d) to `f`
@@ -32,5 +34,20 @@ pub fn add_traction(mesh: &Mesh, part: usize, t: &[f64], f: &mut [f64]) {
                 f[d * v as usize + i] += w * t[i];
             }
         }
+    }
+}
+
+impl Problem {
+    /// The consistent external force vector `f` (DOF order, length `d · n_nodes`).
+    pub fn external_forces(&self) -> Vec<f64> {
+        let d = self.mesh.dim();
+        let mut f = vec![0.0; d * self.mesh.n_nodes()];
+        if self.body_force.iter().any(|&x| x != 0.0) {
+            add_body_force(&self.mesh, &self.body_force, &mut f);
+        }
+        for t in &self.tractions {
+            add_traction(&self.mesh, t.part, &t.value, &mut f);
+        }
+        f
     }
 }

@@ -71,136 +71,23 @@
 //!
 //! Residuals are forces (N, or N/m in 2D), reported relative to their point's force scale.
 
+mod point;
+mod results;
+
+pub use results::{ContactResult, FrictionState, NormalState, Worst};
+
+use super::frozen::Frozen;
 use super::local_scales::Bodies;
 use super::multipliers::KktCertificate;
-use super::round_off::{above_floor, body_residuals, point_floor, Floors};
+use super::round_off::{body_residuals, Floors};
+use super::system::Evaluation;
 pub use super::whole::whole_results;
+use super::System;
 use crate::assembly::contact::{ContactAssembler, ContactData};
-use crate::contact::{FrictionBound, FrictionPotential};
 use crate::mesh::Mesh;
 use crate::parallel::Share;
+use crate::problem::Problem;
 use serde::Serialize;
-
-/// Normal contact state of a point.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum NormalState {
-    /// No pressure: not touching the foundation (or, with normal compliance, not
-    /// penetrating the asperities).
-    Separated,
-    /// Positive contact pressure.
-    Contact,
-}
-
-impl NormalState {
-    /// Integer code for VTK/CSV output: 0 separated, 1 contact.
-    pub fn code(self) -> i32 {
-        match self {
-            NormalState::Separated => 0,
-            NormalState::Contact => 1,
-        }
-    }
-
-    /// The state's name as written in CSV files.
-    pub fn name(self) -> &'static str {
-        match self {
-            NormalState::Separated => "separated",
-            NormalState::Contact => "contact",
-        }
-    }
-}
-
-/// Friction state of a point.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum FrictionState {
-    /// No friction force can act: frictionless contact, or a Coulomb-type bound at a
-    /// separated point.
-    None,
-    /// Slip at most `tol` times the point's slip scale; the tangential force is within the
-    /// bound.
-    Stick,
-    /// Slipping: the tangential force equals the bound and opposes the slip.
-    Slip,
-}
-
-impl FrictionState {
-    /// Integer code for VTK/CSV output: 0 none, 1 stick, 2 slip.
-    pub fn code(self) -> i32 {
-        match self {
-            FrictionState::None => 0,
-            FrictionState::Stick => 1,
-            FrictionState::Slip => 2,
-        }
-    }
-
-    /// The state's name as written in CSV files.
-    pub fn name(self) -> &'static str {
-        match self {
-            FrictionState::None => "none",
-            FrictionState::Stick => "stick",
-            FrictionState::Slip => "slip",
-        }
-    }
-}
-
-/// Results at one contact point.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct ContactResult {
-    /// Mesh node.
-    pub node: u32,
-    /// Contact boundary index.
-    pub boundary: usize,
-    /// Lumped weight w_i.
-    pub weight: f64,
-    /// Normal displacement u_ν (m).
-    pub u_nu: f64,
-    /// Current gap `g − u_ν` (m; negative: penetration of the asperities).
-    pub gap: f64,
-    /// Tangential displacement coordinates (m).
-    pub u_tau: [f64; 2],
-    /// Slip ‖u_τ‖ (m).
-    pub slip: f64,
-    /// Contact pressure p (Pa, N/m in 2D) = −σ_ν.
-    pub pressure: f64,
-    /// Friction bound F(u).
-    pub bound: f64,
-    /// Interface force on the body from equilibrium, normal part `R·ν` (N).
-    pub force_normal: f64,
-    /// Interface force, tangential coordinates (N).
-    pub force_tangential: [f64; 2],
-    /// Interface force in global coordinates (N).
-    pub force: [f64; 3],
-    /// Friction traction `σ_τ = R_τ / w` in global coordinates (Pa): the tangential
-    /// traction the foundation exerts on the body (opposing the slip), recovered from
-    /// equilibrium, in the sign convention of the interface force `force`.
-    pub friction_traction: [f64; 3],
-    /// Normal contact state.
-    pub normal_state: NormalState,
-    /// Friction state.
-    pub friction_state: FrictionState,
-    /// Normal-law residual (N).
-    pub normal_residual: f64,
-    /// Friction-law residual (N).
-    pub friction_residual: f64,
-    /// The point's force scale (N), which its residuals are relative to: `w max(F, p)`, at
-    /// least the force resolution of its body (see the module documentation).
-    pub force_scale: f64,
-    /// The point's slip scale `force_scale / (w k)` (m), k its elastic stiffness per unit
-    /// area: the slip its force scale causes around it. It sticks up to `tol` times this.
-    pub slip_scale: f64,
-}
-
-/// Where a law residual is largest: the point's node, contact boundary and residual.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct Worst {
-    /// Mesh node.
-    pub node: u32,
-    /// Contact boundary index (into the problem's list).
-    pub boundary: usize,
-    /// The residual relative to the point's force scale.
-    pub residual: f64,
-}
 
 /// The certificate; see the module documentation.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -311,47 +198,98 @@ pub struct Inputs<'a> {
 pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResult>, Certificate) {
     let Inputs {
         u,
-        mu,
         grad_bulk,
+        frozen,
+        tolerance,
+        share,
+        ..
+    } = *inp;
+    // The points this process counts (all on one process; its ghost points' slave nodes,
+    // and so their equilibrium forces, are another's).
+    let owned = ca.nodes.owned();
+    let with_reactions;
+    let grad_bulk = match with_pair_reactions(ca, u, frozen, grad_bulk) {
+        Some(g) => {
+            with_reactions = g;
+            with_reactions.as_slice()
+        }
+        None => grad_bulk,
+    };
+    let equilibrium = equilibrium(ca, inp, grad_bulk);
+    let mut kkt = KktCertificate::default();
+    // The other points on the node of point i (points are ordered by boundary, so they are
+    // found through a node → points map).
+    let mut by_node: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
+    for (i, &v) in ca.nodes.node[..owned].iter().enumerate() {
+        by_node.entry(v).or_default().push(i);
+    }
+    let shared = |i: usize| -> Vec<usize> {
+        by_node
+            .get(&ca.nodes.node[i])
+            .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
+            .unwrap_or_default()
+    };
+    let mut exact_any = false;
+    let mut results = Vec::with_capacity(owned);
+    for i in 0..owned {
+        let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
+        results.push(point::result(ca, inp, grad_bulk, i, &shared(i), &mut kkt));
+        exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
+    }
+    let cert = summary(&results, kkt, exact_any, equilibrium, tolerance, share);
+    (results, cert)
+}
+
+/// Between two bodies, the force on a slave point acts back on its master facet's nodes
+/// (action = reaction): `∇W − f` with the model force of each pair, spread with −N_j,
+/// joined there, so that the master body's equilibrium checks that it balances; `None`
+/// without pairs (`grad_bulk` as it is).
+fn with_pair_reactions(
+    ca: &ContactAssembler<'_>,
+    u: &[f64],
+    frozen: ContactData<'_>,
+    grad_bulk: &[f64],
+) -> Option<Vec<f64>> {
+    let d = ca.dim;
+    if !ca.nodes.has_pairs() {
+        return None;
+    }
+    let mut g = grad_bulk.to_vec();
+    for i in 0..ca.nodes.len() {
+        let (n, nodes, coef) = ca.nodes.stencil(d, i);
+        if n == 1 {
+            continue;
+        }
+        let model = ca.point(u, &frozen, i).gradient;
+        for a in 1..n {
+            let v = nodes[a] as usize;
+            for k in 0..d {
+                g[d * v + k] += coef[a] * model[k];
+            }
+        }
+    }
+    Some(g)
+}
+
+/// The relative equilibrium residual ([`Certificate::equilibrium`]) of `grad_bulk` (`∇W −
+/// f`, with the pairs' reactions): body by body, at the free DOFs of the nodes without a
+/// contact point (at those, the interface force is what the laws check), relative to the
+/// body's force scale; a body beyond the tolerance over its entries above their round-off
+/// floors only.
+fn equilibrium(ca: &ContactAssembler<'_>, inp: &Inputs<'_>, grad_bulk: &[f64]) -> f64 {
+    let Inputs {
+        u,
         f_ext,
         fixed,
         bodies,
-        floor,
         round_off,
         mesh,
         frozen,
         tolerance,
         share,
+        ..
     } = *inp;
     let d = ca.dim;
-    let m = d - 1;
-    // The points this process counts (all on one process; its ghost points' slave nodes,
-    // and so their equilibrium forces, are another's).
-    let owned = ca.nodes.owned();
-    // Between two bodies, the force on a slave point acts back on its master facet's nodes
-    // (action = reaction): the model force of each pair, spread with −N_j, joins `∇W − f`
-    // there, so that the master body's equilibrium below checks that it balances.
-    let with_reactions;
-    let grad_bulk = if ca.nodes.has_pairs() {
-        let mut g = grad_bulk.to_vec();
-        for i in 0..ca.nodes.len() {
-            let (n, nodes, coef) = ca.nodes.stencil(d, i);
-            if n == 1 {
-                continue;
-            }
-            let model = ca.point(u, &frozen, i).gradient;
-            for a in 1..n {
-                let v = nodes[a] as usize;
-                for k in 0..d {
-                    g[d * v + k] += coef[a] * model[k];
-                }
-            }
-        }
-        with_reactions = g;
-        with_reactions.as_slice()
-    } else {
-        grad_bulk
-    };
     // Equilibrium, body by body, at the free DOFs of the nodes without a contact point (at
     // those, the interface force is what the laws check).
     let mut on_contact = vec![false; grad_bulk.len() / d];
@@ -382,163 +320,24 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             *r = r.min(*a);
         }
     }
-    let equilibrium =
-        residual.iter().zip(&scale).fold(
-            0.0f64,
-            |e, (r, s)| if r.is_nan() { f64::NAN } else { e.max(r / s) },
-        );
-    let mut kkt = KktCertificate::default();
-    // The other points on the node of point i (points are ordered by boundary, so they are
-    // found through a node → points map).
-    let mut by_node: std::collections::BTreeMap<u32, Vec<usize>> = Default::default();
-    for (i, &v) in ca.nodes.node[..owned].iter().enumerate() {
-        by_node.entry(v).or_default().push(i);
-    }
-    let shared = |i: usize| -> Vec<usize> {
-        by_node
-            .get(&ca.nodes.node[i])
-            .map(|pts| pts.iter().copied().filter(|&j| j != i).collect())
-            .unwrap_or_default()
-    };
-    let mut exact_any = false;
-    let mut results = Vec::with_capacity(owned);
-    for i in 0..owned {
-        let s = ca.state(u, i, &frozen);
-        let cb = &ca.boundaries[ca.nodes.boundary[i] as usize];
-        // The friction bound F at this state (not frozen).
-        let bound = cb
-            .friction
-            .as_ref()
-            .map_or(0.0, |f| f.bound_of(mu[i], s.pressure));
-        let w = ca.nodes.weight[i];
-        let v = ca.nodes.node[i] as usize;
-        // The point's own scales: its force, at least a fraction of the force its node
-        // passes, and the slip that force causes around it.
-        let force_scale = (w * bound.max(s.pressure))
-            .max(floor[i])
-            .max(f64::MIN_POSITIVE);
-        let slip_scale = force_scale / (w * ca.stiffness[i]);
-        let stick_threshold = tolerance * slip_scale;
-        let model = ca.point(u, &frozen, i).gradient;
-        let mut force = [0.0; 3];
-        for k in 0..d {
-            force[k] = if fixed(d * v + k) {
-                // A prescribed component: the support and the foundation share the force,
-                // so the contact force is the model's, the support reaction the rest.
-                -model[k]
-            } else {
-                grad_bulk[d * v + k]
-            };
-        }
-        // A node on several contact boundaries (an edge between two walls) has one
-        // equilibrium force for all its points: attribute to this point what remains after
-        // the model forces of the node's other points.
-        for j in shared(i) {
-            let g = ca.point(u, &frozen, j).gradient;
-            for k in 0..d {
-                if !fixed(d * v + k) {
-                    force[k] += g[k];
-                }
-            }
-        }
-        let n = &ca.nodes.normal[i];
-        let t = &ca.nodes.tangent[i];
-        let fn_ = (0..d).map(|k| force[k] * n[k]).sum::<f64>();
-        let mut ft = [0.0; 2];
-        for a in 0..m {
-            ft[a] = (0..d).map(|k| force[k] * t[a][k]).sum();
-        }
-        // The round-off of the force at the node, within which a residual is no residual.
-        let noise = point_floor(&round_off.dof, d, v, fixed);
-        // A residual within the tolerance stands as it is; one beyond it may be round-off.
-        let law = |r: f64| {
-            if r <= tolerance * force_scale {
-                r
-            } else {
-                above_floor(r, noise).abs()
-            }
-        };
-        let normal_residual = law((fn_ + w * s.pressure).abs());
-        let ft_norm = (ft[0] * ft[0] + ft[1] * ft[1]).sqrt();
-        let normal_state = if s.pressure > 0.0 {
-            NormalState::Contact
-        } else {
-            NormalState::Separated
-        };
-        let (friction_state, raw_friction_residual) = match &cb.friction {
-            None => (FrictionState::None, ft_norm),
-            Some(fr)
-                if normal_state == NormalState::Separated && fr.bound == FrictionBound::Coulomb =>
-            {
-                (FrictionState::None, ft_norm)
-            }
-            Some(fr) => {
-                let smooth = matches!(fr.potential, FrictionPotential::Regularized { .. });
-                let wf = w * bound;
-                let slipping = if fr.is_exact() {
-                    let (r, tau) = (ca.penalty[i], frozen.traction[i]);
-                    let z = [tau[0] + r * s.u_tau[0], tau[1] + r * s.u_tau[1]];
-                    let stick = frozen.bound[i] > 0.0
-                        && crate::assembly::contact::project_ball(&z, m, frozen.bound[i]).1;
-                    if stick {
-                        kkt.stick_slip = kkt.stick_slip.max(s.slip / slip_scale);
-                    }
-                    kkt.n_constraints.2 += 1;
-                    !stick && s.slip > 0.0
-                } else {
-                    s.slip > stick_threshold
-                };
-                let state = if slipping {
-                    FrictionState::Slip
-                } else {
-                    FrictionState::Stick
-                };
-                if slipping || smooth {
-                    // R_τ = −w F j'(r) u_τ/r.
-                    let slope = if s.slip > 0.0 {
-                        fr.potential.slope(s.slip) / s.slip
-                    } else {
-                        0.0
-                    };
-                    let r2: f64 = (0..m)
-                        .map(|a| (ft[a] + wf * slope * s.u_tau[a]).powi(2))
-                        .sum();
-                    (state, r2.sqrt())
-                } else {
-                    (state, (ft_norm - wf * fr.potential.slope(0.0)).max(0.0))
-                }
-            }
-        };
-        let friction_residual = law(raw_friction_residual);
-        let mut friction_traction = [0.0; 3];
-        for a in 0..m {
-            for k in 0..d {
-                friction_traction[k] += ft[a] * t[a][k] / w;
-            }
-        }
-        exact_any |= cb.normal.is_exact() || cb.friction.as_ref().is_some_and(|f| f.is_exact());
-        results.push(ContactResult {
-            node: ca.nodes.node[i],
-            boundary: ca.nodes.boundary[i] as usize,
-            weight: w,
-            u_nu: s.u_nu,
-            gap: ca.nodes.gap[i] - s.u_nu,
-            u_tau: s.u_tau,
-            slip: s.slip,
-            pressure: s.pressure,
-            bound,
-            force_normal: fn_,
-            force_tangential: ft,
-            force,
-            friction_traction,
-            normal_state,
-            friction_state,
-            normal_residual,
-            friction_residual,
-            force_scale,
-            slip_scale,
-        });
-    }
+    residual.iter().zip(&scale).fold(
+        0.0f64,
+        |e, (r, s)| if r.is_nan() { f64::NAN } else { e.max(r / s) },
+    )
+}
+
+/// The certificate of the points' `results` (this process's), with the KKT residuals
+/// `kkt` of exact friction gathered at them, whether any point has an exact law
+/// (`exact_any`), the relative residual of `equilibrium` and the tolerance: the worst law
+/// residuals and the state counts, over the processes.
+fn summary(
+    results: &[ContactResult],
+    mut kkt: KktCertificate,
+    exact_any: bool,
+    equilibrium: f64,
+    tolerance: f64,
+    share: &Share,
+) -> Certificate {
     // Over the processes: whether any point has an exact law, the exact friction's
     // largest slip at a sticking point and its count.
     let mut worst = [f64::from(u8::from(exact_any)), kkt.stick_slip];
@@ -563,7 +362,7 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
             });
         }
     };
-    for r in &results {
+    for r in results {
         worse(
             &mut cert.worst_normal,
             &mut cert.normal_law,
@@ -589,5 +388,55 @@ pub fn evaluate(ca: &ContactAssembler<'_>, inp: &Inputs<'_>) -> (Vec<ContactResu
         cert.n_stick = share.count(cert.n_stick);
         cert.n_slip = share.count(cert.n_slip);
     }
-    (results, cert)
+    cert
+}
+
+impl System {
+    /// The contact results and the certificate ([`evaluate`]) of `u` for
+    /// the frozen quantities `frozen`, from the evaluation `eval` at `u` (its bulk gradient
+    /// and the responses of user-defined compliance laws), the force scales of the bodies
+    /// `body_scale`, the friction coefficients `mu` at `u` and the tolerance `tolerance`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn certificate(
+        &self,
+        problem: &Problem,
+        u: &[f64],
+        frozen: &Frozen,
+        eval: &Evaluation,
+        body_scale: &[f64],
+        mu: &[f64],
+        tolerance: f64,
+    ) -> (Vec<ContactResult>, Certificate) {
+        let (mut point_force, mut floor) = (Vec::new(), Vec::new());
+        self.point_scales(
+            problem,
+            u,
+            frozen,
+            &eval.normal,
+            body_scale,
+            &mut point_force,
+            &mut floor,
+        );
+        let mut round_off = Floors::default();
+        self.round_off_floors(problem, u, frozen, &eval.normal, &mut round_off);
+        let mut ca = self.contact_assembler(problem);
+        ca.responses = &eval.normal;
+        evaluate(
+            &ca,
+            &Inputs {
+                u,
+                mu,
+                grad_bulk: &eval.grad_bulk,
+                f_ext: &self.f_ext,
+                fixed: &|k| self.dofs.is_fixed(k),
+                bodies: &self.bodies,
+                floor: &floor,
+                round_off: &round_off,
+                mesh: &problem.mesh,
+                frozen: frozen.contact(),
+                tolerance,
+                share: self.share(),
+            },
+        )
+    }
 }
