@@ -88,6 +88,7 @@ pub mod contact;
 pub mod display;
 pub mod error;
 pub mod fem;
+pub mod geometry;
 pub mod io;
 pub mod linalg;
 pub mod loading;

@@ -27,7 +27,7 @@
 //! strain against `ε`, and a change of the contact geometry by the displacement against
 //! the body's size.
 
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use crate::mesh::Mesh;
 use crate::tensor::Sym;
 use serde::Serialize;

@@ -60,7 +60,7 @@ mod regions;
 mod submesh;
 
 use crate::error::{Error, Result};
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use facets::{boundary_facets, cell_facets, sorted_key};
 
 /// A validated simplicial mesh; see the module documentation for the array layout.

@@ -305,7 +305,7 @@ fn mode_row(d: usize, body: &Body, x: &[f64], dir: &[f64; 3]) -> [f64; 6] {
         for k in 0..3 {
             let mut e = [0.0; 3];
             e[k] = 1.0;
-            let w = crate::fem::simplex::cross(&e, &q);
+            let w = crate::geometry::simplex::cross(&e, &q);
             row[3 + k] = (0..3).map(|i| w[i] * dir[i]).sum();
         }
     }

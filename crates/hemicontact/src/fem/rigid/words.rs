@@ -77,7 +77,7 @@ fn kinematics(d: usize, body: &Body, c: &[f64; 6]) -> ([f64; 3], [f64; 3], [f64;
         for i in 0..3 {
             perp[i] -= along * w[i] / wn;
         }
-        let q = crate::fem::simplex::cross(&w, &perp);
+        let q = crate::geometry::simplex::cross(&w, &perp);
         for i in 0..3 {
             p[i] += q[i] / w2;
         }
@@ -300,7 +300,7 @@ impl RigidMotions {
             // The displacement of the origin: a − ω × x̄.
             let mut a = [0.0; 3];
             a[..d].copy_from_slice(&c[..d]);
-            let wx = crate::fem::simplex::cross(&w, &body.centroid);
+            let wx = crate::geometry::simplex::cross(&w, &body.centroid);
             let o: [f64; 3] = std::array::from_fn(|k| a[k] - wx[k]);
             let reach = body.size + body.centroid.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             (o, w.map(|x| x * reach))

@@ -6,7 +6,7 @@ use super::build::{Names, Source};
 use super::sections::Block;
 use super::UNTAGGED;
 use crate::error::{FileLocation, Result};
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use crate::mesh::{diameter, DEGENERATE_TOL};
 
 /// The cells read from a file, in file order.
