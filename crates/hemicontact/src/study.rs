@@ -5,8 +5,9 @@
 //! interpolation ([`crate::fem::transfer`]: exact for nested meshes) and the error
 //! `‖u_ref − u^h‖_E / ‖u_ref‖_E` is computed with the energy norm of the paper's example
 //! ([`crate::assembly::norms::energy_norm`], the small-strain Hooke operator of the
-//! material). The paper's mesh parameter `h` is the element *area*; the element edge (square side) is
-//! reported too, with the observed orders between consecutive levels in both.
+//! material). The paper's mesh parameter `h` is the element *area*; the element edge
+//! (square side) is reported too, with the observed orders between consecutive levels in
+//! both.
 //!
 //! With nested iteration, a level starts from the previous level's solution interpolated
 //! onto its mesh (the result does not depend on the start beyond the solver tolerance).
