@@ -7,7 +7,7 @@ use super::sections::Block;
 use super::UNTAGGED;
 use crate::error::{FileLocation, Result};
 use crate::geometry::simplex;
-use crate::mesh::{diameter, DEGENERATE_TOL};
+use crate::mesh::validate::{diameter, DEGENERATE_TOL};
 
 /// The cells read from a file, in file order.
 pub(super) struct Cells {
@@ -196,7 +196,7 @@ fn reorient(
             .iter()
             .find(|b| b.0 == e && b.2.contains(&odd[0]))
             .map_or(FileLocation::Whole, |b| b.1);
-        let names = crate::mesh::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
+        let names = crate::mesh::listing::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
         return Err((
             at,
             format!(
