@@ -2,7 +2,7 @@
 //! the plane z = 0, finite and non-degenerate measure), oriented positively entity by
 //! entity, and checked for duplicates; with the cell region of each.
 
-use super::build::{Names, Source};
+use super::source::{Names, Source};
 use super::sections::Block;
 use super::UNTAGGED;
 use crate::error::{FileLocation, Result};

@@ -101,6 +101,7 @@ pub(crate) mod element_types;
 mod lexer;
 mod parts;
 mod sections;
+mod source;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;

@@ -3,7 +3,7 @@
 //! part of the physical group of dimension d − 1 their element is in; those in no group form
 //! the part [`UNTAGGED`]. Elements of such groups inside the domain are ignored, with a note.
 
-use super::build::{Names, Source};
+use super::source::{Names, Source};
 use super::sections::Block;
 use super::UNTAGGED;
 use crate::error::Result;
