@@ -14,9 +14,9 @@
 //!
 //! The tables of a study (Markdown and CSV) are written by [`crate::io::study_table`].
 
+use crate::assembly::norms::energy_norm_by_cell;
 use crate::error::{Error, Result};
 use crate::fem::transfer::interpolate;
-use crate::assembly::norms::energy_norm_by_cell;
 use crate::problem::Problem;
 use crate::scenario::Scenario;
 use crate::solver::{solve_observed, OuterProgress, Solution};

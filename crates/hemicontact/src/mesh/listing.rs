@@ -19,7 +19,10 @@ pub(crate) fn list_cells(cells: &[usize], name: &dyn Fn(usize) -> String) -> Str
 /// The pairs of cells `folds` (the two cells of an interior facet, on the same side of it)
 /// in words: "the cells on both sides of N interior facet(s) lie on the same side of it
 /// (they overlap): cell 0 and cell 2; …", at most [`LISTED`] pairs, then how many more.
-pub(super) fn overlapping_pairs(folds: &[(usize, usize)], name: &dyn Fn(usize) -> String) -> String {
+pub(super) fn overlapping_pairs(
+    folds: &[(usize, usize)],
+    name: &dyn Fn(usize) -> String,
+) -> String {
     let pairs: Vec<String> = folds
         .iter()
         .take(LISTED)

@@ -2,8 +2,8 @@
 //! the plane z = 0, finite and non-degenerate measure), oriented positively entity by
 //! entity, and checked for duplicates; with the cell region of each.
 
-use super::source::{Names, Source};
 use super::sections::Block;
+use super::source::{Names, Source};
 use super::UNTAGGED;
 use crate::error::{FileLocation, Result};
 use crate::geometry::simplex;
@@ -196,7 +196,8 @@ fn reorient(
             .iter()
             .find(|b| b.0 == e && b.2.contains(&odd[0]))
             .map_or(FileLocation::Whole, |b| b.1);
-        let names = crate::mesh::listing::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
+        let names =
+            crate::mesh::listing::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
         return Err((
             at,
             format!(
