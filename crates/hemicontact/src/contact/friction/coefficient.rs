@@ -32,12 +32,12 @@ pub enum FrictionCoefficient {
         points: Vec<[f64; 2]>,
     },
     /// A user-defined function of the slip, evaluated in batches
-    /// ([`super::slip_law`]); not representable in a scenario file.
+    /// ([`crate::contact::slip_law`]); not representable in a scenario file.
     #[serde(skip)]
     Custom(CustomCoefficient),
     /// A user-defined function of the position x of the contact point (reference
     /// configuration), independent of the slip, evaluated in batches
-    /// ([`super::field_law`]); not representable in a scenario file.
+    /// ([`crate::contact::field_law`]); not representable in a scenario file.
     #[serde(skip)]
     Field(CustomField),
 }
