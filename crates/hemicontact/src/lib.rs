@@ -102,6 +102,7 @@ pub mod parallel;
 pub mod plot;
 pub mod problem;
 pub mod resources;
+pub mod rigid;
 pub mod scenario;
 pub mod small_deformation;
 pub mod solver;

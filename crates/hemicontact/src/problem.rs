@@ -5,7 +5,7 @@ use crate::assembly::loads;
 use crate::contact::{ContactBoundary, ContactNodes};
 use crate::error::{require, Error, Result};
 use crate::fem::dofs::DofMap;
-use crate::fem::rigid::RigidMotions;
+use crate::rigid::RigidMotions;
 use crate::material::Material;
 use crate::mesh::Mesh;
 
@@ -332,7 +332,7 @@ impl Problem {
         }
         if self.contact.iter().any(|c| c.against.is_some()) {
             let points = self.contact_nodes()?;
-            let (body_of, _) = crate::fem::rigid::bodies(&self.mesh);
+            let (body_of, _) = crate::rigid::bodies(&self.mesh);
             for (k, c) in self.contact.iter().enumerate() {
                 crate::contact::pair_placement::check(&self.mesh, k, c, &points, &body_of)
                     .map_err(|e| e.within(&format!("contact[{k}].against")))?;
@@ -347,7 +347,7 @@ impl Problem {
     /// be held by its own supports: its pair points would enter the analysis of its free
     /// motions with the rows `r(x_s) − r(x_m)` (which vanish where the faces coincide), but
     /// that case is not verified, and is refused. Two different bodies may both have free
-    /// rigid motions: their motions are analysed together ([`crate::fem::rigid::groups`]).
+    /// rigid motions: their motions are analysed together ([`crate::rigid::groups`]).
     fn check_pair_bodies(&self) -> Result<()> {
         let points = self.contact_nodes()?;
         let rigid = self.rigid_motions()?;
@@ -565,7 +565,7 @@ impl Problem {
     }
 
     /// The rigid motions of each mesh component that the Dirichlet conditions leave free,
-    /// and those of them that no contact point carries (see [`crate::fem::rigid`]).
+    /// and those of them that no contact point carries (see [`crate::rigid`]).
     ///
     /// # Errors
     /// Those of [`Problem::contact_nodes`].
@@ -732,10 +732,10 @@ impl Problem {
     }
 
     /// The translation by which its supports carry each body, as a displacement (m, DOF
-    /// order; [`crate::fem::carry`]); `None` when no body is carried.
+    /// order; [`crate::rigid::carry`]); `None` when no body is carried.
     pub fn carried_displacement(&self) -> Option<Vec<f64>> {
         let dofs = self.dof_map();
-        crate::fem::carry::carried_translation(&self.mesh, &self.prescribed_displacement(), |k| {
+        crate::rigid::carry::carried_translation(&self.mesh, &self.prescribed_displacement(), |k| {
             dofs.is_fixed(k)
         })
     }

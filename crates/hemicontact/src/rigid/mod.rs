@@ -46,6 +46,7 @@
 //! pressed motions only, and the load along the sliding ones is checked against the
 //! friction limit.
 
+pub mod carry;
 mod dense;
 pub mod groups;
 mod words;
