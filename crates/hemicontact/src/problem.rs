@@ -5,9 +5,9 @@ use crate::assembly::loads;
 use crate::contact::{ContactBoundary, ContactNodes};
 use crate::error::{require, Error, Result};
 use crate::fem::dofs::DofMap;
-use crate::rigid::RigidMotions;
 use crate::material::Material;
 use crate::mesh::Mesh;
+use crate::rigid::RigidMotions;
 
 /// A Dirichlet condition: the selected displacement components are prescribed on a part.
 #[derive(Clone, Debug, PartialEq)]

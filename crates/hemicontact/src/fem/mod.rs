@@ -7,10 +7,10 @@
 /// so that `hemicontact::fem::carry` still names it.
 pub use crate::rigid::carry;
 pub mod dofs;
-/// The rigid motions the supports leave free, now the top-level [`crate::rigid`]; kept here
-/// so that `hemicontact::fem::rigid` still names it.
-pub use crate::rigid;
 /// The simplex geometry, now on the ground floor in [`crate::geometry::simplex`]; kept here
 /// so that `hemicontact::fem::simplex` still names it.
 pub use crate::geometry::simplex;
+/// The rigid motions the supports leave free, now the top-level [`crate::rigid`]; kept here
+/// so that `hemicontact::fem::rigid` still names it.
+pub use crate::rigid;
 pub mod transfer;
