@@ -6,11 +6,29 @@
 use super::cells::read_cells;
 use super::parts::boundary_parts;
 use super::sections::Sections;
-use super::source::Source;
-use super::GmshMesh;
+use super::source::{Source, UNTAGGED};
 use crate::error::{Error, FileLocation, Result};
 use crate::mesh::Mesh;
 use std::collections::HashMap;
+
+/// A mesh read from a Gmsh file, with the Gmsh numbering and what the reader noticed.
+#[derive(Clone, Debug)]
+pub struct GmshMesh {
+    /// The validated mesh.
+    pub mesh: Mesh,
+    /// Gmsh tag of each mesh node (length `n_nodes`).
+    pub node_tags: Vec<u64>,
+    /// Gmsh tag of each cell's element (length `n_cells`).
+    pub element_tags: Vec<u64>,
+    /// Region of each cell (length `n_cells`): an index into [`GmshMesh::region_names`].
+    pub cell_region: Vec<u16>,
+    /// Names of the cell regions: the physical groups of dimension d, in the order of their
+    /// tags, then [`UNTAGGED`] if some cell is in no group.
+    pub region_names: Vec<String>,
+    /// Facts worth telling the user (reoriented entities, untagged boundary facets, dropped
+    /// nodes, ignored interior facets, several cell regions), one sentence each.
+    pub notes: Vec<String>,
+}
 
 /// Builds the mesh of the file `file` from its sections; see the module documentation of
 /// [`crate::mesh::gmsh`] for how.
@@ -233,7 +251,7 @@ fn used_nodes(
     // The facets of named boundary parts (not `untagged`) at each file node.
     let mut named: HashMap<u32, Vec<usize>> = HashMap::new();
     for (f, &p) in parts.facet_part.iter().enumerate() {
-        if parts.part_names[p as usize] != super::UNTAGGED {
+        if parts.part_names[p as usize] != UNTAGGED {
             for &v in &parts.facets[f * d..(f + 1) * d] {
                 named.entry(v).or_default().push(f);
             }

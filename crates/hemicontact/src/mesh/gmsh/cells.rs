@@ -3,8 +3,7 @@
 //! entity, and checked for duplicates; with the cell region of each.
 
 use super::sections::Block;
-use super::source::{Names, Source};
-use super::UNTAGGED;
+use super::source::{Names, Source, UNTAGGED};
 use crate::error::{FileLocation, Result};
 use crate::geometry::simplex;
 use crate::mesh::validate::{diameter, DEGENERATE_TOL};

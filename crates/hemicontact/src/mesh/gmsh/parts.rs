@@ -4,8 +4,7 @@
 //! the part [`UNTAGGED`]. Elements of such groups inside the domain are ignored, with a note.
 
 use super::sections::Block;
-use super::source::{Names, Source};
-use super::UNTAGGED;
+use super::source::{Names, Source, UNTAGGED};
 use crate::error::Result;
 use crate::mesh::facets::{boundary_facets, sorted_key};
 use std::collections::HashMap;

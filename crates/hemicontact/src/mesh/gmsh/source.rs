@@ -1,10 +1,15 @@
 //! What the steps of building a mesh from a file share: the file itself (its name for error
 //! messages, its physical groups and their names, its nodes) and the interned names of the
-//! physical groups that become boundary parts and cell regions.
+//! physical groups that become boundary parts and cell regions, with the name of the part
+//! and region of what is in no group ([`UNTAGGED`]).
 
 use super::sections::{Block, Nodes};
 use crate::error::{Error, FileLocation, Result};
 use std::collections::HashMap;
+
+/// Name of the boundary part holding the boundary facets that belong to no physical group
+/// (and of the cell region of cells in no physical group).
+pub const UNTAGGED: &str = "untagged";
 
 /// What the steps of building need of the file besides its elements: its name (for error
 /// messages), its physical groups and their names, and its nodes.
