@@ -224,7 +224,7 @@ impl NativeSolution {
     /// mesh numbered by their smallest node, as `summary.json`'s `bodies`; −1 for a node in
     /// no cell.
     fn body<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        let (body_of, _) = hemicontact::fem::rigid::bodies(self.problem.mesh());
+        let (body_of, _) = hemicontact::rigid::bodies(self.problem.mesh());
         i64_bytes(
             py,
             body_of

@@ -70,7 +70,7 @@ pub enum Error {
         context: String,
     },
     /// Rigid motions of a body that neither the Dirichlet conditions nor a contact part
-    /// block (see [`crate::fem::rigid`]): the stiffness matrix is singular, and the solution
+    /// block (see [`crate::rigid`]): the stiffness matrix is singular, and the solution
     /// does not exist or is not unique.
     #[error(
         "{file}: the problem is singular: no Dirichlet condition blocks, and no contact part \
@@ -83,7 +83,7 @@ pub enum Error {
         motions: String,
     },
     /// The load pulls a body off the contact that was to carry its free rigid motions (see
-    /// [`crate::fem::rigid::RigidMotions::runaway`] and [`crate::solver::held`]): there is
+    /// [`crate::rigid::RigidMotions::runaway`] and [`crate::solver::held`]): there is
     /// no equilibrium.
     #[error(
         "the load pulls the body off its contact: no equilibrium along the rigid motions \

@@ -229,7 +229,7 @@ impl PathRow {
             contact_force,
             n_contact: s.report.certificate.n_contact,
             n_slip: s.report.certificate.n_slip,
-            max_displacement: crate::norms::max_nodal_norm(&s.u, d),
+            max_displacement: crate::assembly::norms::max_nodal_norm(&s.u, d),
             outer: s.report.outer.len(),
             newton: s.report.newton.len(),
             converged: s.report.converged,

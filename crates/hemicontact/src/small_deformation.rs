@@ -27,7 +27,7 @@
 //! strain against `ε`, and a change of the contact geometry by the displacement against
 //! the body's size.
 
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use crate::mesh::Mesh;
 use crate::tensor::Sym;
 use serde::Serialize;
@@ -90,7 +90,7 @@ impl SmallDeformation {
         }
         let (lo, hi) = mesh.bounding_box();
         let body_size = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-        let max_displacement = crate::norms::max_nodal_norm(u, d);
+        let max_displacement = crate::assembly::norms::max_nodal_norm(u, d);
         let mut inverted = Vec::new();
         let mut inverted_cells = 0;
         for c in 0..mesh.n_cells() {

@@ -4,18 +4,19 @@
 //! For each level, the solution `u^h` is carried onto the reference mesh by P1
 //! interpolation ([`crate::fem::transfer`]: exact for nested meshes) and the error
 //! `‖u_ref − u^h‖_E / ‖u_ref‖_E` is computed with the energy norm of the paper's example
-//! ([`crate::norms::energy_norm`], the small-strain Hooke operator of the material). The
-//! paper's mesh parameter `h` is the element *area*; the element edge (square side) is
-//! reported too, with the observed orders between consecutive levels in both.
+//! ([`crate::assembly::norms::energy_norm`], the small-strain Hooke operator of the
+//! material). The paper's mesh parameter `h` is the element *area*; the element edge
+//! (square side) is reported too, with the observed orders between consecutive levels in
+//! both.
 //!
 //! With nested iteration, a level starts from the previous level's solution interpolated
 //! onto its mesh (the result does not depend on the start beyond the solver tolerance).
 //!
 //! The tables of a study (Markdown and CSV) are written by [`crate::io::study_table`].
 
+use crate::assembly::norms::energy_norm_by_cell;
 use crate::error::{Error, Result};
 use crate::fem::transfer::interpolate;
-use crate::norms::energy_norm_by_cell;
 use crate::problem::Problem;
 use crate::scenario::Scenario;
 use crate::solver::{solve_observed, OuterProgress, Solution};

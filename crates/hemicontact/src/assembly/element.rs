@@ -6,7 +6,7 @@
 //! `LD` so that every loop has a compile-time bound and every local array its exact size
 //! (the dimension is `d = 2` for `LD = 6` and `d = 3` for `LD = 12`).
 
-use crate::fem::simplex::{self, SimplexGeometry};
+use crate::geometry::simplex::{self, SimplexGeometry};
 use crate::mesh::Mesh;
 use crate::tensor::{mandel_len, Sym, Tangent, SQRT2};
 

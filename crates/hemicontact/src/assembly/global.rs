@@ -3,7 +3,7 @@
 
 use super::element;
 use super::pattern::SystemPattern;
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use crate::material::{AugmentedLocking, LockingSet, StrainEnergy};
 use crate::mesh::Mesh;
 use crate::tensor::Sym;

@@ -24,7 +24,7 @@
 use super::contact::{ContactAssembler, ContactData};
 use super::element;
 use super::global::BulkAssembler;
-use crate::fem::simplex;
+use crate::geometry::simplex;
 use crate::material::StrainEnergy;
 use crate::mesh::Mesh;
 use crate::tensor::{mandel_len, Sym};

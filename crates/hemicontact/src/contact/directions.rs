@@ -7,7 +7,7 @@
 //! one group on a smooth boundary, one per face at a corner. Why 30° is in
 //! [`super::nodes`] (*Corners*).
 
-use crate::fem::simplex::cross;
+use crate::geometry::simplex::cross;
 
 /// Angle between facet normals above which one contact boundary is split at a node into
 /// one contact point per direction (degrees); see [`super::nodes`] (*Corners*).

@@ -55,7 +55,7 @@
 //!
 //! # Carried bodies
 //!
-//! A body whose supports carry it by a translation c ([`crate::fem::carry`]) is solved for
+//! A body whose supports carry it by a translation c ([`crate::rigid::carry`]) is solved for
 //! its displacement beyond c (the solver's placement, [`ContactNodes::place`]). Its points
 //! are made in the carried configuration: against a flat foundation or another body, the
 //! gap less `ν_i·c` and the slip plus `τ_a·c` (a placement; exact for a flat foundation);

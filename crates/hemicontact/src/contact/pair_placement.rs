@@ -41,7 +41,7 @@ use crate::mesh::Mesh;
 /// point, when its master part faces away from the slave part, or when the master surface
 /// lies inside the slave's body (see the module documentation). `points` are the problem's
 /// contact points ([`ContactNodes::new`]) and `body_of` the body of each mesh node
-/// ([`crate::fem::rigid::bodies`]). Nothing is checked for a boundary without a master
+/// ([`crate::rigid::bodies`]). Nothing is checked for a boundary without a master
 /// part.
 ///
 /// # Errors

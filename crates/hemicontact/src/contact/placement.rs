@@ -205,7 +205,7 @@ pub fn check_facing(
 /// while every contact point is apart (see the module documentation). Empty for a flat
 /// foundation. `points` are the problem's contact points ([`ContactNodes::new`]), and
 /// `carried` the translation by which the supports carry each body (DOF order, in units of
-/// the gaps; [`crate::fem::carry`]), where the part's facets meet the obstacle.
+/// the gaps; [`crate::rigid::carry`]), where the part's facets meet the obstacle.
 pub fn resolution_notes(
     mesh: &Mesh,
     b: usize,

@@ -1,7 +1,7 @@
-//! P1 finite element space: simplex geometry and degree-of-freedom numbering.
+//! P1 finite element space: degree-of-freedom numbering and transfer between meshes, on the
+//! simplex geometry of [`crate::geometry::simplex`]. The rigid motions and the translation
+//! its supports carry a body by are a floor above, in [`crate::rigid`] (they read the
+//! contact points).
 
-pub mod carry;
 pub mod dofs;
-pub mod rigid;
-pub mod simplex;
 pub mod transfer;

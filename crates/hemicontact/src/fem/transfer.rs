@@ -7,7 +7,7 @@
 //! non-matching boundaries) take the value at the nearest cell's closest barycentric point
 //! (the barycentric coordinates clamped to the simplex), which is the natural extension.
 
-use super::simplex;
+use crate::geometry::simplex;
 use crate::mesh::Mesh;
 
 /// Interpolates the vector field `u` (`d` components per source node, DOF order) from

@@ -1,7 +1,7 @@
 //! The forces on each body of a solution (the `bodies` of `summary.json`).
 //!
 //! The bodies are the connected components of the mesh (cells sharing nodes), numbered by
-//! their smallest node, as [`crate::fem::rigid::bodies`] finds them. The resultants on body
+//! their smallest node, as [`crate::rigid::bodies`] finds them. The resultants on body
 //! B, each a sum over its nodes of a nodal force vector:
 //!
 //! - `load`: the external loads `f` (tractions and body force);
@@ -53,7 +53,7 @@ pub struct BodySummary {
 pub fn bodies(problem: &Problem, solution: &Solution) -> Vec<BodySummary> {
     let mesh = &problem.mesh;
     let d = mesh.dim();
-    let (body_of, found) = crate::fem::rigid::bodies(mesh);
+    let (body_of, found) = crate::rigid::bodies(mesh);
     let mut out: Vec<BodySummary> = found
         .iter()
         .map(|b| BodySummary {

@@ -1,9 +1,9 @@
 //! The JSON summary of a solve (`summary.json`): sizes, energies, contact and locking
 //! counts, the uniqueness condition, the solver report and the files of its result folder.
 
+use crate::assembly::norms::energy_norm_by_cell;
 use crate::assembly::BulkAssembler;
 use crate::material::StrainEnergy;
-use crate::norms::energy_norm_by_cell;
 use crate::problem::Problem;
 use crate::solver::{Solution, SolveReport};
 use serde::Serialize;
@@ -69,7 +69,7 @@ impl MaterialSummary {
         }
         for (c, eps) in strains.iter().enumerate() {
             let k = problem.cell_material(c);
-            let measure = crate::fem::simplex::geometry(d, &mesh.cell_coords(c)).measure;
+            let measure = crate::geometry::simplex::geometry(d, &mesh.cell_coords(c)).measure;
             let m = &mut out[k];
             m.cells += 1;
             m.volume += measure;
@@ -165,7 +165,7 @@ impl Summary {
     ) -> Self {
         let mesh = &problem.mesh;
         let d = mesh.dim();
-        let max_displacement = crate::norms::max_nodal_norm(&solution.u, d);
+        let max_displacement = crate::assembly::norms::max_nodal_norm(&solution.u, d);
         let mut total_reaction = vec![0.0; d];
         for (k, r) in solution.reactions.iter().enumerate() {
             total_reaction[k % d] += r;

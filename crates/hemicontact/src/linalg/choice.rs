@@ -2,38 +2,22 @@
 //! "petsc"`):
 //! the one place where `auto` is decided ([`LinearSolver::resolve`]), and where the chosen
 //! solver is prepared ([`LinearSolver::prepare`]) and its memory estimated
-//! ([`LinearSolver::memory_estimate`]). A new backend adds a variant here with one arm in
-//! each of these matches, and its implementation of [`SpdSolver`] in this module's folder.
+//! ([`LinearSolver::memory_estimate`]). A new backend adds a variant to [`LinearSolver`]
+//! (defined beside the interface [`SpdSolver`] whose `kind` names it, in [`super::solver`]),
+//! one arm in each of these matches, and its implementation of [`SpdSolver`] in this
+//! module's folder.
 
 use super::direct::DirectSolver;
 use super::iterative::MultigridCg;
+/// The setting's values, defined beside the interface whose `kind` names them; kept here so
+/// that `linalg::choice::LinearSolver` still names it.
+pub use super::solver::LinearSolver;
 use super::solver::SpdSolver;
 use super::Ordering;
 use crate::assembly::SystemPattern;
 use crate::error::Result;
 use crate::mesh::Mesh;
 use serde::{Deserialize, Serialize};
-
-/// How the Newton systems `H x = b` are solved.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LinearSolver {
-    /// Sparse Cholesky factorization, reused and used as a PCG preconditioner while the
-    /// Hessian changes little (see [`super::direct`]).
-    Direct,
-    /// Conjugate gradients preconditioned by geometric multigrid
-    /// ([`super::multigrid`]) to the Newton forcing term; no factorization of the
-    /// fine system is ever formed, so memory stays proportional to the matrix.
-    Iterative,
-    /// Direct in 2D and in 3D below [`LinearSolver::AUTO_ITERATIVE_EQUATIONS`] equations,
-    /// iterative above.
-    #[default]
-    Auto,
-    /// PETSc's Krylov solvers and preconditioners (conjugate gradients with GAMG by
-    /// default, any other through [`PetscSettings::options`]); needs the cargo feature
-    /// `petsc` (see `super::petsc`).
-    Petsc,
-}
 
 /// Whether this build has the PETSc backend (cargo feature `petsc`).
 pub const HAS_PETSC: bool = cfg!(feature = "petsc");

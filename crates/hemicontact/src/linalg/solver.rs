@@ -5,14 +5,37 @@
 //! The implementations are [`super::direct::DirectSolver`] (sparse Cholesky, reused while
 //! the matrix changes little), [`super::iterative::MultigridCg`]
 //! (multigrid-preconditioned conjugate gradients) and, with the cargo feature `petsc`,
-//! `super::petsc::PetscSolver` (PETSc's KSP). [`super::LinearSolver`] (the setting)
-//! chooses and prepares one of them. A trait object rather than an enum: a new backend is
-//! a new type implementing [`SpdSolver`] plus one arm in the setting's `prepare` and
-//! `memory_estimate`, and the system holding it does not change.
+//! `super::petsc::PetscSolver` (PETSc's KSP). [`LinearSolver`] (the setting, its values
+//! here and its choice in [`super::choice`]) chooses and prepares one of them. A trait
+//! object rather than an enum: a new backend is a new type implementing [`SpdSolver`] plus
+//! one arm in the setting's `prepare` and `memory_estimate`, and the system holding it does
+//! not change.
 
 use super::Cholesky;
 use crate::assembly::SystemPattern;
 use crate::error::Result;
+use serde::{Deserialize, Serialize};
+
+/// How the Newton systems `H x = b` are solved.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LinearSolver {
+    /// Sparse Cholesky factorization, reused and used as a PCG preconditioner while the
+    /// Hessian changes little (see [`super::direct`]).
+    Direct,
+    /// Conjugate gradients preconditioned by geometric multigrid
+    /// ([`super::multigrid`]) to the Newton forcing term; no factorization of the
+    /// fine system is ever formed, so memory stays proportional to the matrix.
+    Iterative,
+    /// Direct in 2D and in 3D below [`LinearSolver::AUTO_ITERATIVE_EQUATIONS`] equations,
+    /// iterative above.
+    #[default]
+    Auto,
+    /// PETSc's Krylov solvers and preconditioners (conjugate gradients with GAMG by
+    /// default, any other through [`super::PetscSettings::options`]); needs the cargo
+    /// feature `petsc` (see `super::petsc`).
+    Petsc,
+}
 
 /// What a Newton step asks of the linear solver.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -43,9 +66,9 @@ pub struct SolveStats {
 
 /// A solver of symmetric positive definite systems on a fixed sparsity pattern.
 pub trait SpdSolver: std::fmt::Debug + Send {
-    /// Which solver this is: [`super::LinearSolver::Direct`],
-    /// [`super::LinearSolver::Iterative`] or [`super::LinearSolver::Petsc`] (never `Auto`).
-    fn kind(&self) -> super::LinearSolver;
+    /// Which solver this is: [`LinearSolver::Direct`],
+    /// [`LinearSolver::Iterative`] or [`LinearSolver::Petsc`] (never `Auto`).
+    fn kind(&self) -> LinearSolver;
 
     /// Solves `A x = b` for the matrix with upper-triangle `values` on `pattern` (the
     /// pattern the solver was prepared on), updating the solver's internal state

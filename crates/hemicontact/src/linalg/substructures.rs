@@ -209,7 +209,7 @@ impl Substructure {
                 "a substructure's factorization is not supernodal".into(),
             ));
         };
-        let (l_values, factor_stack) = super::cholesky::factor_storage(&symbolic, par)?;
+        let (l_values, factor_stack) = super::llt::factor_storage(&symbolic, par)?;
         let solve_stack = MemBuffer::try_new(supernodal.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| out_of_memory("Cholesky solve workspace"))?;
         let s = separator.len();
@@ -241,7 +241,7 @@ impl Substructure {
         }
         let m = self.work.len();
         let sym = SymbolicSparseColMatRef::new_checked(m, m, &self.col_ptr, None, &self.row_idx);
-        super::cholesky::numeric_llt(
+        super::llt::numeric_llt(
             &self.symbolic,
             &mut self.l_values,
             SparseColMatRef::new(sym, &self.values),

@@ -22,29 +22,17 @@
 //! 3D versions with the same constants, and their σ_zz is that of the extension above:
 //! Hencky `(K − Φ'(s)) tr ε`, Prager `−C_κ Q_+ tr ε / 2`. Under plane stress `σ_zz = 0`.
 
+mod energy;
 pub mod hencky;
 pub mod hooke;
 pub mod locking;
 
+pub use energy::StrainEnergy;
 pub use hencky::Hencky;
 pub use hooke::{Hooke, Plane};
 pub use locking::{AugmentedLocking, LockingPenalty, LockingSet};
 
 use crate::tensor::{Sym, Tangent};
-
-/// A hyperelastic law: energy density `W(ε)` (J/m³), stress `σ = ∂W/∂ε` (Pa) and tangent
-/// `∂σ/∂ε` (Pa), all in Mandel notation (see [`crate::tensor`]).
-pub trait StrainEnergy {
-    /// Energy density `W(ε)`.
-    fn energy(&self, eps: &Sym) -> f64;
-    /// Stress `σ = ∂W/∂ε`.
-    fn stress(&self, eps: &Sym) -> Sym;
-    /// Tangent `∂σ/∂ε` (a generalized derivative where σ is only piecewise smooth).
-    fn tangent(&self, eps: &Sym) -> Tangent;
-    /// Out-of-plane normal stress `σ_zz = ∂W/∂ε_zz` (Pa) of a two-dimensional strain `eps`
-    /// under plane strain (`ε_zz = 0`); see the module documentation.
-    fn plane_strain_stress_zz(&self, eps: &Sym) -> f64;
-}
 
 /// The elasticity operator A = ∂W.
 #[derive(Clone, Copy, Debug, PartialEq)]

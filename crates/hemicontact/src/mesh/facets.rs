@@ -19,7 +19,7 @@ impl SharedFacet {
     /// each).
     pub fn describe(&self, d: usize, cells: &[u32], name: &dyn Fn(usize) -> String) -> String {
         let owners: Vec<usize> = self.owners.iter().map(|&c| c as usize).collect();
-        let mut text = super::list_cells(&owners, name);
+        let mut text = super::listing::list_cells(&owners, name);
         let vertices = |c: usize| {
             let mut v = [u32::MAX; 4];
             v[..=d].copy_from_slice(&cells[(d + 1) * c..(d + 1) * (c + 1)]);

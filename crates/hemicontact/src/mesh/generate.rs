@@ -405,7 +405,8 @@ pub fn cuboid(b: &BoxSpec) -> Result<Mesh> {
                             [coords[o], coords[o + 1], coords[o + 2]]
                         })
                         .collect();
-                    let vol = crate::fem::simplex::signed_measure(3, &[x[0], x[1], x[2], x[3]]);
+                    let vol =
+                        crate::geometry::simplex::signed_measure(3, &[x[0], x[1], x[2], x[3]]);
                     if vol < 0.0 {
                         tet.swap(2, 3);
                     }

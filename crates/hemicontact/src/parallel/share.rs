@@ -20,8 +20,9 @@
 //! one solve; that solve then ends with the error ([`Share::failure`]), and the next solve,
 //! with a `Share` of its own, starts clean.
 
+use super::processes::Processes;
+use super::subdomain::Subdomain;
 use crate::fem::dofs::{DofMap, FIXED};
-use crate::parallel::{Processes, Subdomain};
 use std::sync::OnceLock;
 
 /// The processes that complete a [`Share`]'s partial results, and the first failure of

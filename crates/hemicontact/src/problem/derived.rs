@@ -6,11 +6,11 @@ use super::Problem;
 use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::DofMap;
-use crate::fem::rigid::RigidMotions;
+use crate::rigid::RigidMotions;
 
 impl Problem {
     /// The rigid motions of each mesh component that the Dirichlet conditions leave free,
-    /// and those of them that no contact point carries (see [`crate::fem::rigid`]).
+    /// and those of them that no contact point carries (see [`crate::rigid`]).
     ///
     /// # Errors
     /// Those of [`Problem::contact_nodes`].
@@ -86,10 +86,10 @@ impl Problem {
     }
 
     /// The translation by which its supports carry each body, as a displacement (m, DOF
-    /// order; [`crate::fem::carry`]); `None` when no body is carried.
+    /// order; [`crate::rigid::carry`]); `None` when no body is carried.
     pub fn carried_displacement(&self) -> Option<Vec<f64>> {
         let dofs = self.dof_map();
-        crate::fem::carry::carried_translation(&self.mesh, &self.prescribed_displacement(), |k| {
+        crate::rigid::carry::carried_translation(&self.mesh, &self.prescribed_displacement(), |k| {
             dofs.is_fixed(k)
         })
     }

@@ -13,7 +13,7 @@ use crate::mesh::Mesh;
 pub fn add_body_force(mesh: &Mesh, f0: &[f64], f: &mut [f64]) {
     let d = mesh.dim();
     for c in 0..mesh.n_cells() {
-        let w = crate::fem::simplex::signed_measure(d, &mesh.cell_coords(c)) / (d + 1) as f64;
+        let w = crate::geometry::simplex::signed_measure(d, &mesh.cell_coords(c)) / (d + 1) as f64;
         for &v in mesh.cell(c) {
             for i in 0..d {
                 f[d * v as usize + i] += w * f0[i];

@@ -21,7 +21,7 @@ impl Problem {
     /// - every rigid obstacle in front of its contact part, not facing away from it
     ///   ([`crate::contact::placement::check_facing`]);
     /// - no rigid motion of a mesh component left free by the Dirichlet conditions and not
-    ///   carried by a contact part ([`crate::fem::rigid::RigidMotions::check`]).
+    ///   carried by a contact part ([`crate::rigid::RigidMotions::check`]).
     ///
     /// # Errors
     /// [`Error::Invalid`] naming the field, value and what is allowed;
@@ -99,7 +99,7 @@ impl Problem {
         }
         if self.contact.iter().any(|c| c.against.is_some()) {
             let points = self.contact_nodes()?;
-            let (body_of, _) = crate::fem::rigid::bodies(&self.mesh);
+            let (body_of, _) = crate::rigid::bodies(&self.mesh);
             for (k, c) in self.contact.iter().enumerate() {
                 crate::contact::pair_placement::check(&self.mesh, k, c, &points, &body_of)
                     .map_err(|e| e.within(&format!("contact[{k}].against")))?;
@@ -114,7 +114,7 @@ impl Problem {
     /// be held by its own supports: its pair points would enter the analysis of its free
     /// motions with the rows `r(x_s) − r(x_m)` (which vanish where the faces coincide), but
     /// that case is not verified, and is refused. Two different bodies may both have free
-    /// rigid motions: their motions are analysed together ([`crate::fem::rigid::groups`]).
+    /// rigid motions: their motions are analysed together ([`crate::rigid::groups`]).
     fn check_pair_bodies(&self) -> Result<()> {
         let points = self.contact_nodes()?;
         let rigid = self.rigid_motions()?;

@@ -1,7 +1,7 @@
 //! The convex problem of one outer iteration as a [`ConvexEnergy`] of the free DOFs: the
 //! convexified energy `E_k` of [`System::evaluate`] for fixed frozen quantities, with the
 //! system's linear solver for the Newton directions and the runaway check of free rigid
-//! motions ([`crate::fem::rigid`]) on every accepted iterate.
+//! motions ([`crate::rigid`]) on every accepted iterate.
 
 use super::frozen::Frozen;
 use super::newton::{ConvexEnergy, NewtonSettings};
@@ -11,8 +11,8 @@ use super::system::{Evaluation, LinearInfo};
 use super::System;
 use crate::error::Result;
 use crate::fem::dofs::FIXED;
-use crate::fem::rigid::Runaway;
 use crate::problem::Problem;
+use crate::rigid::Runaway;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 /// `E_k` on the free DOFs of `system`; see the module documentation.

@@ -142,7 +142,7 @@ pub fn solve_observed(
 /// `scales` (which messages use to speak in the user's units).
 ///
 /// The solve is for the displacement beyond the translation the supports carry each body
-/// by ([`crate::fem::carry`]), and a body resting across a gap is first dropped onto its
+/// by ([`crate::rigid::carry`]), and a body resting across a gap is first dropped onto its
 /// contact ([`held::rigid_drop`]); the outer loop solves for the displacement relative to
 /// that placement, and the answer is the placement plus it.
 fn solve_dimensionless(

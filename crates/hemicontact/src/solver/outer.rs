@@ -368,7 +368,7 @@ struct ConvexSolve {
     /// Newton steps of the solve before this convex solve.
     steps_before: usize,
     /// The runaway the convex solve stopped at, if any.
-    runaway: Option<crate::fem::rigid::Runaway>,
+    runaway: Option<crate::rigid::Runaway>,
 }
 
 impl ConvexSolve {

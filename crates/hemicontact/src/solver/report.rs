@@ -68,7 +68,7 @@ pub struct SolveReport {
     /// above the tolerance (0: never; see [`super::newton`]).
     pub round_off_floor: f64,
     /// The rigid motions that the Dirichlet conditions leave free and contact carries, in
-    /// words (empty: none; see [`crate::fem::rigid`]).
+    /// words (empty: none; see [`crate::rigid`]).
     pub free_rigid_motions: Vec<String>,
     /// Shift α added to the diagonal of the Newton matrix on their bodies (N/m in 2D per
     /// unit thickness, N/m in 3D; 0: none). It changes Newton directions only, never the

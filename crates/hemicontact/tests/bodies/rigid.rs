@@ -120,7 +120,7 @@ part = "bottom"
     let mesh = pr.mesh().clone();
     let d = mesh.dim();
     let fixed = |k: usize| k < d;
-    let motions = hemicontact::fem::rigid::RigidMotions::new(
+    let motions = hemicontact::rigid::RigidMotions::new(
         &mesh,
         fixed,
         &hemicontact::contact::ContactNodes::default(),
@@ -132,7 +132,7 @@ part = "bottom"
         vec!["rotation about z through (0, 0)".to_string()]
     );
     let roller = |k: usize| k == 1;
-    let motions = hemicontact::fem::rigid::RigidMotions::new(
+    let motions = hemicontact::rigid::RigidMotions::new(
         &mesh,
         roller,
         &hemicontact::contact::ContactNodes::default(),

@@ -28,13 +28,13 @@
 //!   coincides with `I_h u` (uniform-grid stencils are exact for quadratics), so the
 //!   identity is also checked on meshes with randomly perturbed interior nodes, where
 //!   `‖u_h − I_h u‖_E > 0`.
-//! - **The library energy norm** `hemicontact::norms::energy_norm` equals the hand-computed
+//! - **The library energy norm** `hemicontact::assembly::norms::energy_norm` equals the hand-computed
 //!   `(Σ_T |T| W(ε_T))^{1/2}` on a discrete field.
 
 use crate::common;
 use crate::common::{lame, problem, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
-use hemicontact::fem::simplex;
+use hemicontact::geometry::simplex;
 use hemicontact::material::{Hooke, Plane, StrainEnergy};
 use hemicontact::mesh::Mesh;
 use hemicontact::problem::Problem;
@@ -211,7 +211,7 @@ fn energy_error_converges_with_order_one() {
             "n = {n}: u_h is worse than I_h u"
         );
         // The library's energy norm agrees with the hand computation on a P1 field.
-        let lib = hemicontact::norms::energy_norm(pr.mesh(), &hooke, &uh);
+        let lib = hemicontact::assembly::norms::energy_norm(pr.mesh(), &hooke, &uh);
         let hand = discrete_energy_sq(&pr, &eh, lambda, g);
         assert!(
             (lib * lib - hand).abs() <= 1e-12 * hand,
@@ -301,7 +301,7 @@ fn galerkin_orthogonality_on_perturbed_meshes() {
         // The library's energy norm of the discrete difference.
         let dv: Vec<f64> = uh.iter().zip(&interp).map(|(a, b)| a - b).collect();
         let hooke = Hooke::from_young_poisson(YOUNG, POISSON, 2, Plane::Strain);
-        let lib = hemicontact::norms::energy_norm(pr.mesh(), &hooke, &dv);
+        let lib = hemicontact::assembly::norms::energy_norm(pr.mesh(), &hooke, &dv);
         assert!(
             (lib * lib - diff).abs() <= 1e-10 * diff,
             "energy_norm {lib:e} vs {diff:e}"

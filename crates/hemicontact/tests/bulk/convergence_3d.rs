@@ -19,7 +19,7 @@
 
 use crate::common::{lame, problem, solve_with_prescribed_field};
 use hemicontact::assembly::BulkAssembler;
-use hemicontact::fem::simplex;
+use hemicontact::geometry::simplex;
 use hemicontact::problem::Problem;
 use hemicontact::tensor::SQRT2;
 

@@ -17,7 +17,7 @@
 
 use crate::common::Rng;
 use hemicontact::assembly::{element, loads};
-use hemicontact::fem::simplex;
+use hemicontact::geometry::simplex;
 use hemicontact::material::{Hooke, StrainEnergy};
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;

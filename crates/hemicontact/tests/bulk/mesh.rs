@@ -16,7 +16,7 @@
 //! - **Node adjacency** lists, for every node, exactly the other nodes it shares a cell
 //!   with, sorted and once each (against sets built cell by cell), in 2D and 3D.
 
-use hemicontact::fem::simplex;
+use hemicontact::geometry::simplex;
 use hemicontact::mesh::generate::{rectangle, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;
 use hemicontact::Error;

@@ -317,7 +317,7 @@ fn paper_square_satisfies_discrete_virtual_work() {
     let mut syy = 0.0;
     let mut sxy = 0.0;
     for (c, (_, s)) in cell_fields(&pr, &solution.u).iter().enumerate() {
-        let area = hemicontact::fem::simplex::signed_measure(2, &mesh.cell_coords(c));
+        let area = hemicontact::geometry::simplex::signed_measure(2, &mesh.cell_coords(c));
         syy += area * s.c[1];
         sxy += area * s.c[2] / SQRT2;
     }

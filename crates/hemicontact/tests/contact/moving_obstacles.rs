@@ -4,7 +4,7 @@
 //!    problem seen from the obstacle, where every support is moved by −t and the obstacle
 //!    is at rest: u = u' + t, with the same contact and friction states and the same
 //!    interface forces. The supports' common translation carries the body
-//!    (`hemicontact::fem::carry`) and the contact points meet the obstacle where the
+//!    (`hemicontact::rigid::carry`) and the contact points meet the obstacle where the
 //!    carried body is, by the one relative translation `t − c`: the two frames are the same
 //!    discrete problem, whatever t. Asserted to round-off (the forces bit for bit, the
 //!    displacements to the round-off of adding t to them) against planes, a cylinder along

@@ -466,7 +466,7 @@ impl ContactObstacle {
     }
 
     /// The projection of the point `x` (in units of `length_unit`) of a body carried by the
-    /// translation `c` (in units of `gap_unit`; [`crate::fem::carry`]): that of `x` onto the
+    /// translation `c` (in units of `gap_unit`; [`crate::rigid::carry`]): that of `x` onto the
     /// obstacle translated by `t − c` (t its own translation), the obstacle as the carried
     /// body meets it. Returns the projection as [`ContactObstacle::project`] does, and the
     /// translation `t − c` in units of `gap_unit`. With `c = 0` it is

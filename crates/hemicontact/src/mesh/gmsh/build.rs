@@ -5,114 +5,29 @@
 
 use super::cells::read_cells;
 use super::parts::boundary_parts;
-use super::sections::{Block, Nodes, Sections};
-use super::GmshMesh;
+use super::sections::Sections;
+use super::source::{Source, UNTAGGED};
 use crate::error::{Error, FileLocation, Result};
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 
-/// What the steps of building need of the file besides its elements: its name (for error
-/// messages), its physical groups and their names, and its nodes.
-pub(super) struct Source<'a> {
-    /// The file, as named in error messages.
-    pub(super) file: &'a str,
-    /// `(dimension, tag)` → name of a physical group.
-    pub(super) names: &'a HashMap<(i32, i32), String>,
-    /// `(dimension, entity tag)` → physical tags; `None` without `$Entities`.
-    pub(super) entities: Option<&'a HashMap<(i32, i32), Vec<i32>>>,
-    /// The nodes of the file.
-    pub(super) nodes: &'a Nodes,
-}
-
-impl<'a> Source<'a> {
-    /// An error at `at` in the file.
-    pub(super) fn err(&self, at: FileLocation, message: String) -> Error {
-        Error::MeshFile {
-            file: self.file.to_string(),
-            location: at,
-            message,
-        }
-    }
-
-    /// An error about the file as a whole.
-    pub(super) fn whole(&self, message: String) -> Error {
-        self.err(FileLocation::Whole, message)
-    }
-
-    /// The physical groups of the entity of dimension `dim` of block `b` (none without
-    /// `$Entities`).
-    pub(super) fn physical(&self, dim: usize, b: &Block) -> Result<&'a [i32]> {
-        match self.entities {
-            None => Ok(&[]),
-            Some(map) => map
-                .get(&(dim as i32, b.entity))
-                .map(Vec::as_slice)
-                .ok_or_else(|| {
-                    self.err(
-                        b.at,
-                        format!(
-                            "the element block belongs to entity {} of dimension {dim}, which \
-                             `$Entities` does not define",
-                            b.entity
-                        ),
-                    )
-                }),
-        }
-    }
-
-    /// The name of physical group `tag` of dimension `dim`: its `$PhysicalNames` name, or
-    /// its tag if it has none (or a blank one).
-    pub(super) fn group_name(&self, dim: usize, tag: i32) -> String {
-        self.names
-            .get(&(dim as i32, tag))
-            .filter(|n| !n.trim().is_empty())
-            .cloned()
-            .unwrap_or_else(|| tag.to_string())
-    }
-
-    /// The Gmsh tags of the nodes `v` (indices into the file's nodes).
-    pub(super) fn tags_of(&self, v: &[u32]) -> Vec<u64> {
-        v.iter().map(|&i| self.nodes.tags[i as usize]).collect()
-    }
-}
-
-/// Interns physical-group names: index of each distinct name, with the smallest physical
-/// tag carrying it (parts and regions are ordered by it).
-#[derive(Default)]
-pub(super) struct Names {
-    /// The distinct names, in the order first met.
-    pub(super) names: Vec<String>,
-    /// Smallest physical tag carrying each name.
-    min_tag: Vec<i64>,
-    /// Index of each name in `names`.
-    index: HashMap<String, u32>,
-}
-
-impl Names {
-    /// The index of `name`, carried by physical tag `tag`.
-    pub(super) fn get(&mut self, name: String, tag: i64) -> u32 {
-        if let Some(&i) = self.index.get(&name) {
-            let m = &mut self.min_tag[i as usize];
-            *m = (*m).min(tag);
-            return i;
-        }
-        let i = self.names.len() as u32;
-        self.index.insert(name.clone(), i);
-        self.names.push(name);
-        self.min_tag.push(tag);
-        i
-    }
-
-    /// The order of the names by smallest tag: `rank[i]` is the position of name `i`.
-    pub(super) fn ranks(&self) -> (Vec<String>, Vec<usize>) {
-        let mut order: Vec<usize> = (0..self.names.len()).collect();
-        order.sort_by_key(|&i| (self.min_tag[i], i));
-        let mut rank = vec![0; order.len()];
-        for (r, &i) in order.iter().enumerate() {
-            rank[i] = r;
-        }
-        (order.iter().map(|&i| self.names[i].clone()).collect(), rank)
-    }
+/// A mesh read from a Gmsh file, with the Gmsh numbering and what the reader noticed.
+#[derive(Clone, Debug)]
+pub struct GmshMesh {
+    /// The validated mesh.
+    pub mesh: Mesh,
+    /// Gmsh tag of each mesh node (length `n_nodes`).
+    pub node_tags: Vec<u64>,
+    /// Gmsh tag of each cell's element (length `n_cells`).
+    pub element_tags: Vec<u64>,
+    /// Region of each cell (length `n_cells`): an index into [`GmshMesh::region_names`].
+    pub cell_region: Vec<u16>,
+    /// Names of the cell regions: the physical groups of dimension d, in the order of their
+    /// tags, then [`UNTAGGED`] if some cell is in no group.
+    pub region_names: Vec<String>,
+    /// Facts worth telling the user (reoriented entities, untagged boundary facets, dropped
+    /// nodes, ignored interior facets, several cell regions), one sentence each.
+    pub notes: Vec<String>,
 }
 
 /// Builds the mesh of the file `file` from its sections; see the module documentation of
@@ -336,7 +251,7 @@ fn used_nodes(
     // The facets of named boundary parts (not `untagged`) at each file node.
     let mut named: HashMap<u32, Vec<usize>> = HashMap::new();
     for (f, &p) in parts.facet_part.iter().enumerate() {
-        if parts.part_names[p as usize] != super::UNTAGGED {
+        if parts.part_names[p as usize] != UNTAGGED {
             for &v in &parts.facets[f * d..(f + 1) * d] {
                 named.entry(v).or_default().push(f);
             }

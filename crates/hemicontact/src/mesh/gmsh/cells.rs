@@ -2,12 +2,11 @@
 //! the plane z = 0, finite and non-degenerate measure), oriented positively entity by
 //! entity, and checked for duplicates; with the cell region of each.
 
-use super::build::{Names, Source};
 use super::sections::Block;
-use super::UNTAGGED;
+use super::source::{Names, Source, UNTAGGED};
 use crate::error::{FileLocation, Result};
-use crate::fem::simplex;
-use crate::mesh::{diameter, DEGENERATE_TOL};
+use crate::geometry::simplex;
+use crate::mesh::validate::{diameter, DEGENERATE_TOL};
 
 /// The cells read from a file, in file order.
 pub(super) struct Cells {
@@ -196,7 +195,8 @@ fn reorient(
             .iter()
             .find(|b| b.0 == e && b.2.contains(&odd[0]))
             .map_or(FileLocation::Whole, |b| b.1);
-        let names = crate::mesh::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
+        let names =
+            crate::mesh::listing::list_cells(&odd, &|c| format!("element {}", element_tags[c]));
         return Err((
             at,
             format!(

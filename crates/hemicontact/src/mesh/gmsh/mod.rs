@@ -20,7 +20,7 @@
 //! error: only P1 simplices are supported. Elements of lower dimension are ignored. A 2D
 //! mesh must lie in the plane z = 0 (Gmsh always writes three coordinates).
 //!
-//! # How a file becomes a [`Mesh`]
+//! # How a file becomes a [`Mesh`](crate::mesh::Mesh)
 //!
 //! - **Nodes** not used by any cell are dropped (Gmsh writes the nodes of geometry points
 //!   and other lower-dimensional entities); the others keep their order in the file, so a
@@ -41,7 +41,7 @@
 //!   in the file. A boundary facet in two physical groups with different names is an error:
 //!   a facet belongs to one boundary part. Facets of a physical group that lie inside the
 //!   domain (interfaces) are ignored, with a note.
-//! - **Untagged boundary facets**: every boundary facet of a [`Mesh`] carries a part, so the
+//! - **Untagged boundary facets**: every boundary facet of a [`Mesh`](crate::mesh::Mesh) carries a part, so the
 //!   boundary facets that belong to no physical group form the part [`UNTAGGED`]. A scenario
 //!   that does not name it leaves it traction-free.
 //! - **Cell regions**: the physical groups of dimension d are read into
@@ -69,9 +69,10 @@
 //! | `lexer.rs` | tokens: ASCII numbers, quoted names, section markers, raw little-endian numbers of binary sections; locations for error messages; counts checked against the bytes left |
 //! | `sections.rs` | the sections, each checked as it is read, into an unvalidated record of the file |
 //! | `element_types.rs` | the table of Gmsh element types (dimension, nodes, name) |
-//! | `build.rs` | from the sections to a [`GmshMesh`]: dimension, used nodes, regions, the validated [`Mesh`] |
+//! | `source.rs` | what the later steps share: the file's physical groups and nodes, the interned group names, the name [`UNTAGGED`] |
+//! | `build.rs` | from the sections to a [`GmshMesh`] (defined there): dimension, used nodes, regions, the validated [`Mesh`](crate::mesh::Mesh) |
 //! | `cells.rs` | the cells: checks, orientation per entity, duplicates, regions |
-//! | `parts.rs` | the boundary parts: physical groups of the boundary facets (found as for any [`Mesh`]) |
+//! | `parts.rs` | the boundary parts: physical groups of the boundary facets (found as for any [`Mesh`](crate::mesh::Mesh)) |
 //!
 //! # Example
 //!
@@ -101,33 +102,13 @@ pub(crate) mod element_types;
 mod lexer;
 mod parts;
 mod sections;
+mod source;
+
+pub use build::GmshMesh;
+pub use source::UNTAGGED;
 
 use crate::error::{Error, Result};
-use crate::mesh::Mesh;
 use std::path::Path;
-
-/// Name of the boundary part holding the boundary facets that belong to no physical group
-/// (and of the cell region of cells in no physical group).
-pub const UNTAGGED: &str = "untagged";
-
-/// A mesh read from a Gmsh file, with the Gmsh numbering and what the reader noticed.
-#[derive(Clone, Debug)]
-pub struct GmshMesh {
-    /// The validated mesh.
-    pub mesh: Mesh,
-    /// Gmsh tag of each mesh node (length `n_nodes`).
-    pub node_tags: Vec<u64>,
-    /// Gmsh tag of each cell's element (length `n_cells`).
-    pub element_tags: Vec<u64>,
-    /// Region of each cell (length `n_cells`): an index into [`GmshMesh::region_names`].
-    pub cell_region: Vec<u16>,
-    /// Names of the cell regions: the physical groups of dimension d, in the order of their
-    /// tags, then [`UNTAGGED`] if some cell is in no group.
-    pub region_names: Vec<String>,
-    /// Facts worth telling the user (reoriented entities, untagged boundary facets, dropped
-    /// nodes, ignored interior facets, several cell regions), one sentence each.
-    pub notes: Vec<String>,
-}
 
 /// Reads a Gmsh 4.1 `.msh` file (ASCII or binary); see the module documentation.
 ///

@@ -3,9 +3,8 @@
 //! part of the physical group of dimension d − 1 their element is in; those in no group form
 //! the part [`UNTAGGED`]. Elements of such groups inside the domain are ignored, with a note.
 
-use super::build::{Names, Source};
 use super::sections::Block;
-use super::UNTAGGED;
+use super::source::{Names, Source, UNTAGGED};
 use crate::error::Result;
 use crate::mesh::facets::{boundary_facets, sorted_key};
 use std::collections::HashMap;

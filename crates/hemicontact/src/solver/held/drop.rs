@@ -5,8 +5,8 @@ use super::motions::{describe, load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
-use crate::fem::rigid::{solve_symmetric, Motion};
 use crate::problem::Problem;
+use crate::rigid::{solve_symmetric, Motion};
 use crate::solver::System;
 
 /// Most steps of the rigid drop of one body; each adds a touching contact point (a body
@@ -20,7 +20,7 @@ pub struct Placement {
     /// zero outside the bodies moved and at prescribed DOFs.
     pub u: Vec<f64>,
     /// Per body moved: its index and the coefficients of its motion (first m entries; see
-    /// [`crate::fem::rigid`]).
+    /// [`crate::rigid`]).
     pub moves: Vec<(usize, [f64; 6])>,
 }
 
@@ -189,7 +189,7 @@ pub fn describe_placement(
     let rigid = &system.rigid;
     let units = system.user_units();
     let d = rigid.dim;
-    let m = crate::fem::rigid::n_modes(d);
+    let m = crate::rigid::n_modes(d);
     placement
         .moves
         .iter()

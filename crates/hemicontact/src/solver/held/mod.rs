@@ -1,14 +1,14 @@
 //! Bodies held by contact alone: the free rigid motions of a body (those the Dirichlet
-//! conditions leave free, [`crate::fem::rigid`]) that contact carries.
+//! conditions leave free, [`crate::rigid`]) that contact carries.
 //!
 //! The free motions of a body split into *pressed* ones, which move some contact point
 //! along its normal (normal contact carries them), and *sliding* ones, which move every
 //! contact point within its tangent plane (only friction can carry them). Two things
 //! follow.
 //!
-//! Everything below runs over a *group* of bodies ([`crate::fem::rigid::groups`]): the
+//! Everything below runs over a *group* of bodies ([`crate::rigid::groups`]): the
 //! bodies whose contact pairs join two of them with free motions, analysed together. Its
-//! motions are those of its bodies together ([`crate::fem::rigid::Motion`]), the
+//! motions are those of its bodies together ([`crate::rigid::Motion`]), the
 //! coefficients c below are its stacked coefficients (at most 6 per body), and the row of
 //! a point between two of its bodies is the change of the point's relative displacement,
 //! `r_s(x_s) − r_m(x_m)`. A body in no such pair is a group of one.
@@ -19,7 +19,7 @@
 //! it touches, then deforms. When the load is small the deformation is many orders of
 //! magnitude below the gap: the displacement scale U of [`super::scaling`] follows the
 //! load, the gap is `g/U` in its units, and Newton's method would cross it in steps of
-//! the size the shift of the Newton matrix allows ([`crate::fem::rigid::NEWTON_SHIFT`]),
+//! the size the shift of the Newton matrix allows ([`crate::rigid::NEWTON_SHIFT`]),
 //! thousands of them; worse, a displacement `g + δ` with `δ ≪ g` cannot even carry the
 //! digits of δ. So before Newton ([`rigid_drop`]), every such body is moved along its
 //! pressed motions to where it rests on its contact points: the rigid motion `u_R` that

@@ -3,8 +3,8 @@
 //! the external forces along them, a motion in words, the round-off threshold and a norm
 //! that neither overflows nor underflows.
 
-use crate::fem::rigid::{Group, Motion, RigidMotions};
 use crate::mesh::Mesh;
+use crate::rigid::{Group, Motion, RigidMotions};
 use crate::solver::System;
 
 /// Relative size below which a load, a direction component or a slack counts as round-off

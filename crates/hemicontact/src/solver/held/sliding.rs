@@ -6,8 +6,8 @@ use super::motions::{load_along, norm, ROUND_OFF};
 use crate::contact::FrictionBound;
 use crate::display::significant;
 use crate::error::{Error, Result};
-use crate::fem::rigid::{solve_symmetric, Group, Motion, Runaway};
 use crate::problem::Problem;
+use crate::rigid::{solve_symmetric, Group, Motion, Runaway};
 use crate::solver::frozen::Frozen;
 use crate::solver::System;
 
@@ -18,10 +18,10 @@ pub struct Sliding {
     pub(super) bodies: Vec<SlidingLoad>,
 }
 
-/// The load along the sliding motions of one group of bodies ([`crate::fem::rigid::Group`]).
+/// The load along the sliding motions of one group of bodies ([`crate::rigid::Group`]).
 #[derive(Clone, Debug)]
 pub(super) struct SlidingLoad {
-    /// The group (index into [`crate::fem::rigid::RigidMotions::groups`]).
+    /// The group (index into [`crate::rigid::RigidMotions::groups`]).
     group: usize,
     /// Unit coefficient vector (of the group's bodies together) of the direction r of the
     /// load within the sliding motions.
@@ -70,14 +70,14 @@ fn tangential(d: usize, r: &[f64; 3], n: &[f64; 3]) -> [f64; 3] {
 
 impl Sliding {
     /// The sliding loads of `problem` on `system`: for each group of bodies with sliding
-    /// motions carried by friction ([`crate::fem::rigid::Group::sliding`], and no
+    /// motions carried by friction ([`crate::rigid::Group::sliding`], and no
     /// uncarried motion), the projection of the load onto them, if it is more than
     /// round-off of the group's load.
     pub fn of(system: &System, problem: &Problem) -> Sliding {
         let rigid = &system.rigid;
         let mesh = &problem.mesh;
         let d = rigid.dim;
-        let m = crate::fem::rigid::n_modes(d);
+        let m = crate::rigid::n_modes(d);
         let f = &system.f_ext;
         let share = system.share();
         let mut bodies = Vec::new();

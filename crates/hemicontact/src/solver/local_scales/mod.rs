@@ -4,7 +4,7 @@
 //! # Bodies
 //!
 //! A mesh may hold several bodies (connected components of its cells,
-//! [`crate::fem::rigid::bodies`]) whose forces and displacements differ by orders of
+//! [`crate::rigid::bodies`]) whose forces and displacements differ by orders of
 //! magnitude: a block barely loaded beside one pulled by metres. Every norm a stopping test
 //! compares with a tolerance is therefore taken body by body, each relative to the body's
 //! own scale, and the test holds when it holds on every body:
@@ -14,7 +14,7 @@
 //!   included, and the force unit of the body's prescribed motions
 //!   `f_D,b = max_k S_k |u_D,k − c_b,k| · diam_b^{d−2}` over the body's prescribed
 //!   components k, `S_k` the P-wave modulus of the stiffest material around the node and
-//!   `c_b` the translation the body's supports carry it by ([`crate::fem::carry`]), so that
+//!   `c_b` the translation the body's supports carry it by ([`crate::rigid::carry`]), so that
 //!   a stress-free displacement-driven body is measured against the forces its data could
 //!   cause, a soft body never against a stiff one's modulus, and a rigid translation, taken
 //!   exactly, asks no force);
@@ -52,11 +52,11 @@ mod points;
 
 use super::regions::Regions;
 use crate::assembly::element;
-use crate::fem::rigid::RigidMotions;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
 use crate::parallel::Share;
 use crate::problem::Problem;
+use crate::rigid::RigidMotions;
 
 /// The floor η of the force scale of a contact point, as a fraction of the force its node
 /// passes (see the module documentation): 1 %. Well above round-off (Newton resolves the
@@ -228,7 +228,7 @@ impl Bodies {
     }
 
     /// The energy norm `‖v|_b‖_E = (Σ_{T ∈ b} |T| A ε_T(v):ε_T(v))^{1/2}` of `v` on each body
-    /// (Hooke law `hooke(c)` in cell `c`; the same sum as [`crate::norms::energy_norm`], cell by cell,
+    /// (Hooke law `hooke(c)` in cell `c`; the same sum as [`crate::assembly::norms::energy_norm`], cell by cell,
     /// scaled by a power of two against overflow), into `out`; the cells `share` counts,
     /// then over the processes.
     pub fn energy_norms(

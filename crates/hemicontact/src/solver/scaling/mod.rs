@@ -7,7 +7,7 @@
 //!   largest of the materials' for a body of several ([`Problem::stiffness`]);
 //! - displacement `U`: the largest displacement the data can cause beyond the rigid
 //!   translations that are taken exactly (the translation a body's supports carry it by,
-//!   [`crate::fem::carry`], and an obstacle's own translation, which place the body against
+//!   [`crate::rigid::carry`], and an obstacle's own translation, which place the body against
 //!   its obstacle) — the largest prescribed displacement beyond the carried translation
 //!   ([`Problem::largest_prescribed_motion`]), `|f_N| L / S` for the largest traction and
 //!   `|f_0| L² / S` for the body force, and the deepest initial penetration `−g_i` of a

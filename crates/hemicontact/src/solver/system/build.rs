@@ -15,12 +15,12 @@ use crate::assembly::SystemPattern;
 use crate::contact::ContactNodes;
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
-use crate::fem::rigid::RigidMotions;
 use crate::linalg::{LinearSolver, PrepareOptions, SpdSolver};
 use crate::mesh::Mesh;
 use crate::parallel::Share;
 use crate::parallel::{Partition, Placement, Processes, Subdomain};
 use crate::problem::Problem;
+use crate::rigid::RigidMotions;
 use std::time::Instant;
 
 /// What the set-up computes once on the whole problem, or its restriction to this

@@ -5,8 +5,8 @@
 use super::{Evaluation, System};
 use crate::assembly::global::{IdealLocking, Want};
 use crate::assembly::BulkAssembler;
-use crate::fem::rigid::NEWTON_SHIFT;
 use crate::problem::Problem;
+use crate::rigid::NEWTON_SHIFT;
 use crate::solver::constraints::AugmentedLagrangian;
 use crate::solver::frozen::Frozen;
 
@@ -81,7 +81,7 @@ impl System {
         let [e_bulk, e_contact, work] = e;
         if hessian && self.rigid.any_free() {
             // Free rigid motions carried by contact: shift the Newton matrix (not the
-            // energy) on their bodies, see `fem::rigid::NEWTON_SHIFT`. Decided on the whole
+            // energy) on their bodies, see `rigid::NEWTON_SHIFT`. Decided on the whole
             // problem's bodies: a process without a node of them still takes part in the
             // maximum.
             if out.rigid_shift == 0.0 {

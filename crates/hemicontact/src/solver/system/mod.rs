@@ -24,10 +24,10 @@ use crate::assembly::SystemPattern;
 use crate::contact::{ContactNodes, NormalResponse};
 use crate::error::Result;
 use crate::fem::dofs::{DofMap, FIXED};
-use crate::fem::rigid::RigidMotions;
 use crate::linalg::{LinearSolver, SolveRequest, SpdSolver};
 use crate::parallel::{Processes, Share, Subdomain};
 use crate::problem::Problem;
+use crate::rigid::RigidMotions;
 
 /// Everything that depends only on the mesh and the boundary-condition *pattern*.
 #[derive(Debug)]
@@ -92,7 +92,7 @@ pub struct System {
     pub scales: Option<Scales>,
     /// A rigid placement of the bodies applied before the solve (DOF order, in the units
     /// of the displacements): the translations their supports carry them by
-    /// ([`crate::fem::carry`]) and a rigid drop ([`super::held::rigid_drop`]). The unknown
+    /// ([`crate::rigid::carry`]) and a rigid drop ([`super::held::rigid_drop`]). The unknown
     /// is then the displacement relative to it, and the contact points' gaps and
     /// tangential displacements account for it ([`ContactNodes::new`],
     /// [`ContactNodes::place`]). `None`: no placement.
@@ -146,7 +146,7 @@ pub struct Evaluation {
     /// [`System::pattern`]: in a distributed run, of this process's part; N/m).
     pub hess: Vec<f64>,
     /// Shift α added to the Newton matrix on the bodies with free rigid motions (0 until
-    /// the first Hessian; see [`crate::fem::rigid::NEWTON_SHIFT`]).
+    /// the first Hessian; see [`crate::rigid::NEWTON_SHIFT`]).
     pub rigid_shift: f64,
     /// The responses of user-defined compliance laws at the last evaluation (empty without
     /// such laws).

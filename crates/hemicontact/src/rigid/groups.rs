@@ -31,8 +31,8 @@
 //! Every group motion is written per body ([`Motion`]), and the basis vectors of a group
 //! are orthonormal in the stacked coefficients.
 
+use super::body::{mode_row, mode_row_norm2, n_modes, Body};
 use super::dense::Normal;
-use super::{mode_row, mode_row_norm2, n_modes, Body, RigidMotions};
 use crate::contact::ContactNodes;
 use crate::mesh::Mesh;
 
@@ -249,79 +249,4 @@ pub(super) fn analyse(
         });
     }
     (groups, group_of)
-}
-
-impl RigidMotions {
-    /// The sides of contact point `i` on the bodies of group `g` ([`sides`]), each with its
-    /// body's place in [`Group::bodies`]: none if the point touches no body of the group.
-    pub fn group_sides(
-        &self,
-        contact: &ContactNodes,
-        mesh: &Mesh,
-        i: usize,
-        g: usize,
-    ) -> Vec<(usize, Side)> {
-        let members = &self.groups[g].bodies;
-        sides(contact, mesh, i, &self.body_of)
-            .into_iter()
-            .flatten()
-            .filter_map(|s| Some((members.binary_search(&s.body).ok()?, s)))
-            .collect()
-    }
-
-    /// The change of the relative displacement of a contact point with the sides `on` (of
-    /// group `g`, [`RigidMotions::group_sides`]) under the group motion `motion`:
-    /// `Σ sign · r_b(x)` over its sides (m, first d entries).
-    pub fn relative_motion(&self, g: usize, motion: &Motion, on: &[(usize, Side)]) -> [f64; 3] {
-        let mut rho = [0.0; 3];
-        for (j, side) in on {
-            let r = self.displacement(self.groups[g].bodies[*j], &motion[*j], &side.x[..self.dim]);
-            for k in 0..self.dim {
-                rho[k] += side.sign * r[k];
-            }
-        }
-        rho
-    }
-
-    /// The share of the rigid motion `c` of body `b` that is sliding: `‖P c‖ / ‖c‖` in the
-    /// coefficients, P the orthogonal projection onto the span of body b's part of its
-    /// group's sliding motions ([`Group::sliding`]); 0 for `c = 0` or a body without free
-    /// motions.
-    pub fn sliding_share(&self, b: usize, c: &[f64; 6]) -> f64 {
-        let norm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let g = self.group_of[b];
-        if norm == 0.0 || g == u32::MAX {
-            return 0.0;
-        }
-        let group = &self.groups[g as usize];
-        let Ok(j) = group.bodies.binary_search(&b) else {
-            return 0.0;
-        };
-        let dot = |a: &[f64; 6], b: &[f64; 6]| (0..6).map(|i| a[i] * b[i]).sum::<f64>();
-        if group.bodies.len() == 1 {
-            // An orthonormal basis: the projection's norm is that of the coefficients.
-            let projected = group
-                .sliding
-                .iter()
-                .map(|s| dot(&s[0], c).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            return projected / norm;
-        }
-        // Body b's parts of the group's motions are not orthonormal: least squares.
-        let parts: Vec<&[f64; 6]> = group.sliding.iter().map(|s| &s[j]).collect();
-        let k = parts.len();
-        let gram: Vec<f64> = (0..k * k)
-            .map(|e| dot(parts[e / k], parts[e % k]))
-            .collect();
-        let rhs: Vec<f64> = parts.iter().map(|p| dot(p, c)).collect();
-        let y = super::solve_symmetric(&gram, &rhs);
-        let mut projected = [0.0; 6];
-        for (yl, p) in y.iter().zip(&parts) {
-            for i in 0..6 {
-                projected[i] += yl * p[i];
-            }
-        }
-        dot(&projected, &projected).sqrt() / norm
-    }
 }

@@ -1,10 +1,15 @@
 //! Rigid motions in words: the free motions of a body described for the user (a
 //! translation along an axis, a rotation about an axis through a point) with what would
 //! block each; the bodies named by their cell regions; the motions of a group of bodies
-//! ([`super::groups`]); the error for the motions nothing carries.
+//! ([`super::groups`]); the error for the motions nothing carries, and that of a body that
+//! ran away ([`RigidMotions::contact_lost`]).
 
-use super::{n_modes, Body, Motion, RigidMotions};
+use super::body::{n_modes, Body};
+use super::groups::Motion;
+use super::motions::{RigidMotions, Runaway};
 use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::parallel::Share;
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
@@ -77,7 +82,7 @@ fn kinematics(d: usize, body: &Body, c: &[f64; 6]) -> ([f64; 3], [f64; 3], [f64;
         for i in 0..3 {
             perp[i] -= along * w[i] / wn;
         }
-        let q = crate::fem::simplex::cross(&w, &perp);
+        let q = crate::geometry::simplex::cross(&w, &perp);
         for i in 0..3 {
             p[i] += q[i] / w2;
         }
@@ -210,6 +215,78 @@ fn regions(body: &Body) -> String {
 }
 
 impl RigidMotions {
+    /// The free motions of body `b` in words, one per basis vector (see [`describe`]).
+    pub fn describe_free(&self, b: usize) -> Vec<String> {
+        let one: Vec<Motion> = self.free[b].iter().map(|c| vec![*c]).collect();
+        reduced(self.dim, &one)
+            .iter()
+            .map(|c| describe(self.dim, &self.bodies[b], &c[0]))
+            .collect()
+    }
+
+    /// The free rigid motions of all bodies in words (empty if none), each prefixed with
+    /// its mesh component when the mesh has several.
+    pub fn describe_all(&self) -> Vec<String> {
+        let several = self.bodies.len() > 1;
+        (0..self.bodies.len())
+            .flat_map(|b| {
+                self.describe_free(b).into_iter().map(move |s| {
+                    if several {
+                        format!("mesh component {}: {s}", b + 1)
+                    } else {
+                        s
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// The rigid motion with coefficients `c` of body `b` in words, in coordinates whose
+    /// unit is `length` times that of the mesh (1 for a mesh in metres; the length scale
+    /// `L` of [`crate::solver::scaling`] for a mesh in its dimensionless variables).
+    pub fn describe_in(&self, b: usize, c: &[f64; 6], length: f64) -> String {
+        let body = self.bodies[b].in_units(length);
+        describe(self.dim, &body, c)
+    }
+
+    /// # Errors
+    /// [`Error::ContactLost`] if a body with a free rigid motion has moved by more than
+    /// its size under the displacement `u` ([`RigidMotions::runaway`]; `length` as there):
+    /// the message names the motion it moved along and how far, in the units of `u` and of
+    /// the mesh.
+    pub fn check_runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Result<()> {
+        match self.runaway(mesh, u, length, &Share::WHOLE) {
+            None => Ok(()),
+            Some(r) => Err(self.contact_lost(&r, 1.0, length)),
+        }
+    }
+
+    /// The [`Error::ContactLost`] of a runaway, described in the user's units: `length` (m)
+    /// the unit of the mesh's coordinates, `displacement` (m) that of the displacements.
+    pub fn contact_lost(&self, r: &Runaway, length: f64, displacement: f64) -> Error {
+        let b = r.body;
+        let which = match self.label(b) {
+            l if l.is_empty() => l,
+            l => format!("{l}: "),
+        };
+        let motion = if r.motion.iter().any(|&x| x != 0.0) {
+            self.describe_in(b, &r.motion, length)
+        } else {
+            self.free[b]
+                .iter()
+                .map(|c| self.describe_in(b, c, length))
+                .collect::<Vec<_>>()
+                .join("; ")
+        };
+        Error::ContactLost {
+            motions: format!(
+                "{which}{motion} (the body moved by {} m, more than its size {} m)",
+                crate::display::significant(r.moved * displacement),
+                crate::display::significant(self.bodies[b].size * length)
+            ),
+        }
+    }
+
     /// Body `b` in a few words when the mesh has several: its cell regions, when the mesh
     /// names them, and its mesh component (`region `upper` (mesh component 3 of 3)`, `mesh
     /// component 3 of 3`); empty for the one body of a mesh.
@@ -300,7 +377,7 @@ impl RigidMotions {
             // The displacement of the origin: a − ω × x̄.
             let mut a = [0.0; 3];
             a[..d].copy_from_slice(&c[..d]);
-            let wx = crate::fem::simplex::cross(&w, &body.centroid);
+            let wx = crate::geometry::simplex::cross(&w, &body.centroid);
             let o: [f64; 3] = std::array::from_fn(|k| a[k] - wx[k]);
             let reach = body.size + body.centroid.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             (o, w.map(|x| x * reach))

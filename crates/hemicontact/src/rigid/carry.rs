@@ -1,6 +1,6 @@
 //! The translation by which its supports carry a body.
 //!
-//! A body (a connected component of the cells, [`super::rigid::bodies`]) whose prescribed
+//! A body (a connected component of the cells, [`super::bodies`]) whose prescribed
 //! displacement components all have one value `c_k` in component k — a block whose clamped
 //! top is moved by (a, b), or a whole body moved by its supports — is *carried* by `c`:
 //! its displacement is `u = c + w`, with `c` the rigid translation that the supports give
@@ -17,7 +17,7 @@
 //! so nothing else changes: moving an obstacle by t and moving every support of the body by
 //! −t are then the same discrete problem (Galilean invariance), whatever t.
 
-use super::rigid::bodies;
+use super::bodies;
 use crate::mesh::Mesh;
 
 /// The carried translation of every body of `mesh` as a displacement (m, DOF order: the

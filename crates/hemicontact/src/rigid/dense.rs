@@ -4,7 +4,9 @@
 //! most 6) or of a group of bodies coupled through contact pairs (6 per body); they are
 //! stored row by row in a `Vec` of `k × k` entries.
 
-use super::NULL_TOLERANCE;
+/// Relative tolerance on the eigenvalues of the normal matrices: an eigenvalue at most
+/// `NULL_TOLERANCE · tr N` spans a free motion (see the module documentation).
+pub const NULL_TOLERANCE: f64 = 1e-10;
 
 /// Accumulated normal matrix `Σ r rᵀ` (k × k) with its trace reference.
 pub(super) struct Normal {

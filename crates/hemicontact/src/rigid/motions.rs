@@ -1,84 +1,13 @@
-//! Rigid motions left free by the Dirichlet conditions, found algebraically from the mesh
-//! and the pattern of prescribed components (independent of loads and of the linear solver).
-//!
-//! The linear elastic energy of a connected body vanishes exactly on its rigid motions. On
-//! each connected component of the cell graph (a *body*) these are, in coefficients
-//! `c ∈ ℝ^m` (m = 3 in 2D, 6 in 3D),
-//!
-//! ```text
-//!     r(x) = a + ω × (x − x̄),   a = (c_1, …, c_d),   ω = (c_{d+1}, …, c_m) / L
-//! ```
-//!
-//! about the body's centroid `x̄` (mean of its node coordinates), with `L` the largest
-//! distance of a node from `x̄`; so every basis field has components of size at most 1 at
-//! every node, and the matrices below are well scaled whatever the units and the size.
-//!
-//! Each prescribed DOF (node `v`, component `i`) is a row `C_{·j} = φ_j(x_v)_i` of the
-//! constraint matrix acting on `c`; the free motions are the null space of the normal
-//! matrix `N = CᵀC` (m × m), computed by a Jacobi eigendecomposition. An eigenvalue counts
-//! as zero when it is at most [`NULL_TOLERANCE`] times `tr N`. Every row has norm between 1
-//! (its translation entry) and √2, so `tr N` lies between the row count and twice it, the
-//! round-off of `N` is about `10⁻¹⁶ tr N`, and the tolerance `10⁻¹⁰ tr N` sits six orders
-//! above it; the price is that a rotation held only by lever arms below about `10⁻⁵ L`
-//! counts as free — such a constraint would leave the stiffness matrix with a condition
-//! number above 10¹⁰ anyway.
-//!
-//! A free motion is *carried* by contact when a contact point's normal (or, on a part with
-//! friction, a tangent) moves under it: the same construction with one row `ν_i · r(x_i)`
-//! per contact point (and `τ_i · r(x_i)` with friction), restricted to the free motions,
-//! has no null space. A contact pair's point acts on the slave body at its node and on the
-//! master body at its master point `x_m = Σ_j N_j x(m_j)` ([`ContactNodes::on_body`]); when
-//! both bodies of a pair have free motions, the bodies so linked are analysed together, a
-//! *group* whose unknowns are their stacked coefficients and whose pair rows are
-//! `ν_i · (r_s(x_s) − r_m(x_m))` ([`groups`]; a body in no such pair is a group of one).
-//! Motions neither prescribed nor carried make the problem singular: [`RigidMotions::check`]
-//! turns them into an [`Error::RigidMotion`] that names the bodies and the motion
-//! (translation along x, rotation about z through a point, …) and what would block it.
-//!
-//! The free motions of a group split into two orthogonal subspaces (in the coefficients
-//! `c`): the *sliding* motions, which move no contact point along its normal (the null
-//! space of the normal rows alone: friction, if anything, carries them), and the *pressed*
-//! motions, which move some contact point along its normal (normal contact carries them).
-//! A block resting on a flat foundation without supports slides along the foundation's
-//! plane (2D: translation along it; 3D: two translations and the rotation about the
-//! normal) and is pressed along the normal and by the tilts. The solver treats them
-//! differently ([`crate::solver::held`]): the rigid drop before Newton moves along the
-//! pressed motions only, and the load along the sliding ones is checked against the
-//! friction limit.
+//! The rigid motions of every body that the Dirichlet conditions leave free
+//! ([`RigidMotions`]; see [`super`]): found, restricted to a process's part, queried on
+//! the groups' contact points, fitted to a displacement, and a body that ran away.
 
-mod dense;
-pub mod groups;
-mod words;
-
-pub use dense::{solve_small, solve_symmetric};
-pub use groups::{Group, Motion, Side};
-pub use words::describe;
-
+use super::body::{bodies, mode_row, n_modes, Body};
+use super::dense::{solve_small, solve_symmetric, Normal};
+use super::groups::{self, sides, Group, Motion, Side};
 use crate::contact::ContactNodes;
-use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use crate::parallel::Share;
-use dense::Normal;
-
-/// Relative tolerance on the eigenvalues of the normal matrices: an eigenvalue at most
-/// `NULL_TOLERANCE · tr N` spans a free motion (see the module documentation).
-pub const NULL_TOLERANCE: f64 = 1e-10;
-
-/// A connected component of the mesh (cells sharing a vertex are connected).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Body {
-    /// Its nodes, increasing.
-    pub nodes: Vec<u32>,
-    /// Centroid `x̄` of its nodes (m).
-    pub centroid: [f64; 3],
-    /// Largest distance `L` of a node from the centroid (m).
-    pub size: f64,
-    /// Bounding box (min, max) of its nodes (m).
-    pub bounding_box: ([f64; 3], [f64; 3]),
-    /// The names of the cell regions its cells are in, in the mesh's order (empty for a
-    /// mesh without named regions).
-    pub regions: Vec<String>,
-}
 
 /// The rigid motions of every body of a mesh that the Dirichlet conditions leave free.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,152 +97,6 @@ impl RigidMotions {
         }
         r
     }
-
-    /// The free motions of body `b` in words, one per basis vector (see [`describe`]).
-    pub fn describe_free(&self, b: usize) -> Vec<String> {
-        let one: Vec<Motion> = self.free[b].iter().map(|c| vec![*c]).collect();
-        words::reduced(self.dim, &one)
-            .iter()
-            .map(|c| describe(self.dim, &self.bodies[b], &c[0]))
-            .collect()
-    }
-}
-
-/// Number of rigid modes in dimension `d`: 3 in 2D, 6 in 3D.
-pub fn n_modes(d: usize) -> usize {
-    if d == 2 {
-        3
-    } else {
-        6
-    }
-}
-
-/// The connected components of the cell graph: the body of each node (`u32::MAX` for a
-/// node in no cell) and the bodies, ordered by their smallest node.
-pub fn bodies(mesh: &Mesh) -> (Vec<u32>, Vec<Body>) {
-    let n = mesh.n_nodes();
-    let d = mesh.dim();
-    // Union–find with path halving; the root of a set is its smallest node.
-    let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(parent: &mut [u32], mut v: u32) -> u32 {
-        while parent[v as usize] != v {
-            parent[v as usize] = parent[parent[v as usize] as usize];
-            v = parent[v as usize];
-        }
-        v
-    }
-    let mut used = vec![false; n];
-    for c in 0..mesh.n_cells() {
-        let cell = mesh.cell(c);
-        used[cell[0] as usize] = true;
-        for &v in &cell[1..] {
-            used[v as usize] = true;
-            let (r0, r) = (find(&mut parent, cell[0]), find(&mut parent, v));
-            parent[r0.max(r) as usize] = r0.min(r);
-        }
-    }
-    let mut body_of = vec![u32::MAX; n];
-    let mut bodies: Vec<Body> = Vec::new();
-    let mut index_of_root = vec![u32::MAX; n];
-    for v in 0..n {
-        if !used[v] {
-            continue;
-        }
-        let r = find(&mut parent, v as u32) as usize;
-        if index_of_root[r] == u32::MAX {
-            index_of_root[r] = bodies.len() as u32;
-            bodies.push(Body {
-                nodes: Vec::new(),
-                centroid: [0.0; 3],
-                size: 0.0,
-                bounding_box: ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-                regions: Vec::new(),
-            });
-        }
-        body_of[v] = index_of_root[r];
-        bodies[index_of_root[r] as usize].nodes.push(v as u32);
-    }
-    // The named regions of each body's cells.
-    let names = mesh.region_names();
-    if !names.is_empty() {
-        let mut present = vec![vec![false; names.len()]; bodies.len()];
-        for c in 0..mesh.n_cells() {
-            let b = body_of[mesh.cell(c)[0] as usize] as usize;
-            present[b][mesh.cell_region(c)] = true;
-        }
-        for (body, present) in bodies.iter_mut().zip(present) {
-            body.regions = (0..names.len())
-                .filter(|&r| present[r])
-                .map(|r| names[r].clone())
-                .collect();
-        }
-    }
-    for body in &mut bodies {
-        let k = body.nodes.len() as f64;
-        for &v in &body.nodes {
-            let x = mesh.node(v as usize);
-            for i in 0..d {
-                body.centroid[i] += x[i] / k;
-                body.bounding_box.0[i] = body.bounding_box.0[i].min(x[i]);
-                body.bounding_box.1[i] = body.bounding_box.1[i].max(x[i]);
-            }
-        }
-        for i in d..3 {
-            body.bounding_box = (
-                {
-                    let mut lo = body.bounding_box.0;
-                    lo[i] = 0.0;
-                    lo
-                },
-                {
-                    let mut hi = body.bounding_box.1;
-                    hi[i] = 0.0;
-                    hi
-                },
-            );
-        }
-        body.size = body
-            .nodes
-            .iter()
-            .map(|&v| {
-                let x = mesh.node(v as usize);
-                (0..d)
-                    .map(|i| (x[i] - body.centroid[i]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-            })
-            .fold(0.0, f64::max)
-            .max(f64::MIN_POSITIVE);
-    }
-    (body_of, bodies)
-}
-
-/// The row `dir · φ_j(x)`, j = 1…m, of the rigid-mode basis of `body` (module
-/// documentation): translations `e_i`, then rotations `e_k × (x − x̄) / L` (2D: the one
-/// rotation about z).
-fn mode_row(d: usize, body: &Body, x: &[f64], dir: &[f64; 3]) -> [f64; 6] {
-    let mut q = [0.0; 3];
-    for i in 0..d {
-        q[i] = (x[i] - body.centroid[i]) / body.size;
-    }
-    let mut row = [0.0; 6];
-    row[..d].copy_from_slice(&dir[..d]);
-    if d == 2 {
-        // e_z × q = (−q_y, q_x).
-        row[2] = -q[1] * dir[0] + q[0] * dir[1];
-    } else {
-        for k in 0..3 {
-            let mut e = [0.0; 3];
-            e[k] = 1.0;
-            let w = crate::fem::simplex::cross(&e, &q);
-            row[3 + k] = (0..3).map(|i| w[i] * dir[i]).sum();
-        }
-    }
-    row
-}
-
-fn mode_row_norm2(row: &[f64; 6], m: usize) -> f64 {
-    row[..m].iter().map(|x| x * x).sum()
 }
 
 /// Relative size of the shift added to the diagonal of the Newton matrix on bodies with
@@ -381,23 +164,6 @@ impl RigidMotions {
         }
         dofs.sort_unstable();
         dofs
-    }
-
-    /// The free rigid motions of all bodies in words (empty if none), each prefixed with
-    /// its mesh component when the mesh has several.
-    pub fn describe_all(&self) -> Vec<String> {
-        let several = self.bodies.len() > 1;
-        (0..self.bodies.len())
-            .flat_map(|b| {
-                self.describe_free(b).into_iter().map(move |s| {
-                    if several {
-                        format!("mesh component {}: {s}", b + 1)
-                    } else {
-                        s
-                    }
-                })
-            })
-            .collect()
     }
 
     /// The largest generalized force `|Σ_v r(x_v) · g_v| / max_v |r(x_v)|` (N) over the
@@ -480,14 +246,6 @@ impl RigidMotions {
         c
     }
 
-    /// The rigid motion with coefficients `c` of body `b` in words, in coordinates whose
-    /// unit is `length` times that of the mesh (1 for a mesh in metres; the length scale
-    /// `L` of [`crate::solver::scaling`] for a mesh in its dimensionless variables).
-    pub fn describe_in(&self, b: usize, c: &[f64; 6], length: f64) -> String {
-        let body = self.bodies[b].in_units(length);
-        describe(self.dim, &body, c)
-    }
-
     /// The first body with a free rigid motion that has moved by more than its size under
     /// the displacement `u` (DOF order), with the motion it moved along
     /// ([`RigidMotions::fitted_motion`]); `None` if no body has. `length` is the unit of
@@ -540,44 +298,6 @@ impl RigidMotions {
         }
         None
     }
-
-    /// # Errors
-    /// [`Error::ContactLost`] if a body with a free rigid motion has moved by more than
-    /// its size under the displacement `u` ([`RigidMotions::runaway`]; `length` as there):
-    /// the message names the motion it moved along and how far, in the units of `u` and of
-    /// the mesh.
-    pub fn check_runaway(&self, mesh: &Mesh, u: &[f64], length: f64) -> Result<()> {
-        match self.runaway(mesh, u, length, &Share::WHOLE) {
-            None => Ok(()),
-            Some(r) => Err(self.contact_lost(&r, 1.0, length)),
-        }
-    }
-
-    /// The [`Error::ContactLost`] of a runaway, described in the user's units: `length` (m)
-    /// the unit of the mesh's coordinates, `displacement` (m) that of the displacements.
-    pub fn contact_lost(&self, r: &Runaway, length: f64, displacement: f64) -> Error {
-        let b = r.body;
-        let which = match self.label(b) {
-            l if l.is_empty() => l,
-            l => format!("{l}: "),
-        };
-        let motion = if r.motion.iter().any(|&x| x != 0.0) {
-            self.describe_in(b, &r.motion, length)
-        } else {
-            self.free[b]
-                .iter()
-                .map(|c| self.describe_in(b, c, length))
-                .collect::<Vec<_>>()
-                .join("; ")
-        };
-        Error::ContactLost {
-            motions: format!(
-                "{which}{motion} (the body moved by {} m, more than its size {} m)",
-                crate::display::significant(r.moved * displacement),
-                crate::display::significant(self.bodies[b].size * length)
-            ),
-        }
-    }
 }
 
 /// A body that moved by more than its size ([`RigidMotions::runaway`]).
@@ -592,19 +312,77 @@ pub struct Runaway {
     pub moved: f64,
 }
 
-impl Body {
-    /// The same body in coordinates whose unit is `length` times that of its own (its
-    /// centroid, size and bounding box times `length`).
-    pub fn in_units(&self, length: f64) -> Body {
-        Body {
-            nodes: self.nodes.clone(),
-            centroid: self.centroid.map(|x| x * length),
-            size: self.size * length,
-            bounding_box: (
-                self.bounding_box.0.map(|x| x * length),
-                self.bounding_box.1.map(|x| x * length),
-            ),
-            regions: self.regions.clone(),
+impl RigidMotions {
+    /// The sides of contact point `i` on the bodies of group `g` ([`sides`]), each with its
+    /// body's place in [`Group::bodies`]: none if the point touches no body of the group.
+    pub fn group_sides(
+        &self,
+        contact: &ContactNodes,
+        mesh: &Mesh,
+        i: usize,
+        g: usize,
+    ) -> Vec<(usize, Side)> {
+        let members = &self.groups[g].bodies;
+        sides(contact, mesh, i, &self.body_of)
+            .into_iter()
+            .flatten()
+            .filter_map(|s| Some((members.binary_search(&s.body).ok()?, s)))
+            .collect()
+    }
+
+    /// The change of the relative displacement of a contact point with the sides `on` (of
+    /// group `g`, [`RigidMotions::group_sides`]) under the group motion `motion`:
+    /// `Σ sign · r_b(x)` over its sides (m, first d entries).
+    pub fn relative_motion(&self, g: usize, motion: &Motion, on: &[(usize, Side)]) -> [f64; 3] {
+        let mut rho = [0.0; 3];
+        for (j, side) in on {
+            let r = self.displacement(self.groups[g].bodies[*j], &motion[*j], &side.x[..self.dim]);
+            for k in 0..self.dim {
+                rho[k] += side.sign * r[k];
+            }
         }
+        rho
+    }
+
+    /// The share of the rigid motion `c` of body `b` that is sliding: `‖P c‖ / ‖c‖` in the
+    /// coefficients, P the orthogonal projection onto the span of body b's part of its
+    /// group's sliding motions ([`Group::sliding`]); 0 for `c = 0` or a body without free
+    /// motions.
+    pub fn sliding_share(&self, b: usize, c: &[f64; 6]) -> f64 {
+        let norm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let g = self.group_of[b];
+        if norm == 0.0 || g == u32::MAX {
+            return 0.0;
+        }
+        let group = &self.groups[g as usize];
+        let Ok(j) = group.bodies.binary_search(&b) else {
+            return 0.0;
+        };
+        let dot = |a: &[f64; 6], b: &[f64; 6]| (0..6).map(|i| a[i] * b[i]).sum::<f64>();
+        if group.bodies.len() == 1 {
+            // An orthonormal basis: the projection's norm is that of the coefficients.
+            let projected = group
+                .sliding
+                .iter()
+                .map(|s| dot(&s[0], c).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            return projected / norm;
+        }
+        // Body b's parts of the group's motions are not orthonormal: least squares.
+        let parts: Vec<&[f64; 6]> = group.sliding.iter().map(|s| &s[j]).collect();
+        let k = parts.len();
+        let gram: Vec<f64> = (0..k * k)
+            .map(|e| dot(parts[e / k], parts[e % k]))
+            .collect();
+        let rhs: Vec<f64> = parts.iter().map(|p| dot(p, c)).collect();
+        let y = solve_symmetric(&gram, &rhs);
+        let mut projected = [0.0; 6];
+        for (yl, p) in y.iter().zip(&parts) {
+            for i in 0..6 {
+                projected[i] += yl * p[i];
+            }
+        }
+        dot(&projected, &projected).sqrt() / norm
     }
 }

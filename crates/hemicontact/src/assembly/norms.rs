@@ -1,6 +1,7 @@
-//! Norms of displacement fields.
+//! Norms of displacement fields: the energy norm (a sum of the element kernels' strain
+//! energies over the cells) and the largest nodal displacement.
 
-use crate::assembly::element;
+use super::element;
 use crate::material::{Hooke, StrainEnergy};
 use crate::mesh::Mesh;
 
