@@ -35,7 +35,7 @@ pub fn run(ctx: &crate::RunContext, sizes: &[usize], repeat: usize, threads: usi
         let problem = scenario.into_problem()?;
         c.phase(format_args!(
             "n = {n}: timing the phases of a linear solve ({}), {repeat} repetitions",
-            crate::problem_size(&problem)
+            crate::solve::problem_size(&problem)
         ));
         let mesh = problem.mesh();
         let dofs = problem.dof_map();
@@ -191,7 +191,7 @@ pub fn run_paper(
         let mut last = None;
         c.phase(format_args!(
             "n = {n}: {repeat} linear and {repeat} nonlinear solves ({})",
-            crate::problem_size(&paper)
+            crate::solve::problem_size(&paper)
         ));
         let progress = c.progress(&format!("n = {n}:"));
         let stop = std::sync::atomic::AtomicBool::new(false);

@@ -5,7 +5,8 @@
 //! `solution.vtu` (time value = load factor) and the table `load_path.csv`.
 
 use crate::console::significant_seconds;
-use crate::{Outcome, Row, RunContext};
+use crate::table::Row;
+use crate::{Outcome, RunContext};
 use anyhow::{Context, Result};
 use hemicontact::display::significant;
 use hemicontact::io::results::{solution_figures, write_results};

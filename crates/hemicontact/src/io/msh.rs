@@ -104,12 +104,23 @@ impl Out {
 /// without facets are not read back). Double quotes and line feeds in part names, which
 /// `$PhysicalNames` cannot hold, are written as `'` and spaces.
 pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
-    let d = mesh.dim();
     let binary = encoding == MshEncoding::Binary;
     let mut o = Out {
         buf: Vec::new(),
         binary,
     };
+    mesh_format(&mut o);
+    physical_names(&mut o, mesh);
+    entities(&mut o, mesh);
+    nodes(&mut o, mesh);
+    elements(&mut o, mesh);
+    o.buf
+}
+
+/// The `$MeshFormat` section: version 4.1, the encoding and, in binary, the one that
+/// tells the byte order.
+fn mesh_format(o: &mut Out) {
+    let binary = o.binary;
     o.begin("MeshFormat");
     if binary {
         o.text("4.1 1 8\n");
@@ -119,7 +130,12 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
         o.text("4.1 0 8\n");
     }
     o.text("$EndMeshFormat\n");
+}
 
+/// The `$PhysicalNames` section: one group per boundary part (tag k + 1), then `domain`
+/// (tag P + 1).
+fn physical_names(o: &mut Out, mesh: &Mesh) {
+    let d = mesh.dim();
     let names = mesh.part_names();
     let n_parts = names.len();
     let domain_tag = n_parts as i32 + 1;
@@ -138,30 +154,42 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
     }
     o.text(&format!("{d} {domain_tag} \"domain\"\n"));
     o.text("$EndPhysicalNames\n");
+}
 
-    let bbox = |nodes: &mut dyn Iterator<Item = usize>| -> [f64; 6] {
-        let mut b = [
-            f64::INFINITY,
-            f64::INFINITY,
-            0.0,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-            0.0,
-        ];
-        let mut any = false;
-        for n in nodes {
-            any = true;
-            for (i, &x) in mesh.node(n).iter().enumerate() {
-                b[i] = b[i].min(x);
-                b[3 + i] = b[3 + i].max(x);
-            }
+/// The bounding box `[min x, min y, min z, max x, max y, max z]` (m) of the `nodes` of
+/// `mesh` (z = 0 in 2D; all 0 without nodes).
+fn bounding_box(mesh: &Mesh, nodes: &mut dyn Iterator<Item = usize>) -> [f64; 6] {
+    let mut b = [
+        f64::INFINITY,
+        f64::INFINITY,
+        0.0,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+        0.0,
+    ];
+    let mut any = false;
+    for n in nodes {
+        any = true;
+        for (i, &x) in mesh.node(n).iter().enumerate() {
+            b[i] = b[i].min(x);
+            b[3 + i] = b[3 + i].max(x);
         }
-        if any {
-            b
-        } else {
-            [0.0; 6]
-        }
-    };
+    }
+    if any {
+        b
+    } else {
+        [0.0; 6]
+    }
+}
+
+/// The `$Entities` section: one entity of dimension d − 1 per boundary part (tag k + 1),
+/// one of dimension d (tag 1) for the domain.
+fn entities(o: &mut Out, mesh: &Mesh) {
+    let d = mesh.dim();
+    let names = mesh.part_names();
+    let n_parts = names.len();
+    let domain_tag = n_parts as i32 + 1;
+    let bbox = |nodes: &mut dyn Iterator<Item = usize>| bounding_box(mesh, nodes);
     o.begin("Entities");
     let mut counts = [0u64; 4];
     counts[d - 1] = n_parts as u64;
@@ -190,7 +218,11 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
     o.size(0);
     o.eol();
     o.end("Entities");
+}
 
+/// The `$Nodes` section: every node in one block of the domain entity, tags `1..=n_nodes`.
+fn nodes(o: &mut Out, mesh: &Mesh) {
+    let d = mesh.dim();
     let n = mesh.n_nodes() as u64;
     o.begin("Nodes");
     for v in [1, n, 1, n] {
@@ -214,7 +246,13 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
         o.eol();
     }
     o.end("Nodes");
+}
 
+/// The `$Elements` section: the facets of each boundary part with facets (one block per
+/// part), then the cells, tagged from 1 in that order.
+fn elements(o: &mut Out, mesh: &Mesh) {
+    let d = mesh.dim();
+    let n_parts = mesh.part_names().len();
     let (facet_type, cell_type) = if d == 2 {
         (LINE, TRIANGLE)
     } else {
@@ -264,5 +302,4 @@ pub fn write_msh(mesh: &Mesh, encoding: MshEncoding) -> Vec<u8> {
         o.eol();
     }
     o.end("Elements");
-    o.buf
 }

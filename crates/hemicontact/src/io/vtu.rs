@@ -208,19 +208,7 @@ impl<'a> VtuWriter<'a> {
     /// The file of the whole mesh (`piece` = `None`), or of the cells `piece` and the nodes
     /// they use, with their `node_id` and `cell_id` ([`VtuWriter::parallel_files`]).
     fn encode(&self, piece: Option<&[u32]>) -> Vec<u8> {
-        /// A piece of the file in document order: XML text, or an appended array (its
-        /// `<DataArray` tag up to its offset, and its encoded block).
-        enum Part {
-            Xml(String),
-            Array { tag: String, block: Vec<u8> },
-        }
-        let array = |tag: String, bytes: &[u8]| Part::Array {
-            tag,
-            block: zlib_blocks::compress(bytes),
-        };
         let mesh = self.mesh;
-        let d = mesh.dim();
-        let nv = d + 1;
         // The piece's cells and nodes (increasing), and each node's number in the piece.
         let all_cells: Vec<u32>;
         let cells: &[u32] = match piece {
@@ -230,24 +218,7 @@ impl<'a> VtuWriter<'a> {
                 &all_cells
             }
         };
-        let mut local = vec![u32::MAX; mesh.n_nodes()];
-        let nodes: Vec<u32> = match piece {
-            Some(c) => {
-                let mut used = vec![false; mesh.n_nodes()];
-                for &cell in c {
-                    for &v in mesh.cell(cell as usize) {
-                        used[v as usize] = true;
-                    }
-                }
-                (0..mesh.n_nodes() as u32)
-                    .filter(|&v| used[v as usize])
-                    .collect()
-            }
-            None => (0..mesh.n_nodes() as u32).collect(),
-        };
-        for (k, &v) in nodes.iter().enumerate() {
-            local[v as usize] = k as u32;
-        }
+        let (nodes, local) = piece_nodes(mesh, piece);
         let mut parts = vec![Part::Xml(
             "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
              byte_order=\"LittleEndian\" header_type=\"UInt64\" \
@@ -273,8 +244,25 @@ impl<'a> VtuWriter<'a> {
             nodes.len(),
             cells.len()
         )));
+        self.data_parts(&mut parts, piece, &nodes, cells);
+        geometry_parts(&mut parts, mesh, &nodes, cells, &local);
+        parts.push(Part::Xml(
+            "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_".into(),
+        ));
+        assemble(&parts)
+    }
+
+    /// The `<PointData>` and `<CellData>` sections of the nodes and cells of the file,
+    /// restricted to them (with their `node_id` and `cell_id`) for a `piece`.
+    fn data_parts(
+        &self,
+        parts: &mut Vec<Part>,
+        piece: Option<&[u32]>,
+        nodes: &[u32],
+        cells: &[u32],
+    ) {
         for (section, arrays, ids, id) in [
-            ("PointData", &self.point, nodes.as_slice(), "node_id"),
+            ("PointData", &self.point, nodes, "node_id"),
             ("CellData", &self.cell, cells, "cell_id"),
         ] {
             parts.push(Part::Xml(format!("<{section}>\n")));
@@ -309,69 +297,6 @@ impl<'a> VtuWriter<'a> {
             }
             parts.push(Part::Xml(format!("</{section}>\n")));
         }
-        let mut pts = Vec::with_capacity(24 * nodes.len());
-        for &n in &nodes {
-            let x = mesh.node(n as usize);
-            for i in 0..3 {
-                pts.extend_from_slice(&(if i < d { x[i] } else { 0.0 }).to_le_bytes());
-            }
-        }
-        parts.push(Part::Xml("<Points>\n".into()));
-        parts.push(array(
-            "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" \
-             format=\"appended\""
-                .into(),
-            &pts,
-        ));
-        parts.push(Part::Xml("</Points>\n<Cells>\n".into()));
-        let conn: Vec<u8> = cells
-            .iter()
-            .flat_map(|&c| mesh.cell(c as usize))
-            .flat_map(|&v| i64::from(local[v as usize]).to_le_bytes())
-            .collect();
-        let offs: Vec<u8> = (1..=cells.len())
-            .flat_map(|c| ((c * nv) as i64).to_le_bytes())
-            .collect();
-        let vtk_type: u8 = if d == 2 { 5 } else { 10 };
-        let types = vec![vtk_type; cells.len()];
-        for (ty, name, bytes) in [
-            ("Int64", "connectivity", &conn),
-            ("Int64", "offsets", &offs),
-            ("UInt8", "types", &types),
-        ] {
-            let tag = format!("<DataArray type=\"{ty}\" Name=\"{name}\" format=\"appended\"");
-            parts.push(array(tag, bytes));
-        }
-        parts.push(Part::Xml(
-            "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_".into(),
-        ));
-        // Offsets: the blocks in reverse document order, one after the other.
-        let mut offsets = vec![0usize; parts.len()];
-        let mut at = 0;
-        for (k, part) in parts.iter().enumerate().rev() {
-            if let Part::Array { block, .. } = part {
-                offsets[k] = at;
-                at += block.len();
-            }
-        }
-        let mut xml = String::new();
-        for (part, offset) in parts.iter().zip(&offsets) {
-            match part {
-                Part::Xml(text) => xml.push_str(text),
-                Part::Array { tag, .. } => {
-                    let _ = writeln!(xml, "{tag} offset=\"{offset}\"/>");
-                }
-            }
-        }
-        let mut out = xml.into_bytes();
-        out.reserve(at + 32);
-        for part in parts.iter().rev() {
-            if let Part::Array { block, .. } = part {
-                out.extend_from_slice(block);
-            }
-        }
-        out.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
-        out
     }
 
     /// Writes the file atomically.
@@ -381,6 +306,118 @@ impl<'a> VtuWriter<'a> {
     pub fn write(&self, path: &Path) -> Result<()> {
         super::atomic::write(path, &self.to_bytes())
     }
+}
+
+/// A piece of a VTU file in document order: XML text, or an appended array (its
+/// `<DataArray` tag up to its offset, and its encoded block).
+enum Part {
+    Xml(String),
+    Array { tag: String, block: Vec<u8> },
+}
+
+/// The appended array of the `<DataArray` tag `tag` (up to its offset) with the data
+/// `bytes`, compressed by [`zlib_blocks::compress`].
+fn array(tag: String, bytes: &[u8]) -> Part {
+    Part::Array {
+        tag,
+        block: zlib_blocks::compress(bytes),
+    }
+}
+
+/// The nodes that the cells `piece` use (increasing; all the nodes for `None`) and each
+/// node's number among them (`u32::MAX` for the others).
+fn piece_nodes(mesh: &Mesh, piece: Option<&[u32]>) -> (Vec<u32>, Vec<u32>) {
+    let mut local = vec![u32::MAX; mesh.n_nodes()];
+    let nodes: Vec<u32> = match piece {
+        Some(c) => {
+            let mut used = vec![false; mesh.n_nodes()];
+            for &cell in c {
+                for &v in mesh.cell(cell as usize) {
+                    used[v as usize] = true;
+                }
+            }
+            (0..mesh.n_nodes() as u32)
+                .filter(|&v| used[v as usize])
+                .collect()
+        }
+        None => (0..mesh.n_nodes() as u32).collect(),
+    };
+    for (k, &v) in nodes.iter().enumerate() {
+        local[v as usize] = k as u32;
+    }
+    (nodes, local)
+}
+
+/// The `<Points>` and `<Cells>` sections of the `nodes` and `cells` of the file, `local`
+/// numbering the nodes among them.
+fn geometry_parts(parts: &mut Vec<Part>, mesh: &Mesh, nodes: &[u32], cells: &[u32], local: &[u32]) {
+    let d = mesh.dim();
+    let nv = d + 1;
+    let mut pts = Vec::with_capacity(24 * nodes.len());
+    for &n in nodes {
+        let x = mesh.node(n as usize);
+        for i in 0..3 {
+            pts.extend_from_slice(&(if i < d { x[i] } else { 0.0 }).to_le_bytes());
+        }
+    }
+    parts.push(Part::Xml("<Points>\n".into()));
+    parts.push(array(
+        "<DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" \
+         format=\"appended\""
+            .into(),
+        &pts,
+    ));
+    parts.push(Part::Xml("</Points>\n<Cells>\n".into()));
+    let conn: Vec<u8> = cells
+        .iter()
+        .flat_map(|&c| mesh.cell(c as usize))
+        .flat_map(|&v| i64::from(local[v as usize]).to_le_bytes())
+        .collect();
+    let offs: Vec<u8> = (1..=cells.len())
+        .flat_map(|c| ((c * nv) as i64).to_le_bytes())
+        .collect();
+    let vtk_type: u8 = if d == 2 { 5 } else { 10 };
+    let types = vec![vtk_type; cells.len()];
+    for (ty, name, bytes) in [
+        ("Int64", "connectivity", &conn),
+        ("Int64", "offsets", &offs),
+        ("UInt8", "types", &types),
+    ] {
+        let tag = format!("<DataArray type=\"{ty}\" Name=\"{name}\" format=\"appended\"");
+        parts.push(array(tag, bytes));
+    }
+}
+
+/// The file: the XML of the `parts` with each array's offset, then the appended data, the
+/// blocks in reverse document order, one after the other.
+fn assemble(parts: &[Part]) -> Vec<u8> {
+    // Offsets: the blocks in reverse document order, one after the other.
+    let mut offsets = vec![0usize; parts.len()];
+    let mut at = 0;
+    for (k, part) in parts.iter().enumerate().rev() {
+        if let Part::Array { block, .. } = part {
+            offsets[k] = at;
+            at += block.len();
+        }
+    }
+    let mut xml = String::new();
+    for (part, offset) in parts.iter().zip(&offsets) {
+        match part {
+            Part::Xml(text) => xml.push_str(text),
+            Part::Array { tag, .. } => {
+                let _ = writeln!(xml, "{tag} offset=\"{offset}\"/>");
+            }
+        }
+    }
+    let mut out = xml.into_bytes();
+    out.reserve(at + 32);
+    for part in parts.iter().rev() {
+        if let Part::Array { block, .. } = part {
+            out.extend_from_slice(block);
+        }
+    }
+    out.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
+    out
 }
 
 /// Pads a DOF-order vector field (d components per node) to 3 components per node.

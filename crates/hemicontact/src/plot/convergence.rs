@@ -77,17 +77,7 @@ pub fn figure_with(studies: &[Study], title: &str, measure: HMeasure) -> Figure 
 fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rect>) {
     let (w, h) = (760.0, 600.0);
     let mut fig = Figure::new(w as u32, h as u32);
-    let (lines, size) = fit_text(title, w - 24.0, 16.0, 12.0);
-    for (k, l) in lines.iter().enumerate() {
-        fig.prims.push(Prim::Text {
-            pos: [w / 2.0, 8.0 + size + 1.3 * size * k as f64],
-            text: l.clone(),
-            size,
-            anchor: Anchor::Middle,
-            color: DARK,
-        });
-    }
-    let title_h = 14.0 + 1.3 * size * lines.len() as f64;
+    let title_h = title_lines(&mut fig, title, w);
     let mut boxes: Vec<Rect> = Vec::new();
     let pts: Vec<(f64, f64)> = studies
         .iter()
@@ -98,6 +88,73 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
         return (fig, boxes);
     }
     // Legend below the plot box.
+    let entries = legend_entries(studies, measure);
+    let probe = flow(&entries, 20.0, w - 20.0, 0.0, 12.0);
+    let (left, right, top) = (90.0, 30.0, title_h + 28.0);
+    let bottom = h - probe.bottom - 16.0 - 44.0;
+    let plot: Rect = [left, top, w - right, bottom];
+    let axes = LogAxes::new(&pts, w, [left, right, top, bottom]);
+    grid_and_axes(&mut fig, &axes, measure);
+    let curves = curves(studies, measure, &axes);
+    let slopes = reference_slopes(studies, measure, &axes);
+    let taken = taken_space(&curves, &slopes);
+    for (slope, a, b) in &slopes {
+        fig.prims.push(Prim::Polyline {
+            points: vec![*a, *b],
+            color: DARK,
+            width: 1.0,
+            dashed: true,
+        });
+        let text = format!("slope {}", number(*slope));
+        place(&mut fig, &mut boxes, &taken, plot, &text, *b, DARK);
+    }
+    for (c, levels, points) in curves {
+        for p in &points {
+            fig.prims.push(Prim::Circle {
+                center: *p,
+                radius: 4.0,
+                fill: c,
+            });
+        }
+        for (j, pair) in levels.windows(2).enumerate() {
+            if let Some(order) = measure.order(pair[1]) {
+                let (a, b) = (points[j], points[j + 1]);
+                let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                let text = format!("{order:.2}");
+                place(&mut fig, &mut boxes, &taken, plot, &text, mid, c);
+            }
+        }
+        fig.prims.push(Prim::Polyline {
+            points,
+            color: c,
+            width: 2.0,
+            dashed: false,
+        });
+    }
+    let legend = flow(&entries, 20.0, w - 20.0, bottom + 52.0, 12.0);
+    fig.prims.extend(legend.prims);
+    boxes.extend(legend.boxes);
+    (fig, boxes)
+}
+
+/// The title lines fitted to the figure's width `w` (px); returns the height they take.
+fn title_lines(fig: &mut Figure, title: &str, w: f64) -> f64 {
+    let (lines, size) = fit_text(title, w - 24.0, 16.0, 12.0);
+    for (k, l) in lines.iter().enumerate() {
+        fig.prims.push(Prim::Text {
+            pos: [w / 2.0, 8.0 + size + 1.3 * size * k as f64],
+            text: l.clone(),
+            size,
+            anchor: Anchor::Middle,
+            color: DARK,
+        });
+    }
+    14.0 + 1.3 * size * lines.len() as f64
+}
+
+/// The legend entries: one per study (with its last order), the reference slopes and the
+/// note on the order labels.
+fn legend_entries(studies: &[Study], measure: HMeasure) -> Vec<Entry> {
     let (s0, s1) = (measure.slopes()[0], measure.slopes()[1]);
     let mut entries: Vec<Entry> = studies
         .iter()
@@ -130,27 +187,84 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
         Swatch::None,
         "numbers beside the segments: observed orders",
     ));
-    let probe = flow(&entries, 20.0, w - 20.0, 0.0, 12.0);
-    let (left, right, top) = (90.0, 30.0, title_h + 28.0);
-    let bottom = h - probe.bottom - 16.0 - 44.0;
-    let plot: Rect = [left, top, w - right, bottom];
-    let lx = |v: f64| v.log10();
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in &pts {
-        x0 = x0.min(lx(x));
-        x1 = x1.max(lx(x));
-        y0 = y0.min(lx(y));
-        y1 = y1.max(lx(y));
+    entries
+}
+
+/// The log–log axes of the plot box: whole decades around the points, mapped to pixels.
+struct LogAxes {
+    /// The figure's width (px).
+    w: f64,
+    /// The plot box's left margin (px).
+    left: f64,
+    /// The plot box's right margin (px).
+    right: f64,
+    /// The plot box's top (px).
+    top: f64,
+    /// The plot box's bottom (px).
+    bottom: f64,
+    /// The decades shown along h: log10 of the lowest and highest.
+    x0: f64,
+    /// The decades shown along h: log10 of the lowest and highest.
+    x1: f64,
+    /// The decades shown along the error: log10 of the lowest and highest.
+    y0: f64,
+    /// The decades shown along the error: log10 of the lowest and highest.
+    y1: f64,
+}
+
+impl LogAxes {
+    /// The axes holding the points `pts` (h, error), in a figure `w` px wide with the plot
+    /// box's margins `[left, right, top, bottom]` (px).
+    fn new(pts: &[(f64, f64)], w: f64, [left, right, top, bottom]: [f64; 4]) -> Self {
+        let lx = |v: f64| v.log10();
+        let (mut x0, mut x1, mut y0, mut y1) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for &(x, y) in pts {
+            x0 = x0.min(lx(x));
+            x1 = x1.max(lx(x));
+            y0 = y0.min(lx(y));
+            y1 = y1.max(lx(y));
+        }
+        let (x0, x1) = (x0.floor(), x1.ceil().max(x0.floor() + 1.0));
+        let (y0, y1) = (y0.floor(), y1.ceil().max(y0.floor() + 1.0));
+        LogAxes {
+            w,
+            left,
+            right,
+            top,
+            bottom,
+            x0,
+            x1,
+            y0,
+            y1,
+        }
     }
-    let (x0, x1) = (x0.floor(), x1.ceil().max(x0.floor() + 1.0));
-    let (y0, y1) = (y0.floor(), y1.ceil().max(y0.floor() + 1.0));
-    let px = |x: f64| left + (lx(x) - x0) / (x1 - x0) * (w - left - right);
-    let py = |y: f64| top + (y1 - lx(y)) / (y1 - y0) * (bottom - top);
+
+    /// The pixel column of the mesh size `x`.
+    fn px(&self, x: f64) -> f64 {
+        let (left, right, w, x0, x1) = (self.left, self.right, self.w, self.x0, self.x1);
+        let lx = |v: f64| v.log10();
+        left + (lx(x) - x0) / (x1 - x0) * (w - left - right)
+    }
+
+    /// The pixel row of the error `y`.
+    fn py(&self, y: f64) -> f64 {
+        let (top, bottom, y0, y1) = (self.top, self.bottom, self.y0, self.y1);
+        let lx = |v: f64| v.log10();
+        top + (y1 - lx(y)) / (y1 - y0) * (bottom - top)
+    }
+}
+
+/// The grid, the decade ticks and their labels, the plot box and the axis labels.
+fn grid_and_axes(fig: &mut Figure, axes: &LogAxes, measure: HMeasure) {
+    let (w, left, right, top, bottom) = (axes.w, axes.left, axes.right, axes.top, axes.bottom);
+    let (x0, x1, y0, y1) = (axes.x0, axes.x1, axes.y0, axes.y1);
+    let px = |x: f64| axes.px(x);
+    let py = |y: f64| axes.py(y);
     // Grid, decade ticks and labels.
     let mut grid = Vec::new();
     let mut marks = Vec::new();
@@ -227,9 +341,14 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
         anchor: Anchor::Start,
         color: DARK,
     });
-    // The curves, and the reference slopes through the first point of the first study
-    // (each ending where it leaves the plot: at the left edge or the bottom).
-    let curves: Vec<Curve> = studies
+}
+
+/// The studies' curves: their colours, levels with a positive error and mesh size, and
+/// points (px).
+fn curves<'a>(studies: &'a [Study], measure: HMeasure, axes: &LogAxes) -> Vec<Curve<'a>> {
+    let px = |x: f64| axes.px(x);
+    let py = |y: f64| axes.py(y);
+    studies
         .iter()
         .enumerate()
         .map(|(k, st)| {
@@ -244,7 +363,19 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
                 .collect();
             (COLORS[k % COLORS.len()], levels, points)
         })
-        .collect();
+        .collect()
+}
+
+/// The reference slopes through the first point of the first study, each ending where it
+/// leaves the plot (at the left edge or the bottom): the slope and its ends (px).
+fn reference_slopes(
+    studies: &[Study],
+    measure: HMeasure,
+    axes: &LogAxes,
+) -> Vec<(f64, [f64; 2], [f64; 2])> {
+    let (x0, y0) = (axes.x0, axes.y0);
+    let px = |x: f64| axes.px(x);
+    let py = |y: f64| axes.py(y);
     let mut slopes: Vec<(f64, [f64; 2], [f64; 2])> = Vec::new();
     if let Some(l) = studies.first().and_then(|s| s.levels.first()) {
         let (h0, e0) = (measure.h(l), l.error);
@@ -258,9 +389,13 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
             }
         }
     }
-    // Markers and lines occupy space that labels avoid where they can.
+    slopes
+}
+
+/// The space that the markers and lines occupy, which labels avoid where they can.
+fn taken_space(curves: &[Curve], slopes: &[(f64, [f64; 2], [f64; 2])]) -> Vec<Rect> {
     let mut taken: Vec<Rect> = Vec::new();
-    for (_, _, points) in &curves {
+    for (_, _, points) in curves {
         for p in points {
             taken.push([p[0] - 5.0, p[1] - 5.0, p[0] + 5.0, p[1] + 5.0]);
         }
@@ -268,46 +403,10 @@ fn layout(studies: &[Study], title: &str, measure: HMeasure) -> (Figure, Vec<Rec
             trace(&mut taken, w[0], w[1]);
         }
     }
-    for (_, a, b) in &slopes {
+    for (_, a, b) in slopes {
         trace(&mut taken, *a, *b);
     }
-    for (slope, a, b) in &slopes {
-        fig.prims.push(Prim::Polyline {
-            points: vec![*a, *b],
-            color: DARK,
-            width: 1.0,
-            dashed: true,
-        });
-        let text = format!("slope {}", number(*slope));
-        place(&mut fig, &mut boxes, &taken, plot, &text, *b, DARK);
-    }
-    for (c, levels, points) in curves {
-        for p in &points {
-            fig.prims.push(Prim::Circle {
-                center: *p,
-                radius: 4.0,
-                fill: c,
-            });
-        }
-        for (j, pair) in levels.windows(2).enumerate() {
-            if let Some(order) = measure.order(pair[1]) {
-                let (a, b) = (points[j], points[j + 1]);
-                let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-                let text = format!("{order:.2}");
-                place(&mut fig, &mut boxes, &taken, plot, &text, mid, c);
-            }
-        }
-        fig.prims.push(Prim::Polyline {
-            points,
-            color: c,
-            width: 2.0,
-            dashed: false,
-        });
-    }
-    let legend = flow(&entries, 20.0, w - 20.0, bottom + 52.0, 12.0);
-    fig.prims.extend(legend.prims);
-    boxes.extend(legend.boxes);
-    (fig, boxes)
+    taken
 }
 
 /// Small boxes every 3 px along the segment `a–b`: the space a line takes.

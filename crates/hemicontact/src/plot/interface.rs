@@ -294,64 +294,7 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
     let s_end = al.s.last().copied().unwrap_or(0.0);
     let s_hi = if s_end > 0.0 { s_end } else { 1.0 };
     // Legend first: its height fixes the plot box.
-    let mut entries = vec![
-        Entry::new(
-            Swatch::Line {
-                color: DARK,
-                width: 1.5,
-                dashed: false,
-            },
-            "contact pressure p",
-        ),
-        Entry::new(
-            Swatch::Line {
-                color: BLUE,
-                width: 2.5,
-                dashed: false,
-            },
-            "friction traction ‖σ_τ‖",
-        ),
-        Entry::new(
-            Swatch::Line {
-                color: ORANGE,
-                width: 1.5,
-                dashed: true,
-            },
-            "friction bound F",
-        ),
-    ];
-    if let (false, Some(m)) = (master.is_empty(), problem.contact[b].against) {
-        entries.insert(
-            1,
-            Entry::new(
-                Swatch::Line {
-                    color: GREY,
-                    width: 1.5,
-                    dashed: true,
-                },
-                format!(
-                    "pressure on the master side {}",
-                    problem.mesh.part_names()[m.part]
-                ),
-            ),
-        );
-    }
-    let mut states: Vec<(Rgb, &str)> = Vec::new();
-    for c in &pts {
-        let st = state_of(c);
-        if !states.contains(&st) {
-            states.push(st);
-        }
-    }
-    let order = ["separated", "contact, no friction", "stick", "slip"];
-    states.sort_by_key(|st| order.iter().position(|o| *o == st.1));
-    for (color, label) in &states {
-        let count = pts.iter().filter(|c| state_of(c).1 == *label).count();
-        entries.push(Entry::new(
-            Swatch::Patch { color: *color },
-            format!("{label} ({count})"),
-        ));
-    }
+    let entries = legend_entries(problem, b, &pts, master.is_empty());
     let (l, r) = (x0 + 80.0, x0 + w - 30.0);
     let probe = flow(&entries, x0 + 20.0, x0 + w - 20.0, 0.0, 12.0);
     let legend_h = probe.bottom;
@@ -383,92 +326,9 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
         anchor: Anchor::Start,
         color: DARK,
     });
-    // State band above the plot box: each point covers half the way to its neighbours;
-    // runs of one state are one rectangle.
+    state_band(&mut prims, &pts, &al.s, &xa, t, band);
     let s = &al.s;
-    let edge = |k: usize| {
-        if k == 0 {
-            s[0]
-        } else if k == s.len() {
-            s[k - 1]
-        } else {
-            0.5 * (s[k - 1] + s[k])
-        }
-    };
-    let mut k = 0;
-    while k < pts.len() {
-        let st = state_of(pts[k]);
-        let mut e = k + 1;
-        while e < pts.len() && state_of(pts[e]) == st {
-            e += 1;
-        }
-        let (xa0, xa1) = (xa.px(edge(k)), xa.px(edge(e)).max(xa.px(edge(k)) + 1.0));
-        prims.push(Prim::Polygon {
-            points: vec![
-                [xa0, t - band - 2.0],
-                [xa1, t - band - 2.0],
-                [xa1, t - 2.0],
-                [xa0, t - 2.0],
-            ],
-            fill: st.0,
-        });
-        k = e;
-    }
-    let curve = |v: &[f64]| -> Vec<[f64; 2]> {
-        s.iter()
-            .zip(v)
-            .map(|(si, vi)| [xa.px(*si), ya.px(*vi)])
-            .collect()
-    };
-    prims.push(Prim::Polyline {
-        points: curve(&ft),
-        color: BLUE,
-        width: 2.5,
-        dashed: false,
-    });
-    prims.push(Prim::Polyline {
-        points: curve(&p),
-        color: DARK,
-        width: 1.5,
-        dashed: false,
-    });
-    for q in curve(&p) {
-        prims.push(Prim::Circle {
-            center: q,
-            radius: 2.0,
-            fill: DARK,
-        });
-    }
-    if !master.is_empty() {
-        let points: Vec<[f64; 2]> = master
-            .iter()
-            .zip(&pm)
-            .map(|(m, v)| [xa.px(m.0), ya.px(*v)])
-            .collect();
-        for q in &points {
-            prims.push(Prim::Polygon {
-                points: vec![
-                    [q[0] - 2.5, q[1] - 2.5],
-                    [q[0] + 2.5, q[1] - 2.5],
-                    [q[0] + 2.5, q[1] + 2.5],
-                    [q[0] - 2.5, q[1] + 2.5],
-                ],
-                fill: GREY,
-            });
-        }
-        prims.push(Prim::Polyline {
-            points,
-            color: GREY,
-            width: 1.5,
-            dashed: true,
-        });
-    }
-    prims.push(Prim::Polyline {
-        points: curve(&fb),
-        color: ORANGE,
-        width: 1.5,
-        dashed: true,
-    });
+    curves(&mut prims, s, [&xa, &ya], [&p, &ft, &fb], &master, &pm);
     if empty {
         prims.push(Prim::Text {
             pos: [0.5 * (l + r), 0.5 * (t + bottom)],
@@ -498,4 +358,183 @@ fn panel(problem: &Problem, solution: &Solution, b: usize, rect: [f64; 4]) -> Ve
     );
     prims.extend(placed.prims);
     prims
+}
+
+/// The legend entries of the panel of contact part `b` with its points `pts` in order:
+/// the curves (the master side's pressure unless `master_empty`) and the states present,
+/// with their counts.
+fn legend_entries(
+    problem: &Problem,
+    b: usize,
+    pts: &[&ContactResult],
+    master_empty: bool,
+) -> Vec<Entry> {
+    let mut entries = vec![
+        Entry::new(
+            Swatch::Line {
+                color: DARK,
+                width: 1.5,
+                dashed: false,
+            },
+            "contact pressure p",
+        ),
+        Entry::new(
+            Swatch::Line {
+                color: BLUE,
+                width: 2.5,
+                dashed: false,
+            },
+            "friction traction ‖σ_τ‖",
+        ),
+        Entry::new(
+            Swatch::Line {
+                color: ORANGE,
+                width: 1.5,
+                dashed: true,
+            },
+            "friction bound F",
+        ),
+    ];
+    if let (false, Some(m)) = (master_empty, problem.contact[b].against) {
+        entries.insert(
+            1,
+            Entry::new(
+                Swatch::Line {
+                    color: GREY,
+                    width: 1.5,
+                    dashed: true,
+                },
+                format!(
+                    "pressure on the master side {}",
+                    problem.mesh.part_names()[m.part]
+                ),
+            ),
+        );
+    }
+    let mut states: Vec<(Rgb, &str)> = Vec::new();
+    for c in pts {
+        let st = state_of(c);
+        if !states.contains(&st) {
+            states.push(st);
+        }
+    }
+    let order = ["separated", "contact, no friction", "stick", "slip"];
+    states.sort_by_key(|st| order.iter().position(|o| *o == st.1));
+    for (color, label) in &states {
+        let count = pts.iter().filter(|c| state_of(c).1 == *label).count();
+        entries.push(Entry::new(
+            Swatch::Patch { color: *color },
+            format!("{label} ({count})"),
+        ));
+    }
+    entries
+}
+
+/// The state band above the plot box, whose bottom is `t - 2` px, `band` px high: each
+/// point of `pts` (at arc lengths `s`, m) covers half the way to its neighbours; runs of
+/// one state are one rectangle.
+fn state_band(
+    prims: &mut Vec<Prim>,
+    pts: &[&ContactResult],
+    s: &[f64],
+    xa: &Axis,
+    t: f64,
+    band: f64,
+) {
+    let edge = |k: usize| {
+        if k == 0 {
+            s[0]
+        } else if k == s.len() {
+            s[k - 1]
+        } else {
+            0.5 * (s[k - 1] + s[k])
+        }
+    };
+    let mut k = 0;
+    while k < pts.len() {
+        let st = state_of(pts[k]);
+        let mut e = k + 1;
+        while e < pts.len() && state_of(pts[e]) == st {
+            e += 1;
+        }
+        let (xa0, xa1) = (xa.px(edge(k)), xa.px(edge(e)).max(xa.px(edge(k)) + 1.0));
+        prims.push(Prim::Polygon {
+            points: vec![
+                [xa0, t - band - 2.0],
+                [xa1, t - band - 2.0],
+                [xa1, t - 2.0],
+                [xa0, t - 2.0],
+            ],
+            fill: st.0,
+        });
+        k = e;
+    }
+}
+
+/// The curves against the arc lengths `s` (m) on the axes `[xa, ya]`: the friction
+/// traction `ft`, the pressure `p` with its points, the master side's pressure `pm` at the
+/// arc lengths of `master` (if any), and the friction bound `fb` (Pa).
+fn curves(
+    prims: &mut Vec<Prim>,
+    s: &[f64],
+    [xa, ya]: [&Axis; 2],
+    [p, ft, fb]: [&[f64]; 3],
+    master: &[(f64, f64)],
+    pm: &[f64],
+) {
+    let curve = |v: &[f64]| -> Vec<[f64; 2]> {
+        s.iter()
+            .zip(v)
+            .map(|(si, vi)| [xa.px(*si), ya.px(*vi)])
+            .collect()
+    };
+    prims.push(Prim::Polyline {
+        points: curve(ft),
+        color: BLUE,
+        width: 2.5,
+        dashed: false,
+    });
+    prims.push(Prim::Polyline {
+        points: curve(p),
+        color: DARK,
+        width: 1.5,
+        dashed: false,
+    });
+    for q in curve(p) {
+        prims.push(Prim::Circle {
+            center: q,
+            radius: 2.0,
+            fill: DARK,
+        });
+    }
+    if !master.is_empty() {
+        let points: Vec<[f64; 2]> = master
+            .iter()
+            .zip(pm)
+            .map(|(m, v)| [xa.px(m.0), ya.px(*v)])
+            .collect();
+        for q in &points {
+            prims.push(Prim::Polygon {
+                points: vec![
+                    [q[0] - 2.5, q[1] - 2.5],
+                    [q[0] + 2.5, q[1] - 2.5],
+                    [q[0] + 2.5, q[1] + 2.5],
+                    [q[0] - 2.5, q[1] + 2.5],
+                ],
+                fill: GREY,
+            });
+        }
+        prims.push(Prim::Polyline {
+            points,
+            color: GREY,
+            width: 1.5,
+            dashed: true,
+        });
+    }
+    prims.push(Prim::Polyline {
+        points: curve(fb),
+        color: ORANGE,
+        width: 1.5,
+        dashed: true,
+    });
 }

@@ -166,146 +166,7 @@ impl Figure {
             h = self.height
         );
         for p in &self.prims {
-            match p {
-                Prim::Segments {
-                    segments,
-                    color,
-                    width,
-                } => {
-                    let mut d = String::with_capacity(24 * segments.len());
-                    for (a, b) in segments {
-                        let _ = write!(d, "M{:.1} {:.1}L{:.1} {:.1}", a[0], a[1], b[0], b[1]);
-                    }
-                    let _ = writeln!(
-                        s,
-                        "<path d=\"{d}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"/>",
-                        hex(*color)
-                    );
-                }
-                Prim::Polyline {
-                    points,
-                    color,
-                    width,
-                    dashed,
-                } => {
-                    let pts: Vec<String> = points
-                        .iter()
-                        .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
-                        .collect();
-                    let dash = if *dashed {
-                        " stroke-dasharray=\"6 4\""
-                    } else {
-                        ""
-                    };
-                    let _ = writeln!(
-                        s,
-                        "<polyline points=\"{}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"{dash}/>",
-                        pts.join(" "),
-                        hex(*color)
-                    );
-                }
-                Prim::Polygon { points, fill } => {
-                    let pts: Vec<String> = points
-                        .iter()
-                        .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
-                        .collect();
-                    let _ = writeln!(
-                        s,
-                        "<polygon points=\"{}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
-                        pts.join(" "),
-                        c = hex(*fill)
-                    );
-                }
-                Prim::Polygons { rings, fill } => {
-                    let mut d = String::with_capacity(32 * rings.len());
-                    for ring in rings {
-                        for (k, p) in ring.iter().enumerate() {
-                            let c = if k == 0 { 'M' } else { 'L' };
-                            let _ = write!(d, "{c}{:.1} {:.1}", p[0], p[1]);
-                        }
-                        d.push('Z');
-                    }
-                    let _ = writeln!(
-                        s,
-                        "<path d=\"{d}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
-                        c = hex(*fill)
-                    );
-                }
-                Prim::Arrow {
-                    from,
-                    to,
-                    color,
-                    width,
-                } => {
-                    let head = arrow_head(*from, *to, 3.0 + 2.0 * width);
-                    let _ = writeln!(
-                        s,
-                        "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{c}\" stroke-width=\"{width}\"/>\
-                         <polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{c}\"/>",
-                        from[0],
-                        from[1],
-                        to[0],
-                        to[1],
-                        head[0][0],
-                        head[0][1],
-                        head[1][0],
-                        head[1][1],
-                        head[2][0],
-                        head[2][1],
-                        c = hex(*color)
-                    );
-                }
-                Prim::Raster(r) => {
-                    if let Some(png) = raster_png(r) {
-                        let _ = writeln!(
-                            s,
-                            "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" \
-                             preserveAspectRatio=\"none\" xlink:href=\"data:image/png;base64,{}\"/>",
-                            r.x,
-                            r.y,
-                            r.width,
-                            r.height,
-                            raster::base64(&png)
-                        );
-                    }
-                }
-                Prim::Circle {
-                    center,
-                    radius,
-                    fill,
-                } => {
-                    let _ = writeln!(
-                        s,
-                        "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{radius}\" fill=\"{}\"/>",
-                        center[0],
-                        center[1],
-                        hex(*fill)
-                    );
-                }
-                Prim::Text {
-                    pos,
-                    text,
-                    size,
-                    anchor,
-                    color,
-                } => {
-                    let a = match anchor {
-                        Anchor::Start => "start",
-                        Anchor::Middle => "middle",
-                        Anchor::End => "end",
-                    };
-                    let _ = writeln!(
-                        s,
-                        "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"{}\" font-size=\"{size:.1}\" \
-                         text-anchor=\"{a}\" fill=\"{}\">{}</text>",
-                        pos[0],
-                        pos[1],
-                        font::SVG_FONT_FAMILY,
-                        hex(*color),
-                        xml_escape(text)
-                    );
-                }
-            }
+            svg_prim(&mut s, p);
         }
         s.push_str("</svg>\n");
         s
@@ -544,5 +405,149 @@ fn draw_text(
             tiny_skia::Transform::identity(),
             None,
         );
+    }
+}
+
+/// Appends the SVG element of one primitive to `s` (coordinates rounded to 0.1 px).
+fn svg_prim(s: &mut String, p: &Prim) {
+    match p {
+        Prim::Segments {
+            segments,
+            color,
+            width,
+        } => {
+            let mut d = String::with_capacity(24 * segments.len());
+            for (a, b) in segments {
+                let _ = write!(d, "M{:.1} {:.1}L{:.1} {:.1}", a[0], a[1], b[0], b[1]);
+            }
+            let _ = writeln!(
+                s,
+                "<path d=\"{d}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"/>",
+                hex(*color)
+            );
+        }
+        Prim::Polyline {
+            points,
+            color,
+            width,
+            dashed,
+        } => {
+            let pts: Vec<String> = points
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
+                .collect();
+            let dash = if *dashed {
+                " stroke-dasharray=\"6 4\""
+            } else {
+                ""
+            };
+            let _ = writeln!(
+                s,
+                "<polyline points=\"{}\" stroke=\"{}\" stroke-width=\"{width}\" fill=\"none\"{dash}/>",
+                pts.join(" "),
+                hex(*color)
+            );
+        }
+        Prim::Polygon { points, fill } => {
+            let pts: Vec<String> = points
+                .iter()
+                .map(|p| format!("{:.1},{:.1}", p[0], p[1]))
+                .collect();
+            let _ = writeln!(
+                s,
+                "<polygon points=\"{}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
+                pts.join(" "),
+                c = hex(*fill)
+            );
+        }
+        Prim::Polygons { rings, fill } => {
+            let mut d = String::with_capacity(32 * rings.len());
+            for ring in rings {
+                for (k, p) in ring.iter().enumerate() {
+                    let c = if k == 0 { 'M' } else { 'L' };
+                    let _ = write!(d, "{c}{:.1} {:.1}", p[0], p[1]);
+                }
+                d.push('Z');
+            }
+            let _ = writeln!(
+                s,
+                "<path d=\"{d}\" fill=\"{c}\" stroke=\"{c}\" stroke-width=\"0.5\"/>",
+                c = hex(*fill)
+            );
+        }
+        Prim::Arrow {
+            from,
+            to,
+            color,
+            width,
+        } => {
+            let head = arrow_head(*from, *to, 3.0 + 2.0 * width);
+            let _ = writeln!(
+                s,
+                "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"{c}\" stroke-width=\"{width}\"/>\
+                 <polygon points=\"{:.1},{:.1} {:.1},{:.1} {:.1},{:.1}\" fill=\"{c}\"/>",
+                from[0],
+                from[1],
+                to[0],
+                to[1],
+                head[0][0],
+                head[0][1],
+                head[1][0],
+                head[1][1],
+                head[2][0],
+                head[2][1],
+                c = hex(*color)
+            );
+        }
+        Prim::Raster(r) => {
+            if let Some(png) = raster_png(r) {
+                let _ = writeln!(
+                    s,
+                    "<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" \
+                     preserveAspectRatio=\"none\" xlink:href=\"data:image/png;base64,{}\"/>",
+                    r.x,
+                    r.y,
+                    r.width,
+                    r.height,
+                    raster::base64(&png)
+                );
+            }
+        }
+        Prim::Circle {
+            center,
+            radius,
+            fill,
+        } => {
+            let _ = writeln!(
+                s,
+                "<circle cx=\"{:.1}\" cy=\"{:.1}\" r=\"{radius}\" fill=\"{}\"/>",
+                center[0],
+                center[1],
+                hex(*fill)
+            );
+        }
+        Prim::Text {
+            pos,
+            text,
+            size,
+            anchor,
+            color,
+        } => {
+            let a = match anchor {
+                Anchor::Start => "start",
+                Anchor::Middle => "middle",
+                Anchor::End => "end",
+            };
+            let _ = writeln!(
+                s,
+                "<text x=\"{:.1}\" y=\"{:.1}\" font-family=\"{}\" font-size=\"{size:.1}\" \
+                 text-anchor=\"{a}\" fill=\"{}\">{}</text>",
+                pos[0],
+                pos[1],
+                font::SVG_FONT_FAMILY,
+                hex(*color),
+                xml_escape(text)
+            );
+        }
     }
 }

@@ -30,9 +30,11 @@ impl Scenario {
                     return Err(self.err(
                         &f(name),
                         v,
-                        "no sibling parameter with potential = { kind = … }: one form only, \
-                         the parameter inside the table (e.g. potential = { kind = \
-                         \"nonconvex\", a = 0.5 })",
+                        concat!(
+                            "no sibling parameter with potential = { kind = … }: one form only, ",
+                            "the parameter inside the table (e.g. potential = { kind = ",
+                            "\"nonconvex\", a = 0.5 })",
+                        ),
                     ));
                 }
             }

@@ -123,6 +123,22 @@ impl Scenario {
             (Some(at), Some(("material", rest))) => format!("{at}.{rest}"),
             (Some(at), _) => format!("{at}.{name}"),
         };
+        let elasticity = self.elasticity(dim, m, &named)?;
+        let locking = self.locking(l, &named)?;
+        Ok(Material {
+            elasticity,
+            locking,
+        })
+    }
+
+    /// The elasticity of `m` in dimension `dim`, its constants checked; `named` names the
+    /// fields (see [`Self::build_material`]).
+    fn elasticity(
+        &self,
+        dim: usize,
+        m: &MaterialSpec,
+        named: &dyn Fn(&str) -> String,
+    ) -> Result<Elasticity> {
         if !(m.young.is_finite() && m.young > 0.0) {
             return Err(self.err(
                 &named("material.young"),
@@ -216,6 +232,13 @@ impl Scenario {
                 ));
             }
         }
+        Ok(elasticity)
+    }
+
+    /// The locking `l`: its set with the set's threshold, and its treatment (exact, or a
+    /// penalty with the compliance C_κ); `named` names the fields (see
+    /// [`Self::build_material`]).
+    fn locking(&self, l: &LockingSpec, named: &dyn Fn(&str) -> String) -> Result<Locking> {
         // A threshold of another set would be silently ignored: refuse it.
         let thresholds = [
             (
@@ -280,10 +303,7 @@ impl Scenario {
                     "no compliance with treatment = \"exact\" (ideal locking has none)",
                 ));
             }
-            return Ok(Material {
-                elasticity,
-                locking: Locking::Ideal(set),
-            });
+            return Ok(Locking::Ideal(set));
         }
         let locking = match (set, l.c_kappa) {
             (None, None) => Locking::None,
@@ -308,9 +328,6 @@ impl Scenario {
                 ))
             }
         };
-        Ok(Material {
-            elasticity,
-            locking,
-        })
+        Ok(locking)
     }
 }
