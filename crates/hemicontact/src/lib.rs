@@ -84,10 +84,12 @@
 #![deny(missing_docs)]
 
 pub mod assembly;
+pub mod atomic_file;
 pub mod contact;
 pub mod display;
 pub mod error;
 pub mod fem;
+pub mod fields;
 pub mod geometry;
 pub mod io;
 pub mod linalg;

@@ -2,10 +2,9 @@
 //! zlib-compressed in VTK's block layout), ParaView collections of datasets (`.pvd`), the
 //! contact table (`.csv`), JSON summaries (with the totals over each contact part), the
 //! tables of convergence studies, Gmsh meshes (`.msh`); the result files of a solution
-//! written together; atomic file writing, and result sets (the files of one run, put in
+//! written together (each file written atomically, [`crate::atomic_file`]), and result sets (the files of one run, put in
 //! place as a unit).
 
-pub mod atomic;
 pub mod bodies;
 pub mod contact_totals;
 pub mod csv;

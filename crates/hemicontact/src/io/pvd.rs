@@ -57,7 +57,7 @@ pub fn collection(datasets: &[(f64, &str)]) -> Result<String> {
 /// # Errors
 /// As [`collection`]; [`Error::Io`] if the file cannot be written.
 pub fn write(path: &Path, datasets: &[(f64, &str)]) -> Result<()> {
-    super::atomic::write(path, collection(datasets)?.as_bytes())
+    crate::atomic_file::write(path, collection(datasets)?.as_bytes())
 }
 
 /// Refuses a path that is not a plain relative path inside the collection's folder.

@@ -49,7 +49,7 @@ impl ColorField {
     /// The values of the field on the cells (`None` for [`ColorField::None`] and
     /// [`ColorField::ContactPressure`], which is not a cell field).
     pub fn cell_values(self, problem: &Problem, solution: &Solution) -> Option<Vec<f64>> {
-        let cells = || crate::io::vtu::cell_fields(problem, solution);
+        let cells = || crate::fields::cell_fields(problem, solution);
         match self {
             ColorField::VonMises => Some(cells().von_mises),
             ColorField::TraceStrain => Some(cells().trace_strain),

@@ -11,6 +11,7 @@
 //! to draw cell by cell.
 
 pub mod axes;
+mod color;
 pub mod convergence;
 pub mod deformed;
 pub mod field;
@@ -27,8 +28,7 @@ use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// An RGB colour.
-pub type Rgb = [u8; 3];
+pub use color::Rgb;
 
 /// Text anchor.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -328,8 +328,8 @@ impl Figure {
     pub fn write(&self, dir: &Path, stem: &str) -> Result<Vec<std::path::PathBuf>> {
         let svg = dir.join(format!("{stem}.svg"));
         let png = dir.join(format!("{stem}.png"));
-        crate::io::atomic::write(&svg, self.to_svg().as_bytes())?;
-        crate::io::atomic::write(&png, &self.to_png()?)?;
+        crate::atomic_file::write(&svg, self.to_svg().as_bytes())?;
+        crate::atomic_file::write(&png, &self.to_png()?)?;
         Ok(vec![svg, png])
     }
 }

@@ -13,7 +13,7 @@
 //! The sampling is exact arithmetic on the cells' corners in figure pixels: the same
 //! cells always give the same image.
 
-use super::Rgb;
+use super::color::Rgb;
 
 /// Image pixels per figure pixel along each axis (the SVG's embedded image is sharp at 2×
 /// zoom).

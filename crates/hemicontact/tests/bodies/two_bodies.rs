@@ -336,7 +336,7 @@ fn non_matching_3d(n_a: usize, n_b: usize, nz: usize) -> NonMatching3d {
             .map(|c| (c.pressure - p).abs() / p)
             .fold(0.0f64, f64::max)
     };
-    let sigma_zz = hemicontact::io::vtu::cell_fields(&problem, &s)
+    let sigma_zz = hemicontact::fields::cell_fields(&problem, &s)
         .stress
         .chunks_exact(9)
         .map(|sigma| (sigma[8] + p).abs() / p)

@@ -40,7 +40,7 @@
 
 use hemicontact::assembly::global::Want;
 use hemicontact::assembly::{BulkAssembler, SystemPattern};
-use hemicontact::io::vtu::cell_fields;
+use hemicontact::fields::cell_fields;
 use hemicontact::material::{Hooke, Material, Plane};
 use hemicontact::mesh::generate::{cuboid, rectangle, BoxSpec, CutPattern, Rectangle};
 use hemicontact::mesh::Mesh;

@@ -5,7 +5,7 @@
 
 use super::geometry::{material_interfaces, Frame, Segment, View};
 use super::key::{entries, status_color, touching, Key};
-use super::{ARROW, DARK, GREY, MESH};
+use super::palette::{ARROW, DARK, GREY, MESH};
 use crate::plot::axes::{self, Axis};
 use crate::plot::field::{color_of, colorbar, level, level_color, range, ColorField, LEVELS};
 use crate::plot::interface::{along, traction_floor};

@@ -1,7 +1,7 @@
 //! The legend and the title of a deformed-mesh panel: what the legend needs to know
 //! ([`Key`]), its entries, and the colours and sizes of the contact markers.
 
-use super::{ARROW, BLUE, CONTACT, DARK, GREY, MESH, RED};
+use super::palette::{ARROW, BLUE, CONTACT, DARK, GREY, MESH, RED};
 use crate::plot::field::{color_of, ColorField};
 use crate::plot::layout::{fit_text, quantity, round_down_125};
 use crate::plot::legend::{Entry, Swatch};

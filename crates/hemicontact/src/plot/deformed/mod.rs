@@ -19,25 +19,18 @@
 mod draw;
 mod geometry;
 mod key;
+mod palette;
 
 use super::axes;
 use super::field::ColorField;
 use super::legend::flow;
 use super::scales::{arrow_points, contact_spacing, max_traction, mesh_drawn};
-use super::{Figure, Prim, Rgb};
+use super::{Figure, Prim};
 use crate::problem::Problem;
 use crate::solver::Solution;
 use draw::Canvas;
 use geometry::{Frame, View};
 use key::{entries, title, touching, Key};
-
-const GREY: Rgb = [150, 150, 150];
-const MESH: Rgb = [110, 125, 155];
-const DARK: Rgb = [30, 30, 30];
-const ARROW: Rgb = [0, 110, 50];
-const BLUE: Rgb = [20, 80, 220];
-const RED: Rgb = [220, 30, 30];
-const CONTACT: Rgb = [70, 70, 70];
 
 /// What the deformed-mesh figure shows besides the mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,7 +2,8 @@
 //! and the residuals of its normal and friction laws (see the module documentation of
 //! [`super`]).
 
-use super::{ContactResult, FrictionState, Inputs, NormalState};
+use super::inputs::Inputs;
+use super::results::{ContactResult, FrictionState, NormalState};
 use crate::assembly::contact::{ContactAssembler, PointState};
 use crate::contact::{ContactBoundary, FrictionBound, FrictionPotential};
 use crate::solver::multipliers::KktCertificate;
