@@ -637,3 +637,57 @@ fn json_schema_refuses_what_the_loader_refuses() {
         .unwrap();
     assert_eq!(violation(&schema, &as_json(&text), ""), None);
 }
+
+/// The source files of a folder (recursively), relative to it.
+fn rust_files(dir: &Path, base: &Path, out: &mut Vec<String>) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            rust_files(&path, base, out);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            out.push(
+                path.strip_prefix(base)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/"),
+            );
+        }
+    }
+}
+
+/// ARCHITECTURE.md names every module: each source file of the library by its file name
+/// (a folder's `mod.rs` by its folder), so that a newcomer finds every room of the house
+/// there. Unit-test files (`tests.rs`) and `lib.rs` are the exceptions.
+#[test]
+fn architecture_names_every_module() {
+    let text = read("ARCHITECTURE.md");
+    let src = root().join("crates/hemicontact/src");
+    let mut files = Vec::new();
+    rust_files(&src, &src, &mut files);
+    files.sort();
+    assert!(
+        files.len() > 100,
+        "{} source files found under {src:?}",
+        files.len()
+    );
+    let missing: Vec<&String> = files
+        .iter()
+        .filter(|f| {
+            let p = Path::new(f.as_str());
+            let name = p.file_name().unwrap().to_string_lossy().to_string();
+            let shown = match name.as_str() {
+                "lib.rs" | "tests.rs" => return false,
+                "mod.rs" => format!(
+                    "{}/",
+                    p.parent().unwrap().file_name().unwrap().to_string_lossy()
+                ),
+                _ => name,
+            };
+            !text.contains(&format!("`{shown}`")) && !text.contains(&format!("{shown}`"))
+        })
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "ARCHITECTURE.md does not name {missing:?}"
+    );
+}
