@@ -149,7 +149,7 @@ pub fn run_paper(
     let c = &ctx.console;
     let repeat = repeat.max(1);
     let scenario = match file {
-        Some(f) => Some(hemicontact::scenario::Scenario::from_file(f)?),
+        Some(f) => Some(hemicontact::scenario::Scenario::from_file(f)?.on(ctx.processes)),
         None => None,
     };
     if let Some(f) = file {

@@ -26,9 +26,11 @@ pub fn check(ctx: &RunContext, file: &Path) -> Result<()> {
     for motion in problem.rigid_motions()?.describe_all() {
         say!(c, "free rigid motion carried by contact: {motion}");
     }
-    let iterative = !settings
-        .linear_solver
-        .cholesky_affordable(problem.mesh().dim(), problem.dof_map().n_free());
+    let iterative = !settings.linear_solver.cholesky_affordable(
+        problem.mesh().dim(),
+        problem.dof_map().n_free(),
+        &settings.processes,
+    );
     if !problem.contact().is_empty() && iterative {
         say!(
             c,

@@ -24,10 +24,15 @@ pub struct RunContext {
     pub output: output::Output,
     /// What the run prints, from `--quiet` and `-v`.
     pub console: Console,
+    /// The processes of this run ([`hemicontact::parallel::Processes::launch`]), which
+    /// every scenario it reads is solved on.
+    pub processes: hemicontact::parallel::Processes,
 }
 
 impl RunContext {
-    fn apply_memory_flag(&self, mut s: Scenario) -> Scenario {
+    /// `s` on this run's processes, honouring `--ignore-memory-limit`.
+    fn apply_memory_flag(&self, s: Scenario) -> Scenario {
+        let mut s = s.on(self.processes);
         if self.ignore_memory_limit {
             s.memory_limit = None;
         }

@@ -82,6 +82,7 @@ fn main() -> ExitCode {
         ignore_memory_limit: cli.ignore_memory_limit,
         output,
         console: Console::new(verbosity),
+        processes,
     };
     let result = match cli.command {
         Command::Check { file } => check::check(&ctx, &file).map(|_| Outcome::Done),

@@ -17,6 +17,7 @@ use super::Ordering;
 use crate::assembly::SystemPattern;
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::parallel::Processes;
 use serde::{Deserialize, Serialize};
 
 /// Whether this build has the PETSc backend (cargo feature `petsc`).
@@ -73,6 +74,9 @@ pub struct PrepareOptions<'a> {
     pub petsc_options: &'a str,
     /// Where the mesh's nodes sit among the processes (PETSc's rows follow it).
     pub placement: crate::parallel::Placement<'a>,
+    /// The processes of the solve ([`crate::solver::SolverSettings::processes`]): those
+    /// that share PETSc's distributed system when `placement` is of a part.
+    pub processes: Processes,
 }
 
 impl LinearSolver {
@@ -88,15 +92,13 @@ impl LinearSolver {
     /// The solver used for a system of dimension `dim` with `n_free` free equations (the
     /// unknowns after the Dirichlet elimination: `DofMap::n_free`, the order of the
     /// system pattern): [`LinearSolver::Direct`] or [`LinearSolver::Iterative`], or
-    /// [`LinearSolver::Petsc`] when run as several MPI processes
-    /// ([`crate::parallel::Processes`]). The only
-    /// place where `auto` is decided; every caller passes the number of free equations.
-    pub fn resolve(self, dim: usize, n_free: usize) -> LinearSolver {
+    /// [`LinearSolver::Petsc`] when run as several MPI `processes`. The only
+    /// place where `auto` is decided; every caller passes the number of free equations and
+    /// the processes of the solve.
+    pub fn resolve(self, dim: usize, n_free: usize, processes: &Processes) -> LinearSolver {
         match self {
             // Several MPI processes: the distributed solver.
-            LinearSolver::Auto if crate::parallel::Processes::current().size() > 1 => {
-                LinearSolver::Petsc
-            }
+            LinearSolver::Auto if processes.size() > 1 => LinearSolver::Petsc,
             LinearSolver::Auto if dim == 3 && n_free >= Self::AUTO_ITERATIVE_EQUATIONS => {
                 LinearSolver::Iterative
             }
@@ -107,24 +109,35 @@ impl LinearSolver {
 
     /// Whether a Cholesky factorization of the stiffness is affordable for a check beside
     /// the solve (the uniqueness estimate): with the direct solver, and with PETSc where
-    /// `auto` would choose the direct solver.
-    pub fn cholesky_affordable(self, dim: usize, n_free: usize) -> bool {
-        match self {
-            LinearSolver::Petsc => LinearSolver::Auto.resolve(dim, n_free) == LinearSolver::Direct,
-            other => other.resolve(dim, n_free) == LinearSolver::Direct,
-        }
+    /// `auto` would choose the direct solver (on `processes`).
+    pub fn cholesky_affordable(self, dim: usize, n_free: usize, processes: &Processes) -> bool {
+        let kind = match self {
+            LinearSolver::Petsc => LinearSolver::Auto,
+            other => other,
+        };
+        kind.resolve(dim, n_free, processes) == LinearSolver::Direct
+    }
+
+    /// Whether this choice, resolved ([`LinearSolver::resolve`]), splits the problem among
+    /// `processes`: each process then holds and solves its part of the mesh, whose
+    /// matrix is partial in its ghost rows. Only the distributed solver (PETSc) can take
+    /// such matrices, and only several processes have parts; every other solver (and any
+    /// solver on one process) holds the whole system. The one place the solve decides to
+    /// partition ([`crate::solver::System`]'s set-up).
+    pub fn splits_the_problem(self, processes: &Processes) -> bool {
+        self == LinearSolver::Petsc && processes.size() > 1
     }
 
     /// Checks that this build has the solver (`petsc` needs the cargo feature `petsc`), and
-    /// that it is distributed when run as several MPI processes.
+    /// that it is distributed when run as several MPI `processes`.
     ///
     /// # Errors
     /// [`crate::Error::Invalid`] naming `linear_solver`.
-    pub fn validate(self) -> Result<()> {
+    pub fn validate(self, processes: &Processes) -> Result<()> {
         if self == LinearSolver::Petsc && !HAS_PETSC {
             return Err(Self::no_petsc());
         }
-        let processes = crate::parallel::Processes::current().size();
+        let processes = processes.size();
         crate::error::require(
             processes == 1 || matches!(self, LinearSolver::Petsc | LinearSolver::Auto),
             "linear_solver",
@@ -163,33 +176,43 @@ impl LinearSolver {
         pattern: &SystemPattern,
         options: &PrepareOptions,
     ) -> Result<Box<dyn SpdSolver>> {
-        Ok(match self.resolve(mesh.dim(), pattern.n()) {
-            LinearSolver::Iterative => Box::new(MultigridCg::new(mesh, equations, pattern)),
-            #[cfg(feature = "petsc")]
-            LinearSolver::Petsc => Box::new(super::petsc::PetscSolver::new(
-                mesh,
-                equations,
-                pattern,
-                options.petsc_options,
-                &options.placement,
-            )?),
-            #[cfg(not(feature = "petsc"))]
-            LinearSolver::Petsc => return Err(Self::no_petsc()),
-            LinearSolver::Direct | LinearSolver::Auto => Box::new(DirectSolver::new(
-                mesh,
-                equations,
-                pattern,
-                options.ordering,
-                options.par,
-            )?),
-        })
+        Ok(
+            match self.resolve(mesh.dim(), pattern.n(), &options.processes) {
+                LinearSolver::Iterative => Box::new(MultigridCg::new(mesh, equations, pattern)),
+                #[cfg(feature = "petsc")]
+                LinearSolver::Petsc => Box::new(super::petsc::PetscSolver::new(
+                    mesh,
+                    equations,
+                    pattern,
+                    options.petsc_options,
+                    &options.placement,
+                    &options.processes,
+                )?),
+                #[cfg(not(feature = "petsc"))]
+                LinearSolver::Petsc => return Err(Self::no_petsc()),
+                LinearSolver::Direct | LinearSolver::Auto => Box::new(DirectSolver::new(
+                    mesh,
+                    equations,
+                    pattern,
+                    options.ordering,
+                    options.par,
+                )?),
+            },
+        )
     }
 
     /// Estimated peak memory (bytes) of a solve on a mesh of dimension `dim` with `nodes`
     /// nodes and `cells` cells with the solver this setting resolves to for `n_free` free
-    /// equations (see [`LinearSolver::resolve`]).
-    pub fn memory_estimate(self, dim: usize, n_free: usize, nodes: u64, cells: u64) -> u64 {
-        match self.resolve(dim, n_free) {
+    /// equations on `processes` (see [`LinearSolver::resolve`]).
+    pub fn memory_estimate(
+        self,
+        dim: usize,
+        n_free: usize,
+        nodes: u64,
+        cells: u64,
+        processes: &Processes,
+    ) -> u64 {
+        match self.resolve(dim, n_free, processes) {
             // PETSc with GAMG was measured below the in-house multigrid (whole process,
             // `scripts/bench-petsc`: 537 MB against 697 MB at 107 811 DOFs), whose model
             // therefore bounds it.
@@ -205,9 +228,16 @@ impl LinearSolver {
     /// A lower bound of [`LinearSolver::memory_estimate`] over every number of free
     /// equations up to `max_free`, for a check before the free equations are known (the
     /// Dirichlet conditions not yet applied): the smaller estimate of the solvers this
-    /// setting can resolve to.
-    pub fn memory_lower_bound(self, dim: usize, max_free: usize, nodes: u64, cells: u64) -> u64 {
-        self.memory_estimate(dim, 0, nodes, cells)
-            .min(self.memory_estimate(dim, max_free, nodes, cells))
+    /// setting can resolve to on `processes`.
+    pub fn memory_lower_bound(
+        self,
+        dim: usize,
+        max_free: usize,
+        nodes: u64,
+        cells: u64,
+        processes: &Processes,
+    ) -> u64 {
+        self.memory_estimate(dim, 0, nodes, cells, processes)
+            .min(self.memory_estimate(dim, max_free, nodes, cells, processes))
     }
 }

@@ -108,7 +108,7 @@ impl PetscSolver {
     /// `equations`) to PETSc, with the nodes' coordinates for the rigid-body modes, and
     /// configures the KSP from the defaults, `options` and `PETSC_OPTIONS`. With
     /// `placement.nodes`, `mesh` is this process's part of the mesh, its own nodes first, and
-    /// the system is distributed over the processes: the rows of its own nodes are the
+    /// the system is distributed over `processes`: the rows of its own nodes are the
     /// ones it hands PETSc. Without, `mesh` is the whole mesh, solved by this process alone.
     ///
     /// # Errors
@@ -120,11 +120,12 @@ impl PetscSolver {
         pattern: &SystemPattern,
         options: &str,
         placement: &Placement,
+        processes: &Processes,
     ) -> Result<Self> {
         let d = mesh.dim();
         let partition = placement.partition;
         let processes = match placement.nodes {
-            Some(_) => Processes::current(),
+            Some(_) => *processes,
             None => Processes::alone(),
         };
         let rank = processes.rank();

@@ -2,13 +2,13 @@
 //! few collective operations the program needs; see [`super`].
 
 use crate::error::{Error, Result};
-use std::sync::OnceLock;
-
-/// The rank and size of this process's MPI world and the number of its processes on this
-/// machine, once it was started by [`Processes::launch`].
-static WORLD: OnceLock<(usize, usize, usize)> = OnceLock::new();
 
 /// The processes of this run; see the module documentation.
+///
+/// A value, passed explicitly from where a solve starts (the program's
+/// [`Processes::launch`], then [`crate::solver::SolverSettings::processes`]): no library
+/// code reads it from a global. MPI itself, once initialized, stays a process-wide state of
+/// the PETSc bindings (`hemicontact_petsc::World`), which the collectives complete through.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Processes {
     pub(super) rank: usize,
@@ -30,17 +30,27 @@ pub fn mpi_launch() -> Option<(usize, usize)> {
     .filter(|&(_, size)| size > 1)
 }
 
+impl Default for Processes {
+    /// [`Processes::alone`]: a solve whose caller passes no launch runs on this process
+    /// alone.
+    fn default() -> Self {
+        Processes::alone()
+    }
+}
+
 impl Processes {
     /// The processes of this run: those of the MPI launch that started it
     /// ([`mpi_launch`]; MPI initialized through PETSc), else this process alone. Called
-    /// once, first thing, by a program that may run under `mpirun`.
+    /// once, first thing, by a program that may run under `mpirun`: the one place a process
+    /// learns its rank, which it then passes on (a solve's
+    /// [`crate::solver::SolverSettings::processes`]).
     ///
     /// # Errors
     /// [`Error::Invalid`] for an MPI launch of a build without the feature `petsc`;
     /// MPI's errors.
     pub fn launch() -> Result<Processes> {
         let Some((_, size)) = mpi_launch() else {
-            return Ok(Self::current());
+            return Ok(Self::alone());
         };
         #[cfg(feature = "petsc")]
         {
@@ -48,9 +58,12 @@ impl Processes {
                 Error::Breakdown(format!("MPI could not be initialized through PETSc: {e}"))
             })?;
             let on_machine = world.ranks_on_node().map_err(mpi_error)?;
-            let _ = WORLD.set((world.rank(), world.size(), on_machine));
             let _ = size;
-            Ok(Self::current())
+            Ok(Processes {
+                rank: world.rank(),
+                size: world.size(),
+                on_machine,
+            })
         }
         #[cfg(not(feature = "petsc"))]
         Err(Error::invalid(
@@ -59,16 +72,6 @@ impl Processes {
             "1: this build of hemicontact runs as one process (an MPI launch needs the cargo \
              feature `petsc`, see docs/distributed.md)",
         ))
-    }
-
-    /// The processes as launched (rank 0 of 1 before or without [`Processes::launch`]).
-    pub fn current() -> Processes {
-        let (rank, size, on_machine) = WORLD.get().copied().unwrap_or((0, 1, 1));
-        Processes {
-            rank,
-            size,
-            on_machine,
-        }
     }
 
     /// This process alone (rank 0 of 1), whatever the launch: for work that one process does

@@ -181,6 +181,15 @@ impl Share {
         k / self.dim < self.own_nodes
     }
 
+    /// `v` (a DOF-order vector of the part) ← NaN at the DOFs not counted here: those of
+    /// the ghost nodes, where a partial sum is unknown; nothing on one process, which
+    /// counts every DOF.
+    pub fn unknown_where_uncounted(&self, v: &mut [f64]) {
+        // The DOFs counted here are the first ones: those of the own nodes.
+        let counted = self.dim.saturating_mul(self.own_nodes).min(v.len());
+        v[counted..].fill(f64::NAN);
+    }
+
     /// Whether equation `e` (free DOF) is counted here.
     #[inline]
     pub fn counts_equation(&self, e: usize) -> bool {
@@ -303,6 +312,54 @@ impl Share {
         for (k, v) in values.iter_mut().enumerate() {
             *v = if both[m + k] > 0.0 { f64::NAN } else { both[k] };
         }
+    }
+
+    /// `values` ← their element-wise minimum over the processes, a NaN on any process
+    /// giving a NaN ([`Share::max`] of their negations: exact); nothing on one process.
+    pub fn min(&self, values: &mut [f64]) {
+        if self.completion.is_none() {
+            return;
+        }
+        for v in values.iter_mut() {
+            *v = -*v;
+        }
+        self.max(values);
+        for v in values.iter_mut() {
+            *v = -*v;
+        }
+    }
+
+    /// Whether any process's `local` is true; `local` itself on one process.
+    pub fn any(&self, local: bool) -> bool {
+        let mut flags = [local];
+        self.any_each(&mut flags);
+        flags[0]
+    }
+
+    /// Each of `flags` ← whether it is true on any process (one completion for all of
+    /// them); nothing on one process. A failed completion (recorded: it ends the solve)
+    /// leaves them false.
+    pub fn any_each(&self, flags: &mut [bool]) {
+        if self.completion.is_none() {
+            return;
+        }
+        // Each flag as 0 or 1, their maximum over the processes.
+        let mut packed: Vec<f64> = flags.iter().map(|&b| f64::from(u8::from(b))).collect();
+        self.max(&mut packed);
+        for (b, p) in flags.iter_mut().zip(packed) {
+            *b = p > 0.0;
+        }
+    }
+
+    /// Whether `local` is true on every process; `local` itself on one process. A failed
+    /// completion (recorded: it ends the solve) gives false.
+    pub fn all(&self, local: bool) -> bool {
+        if self.completion.is_none() {
+            return local;
+        }
+        let mut packed = [f64::from(u8::from(!local))];
+        self.max(&mut packed);
+        packed[0] == 0.0
     }
 
     /// The sum over the processes of a count (`local` here).

@@ -211,6 +211,7 @@ impl Scenario {
                 mesh.dim() * mesh.n_nodes(),
                 mesh.n_nodes() as u64,
                 mesh.n_cells() as u64,
+                &self.file.solver.processes,
             );
             if need > limit {
                 return Err(too_large(
@@ -290,6 +291,7 @@ impl Scenario {
                 usize::try_from(max_free).unwrap_or(usize::MAX),
                 nodes,
                 cells,
+                &self.file.solver.processes,
             );
             if need > limit {
                 return Err(self.err(
@@ -435,20 +437,24 @@ impl Scenario {
             return Ok(());
         };
         let mesh = &problem.mesh;
-        let kind =
-            crate::solver::system::resolved_linear_solver(problem, self.file.solver.linear_solver);
+        // An MPI launch: what all its processes on this machine need together.
+        let processes = self.file.solver.processes;
+        let kind = crate::solver::system::resolved_linear_solver(
+            problem,
+            self.file.solver.linear_solver,
+            &processes,
+        );
         // Plus the work arrays of the parallel assembly (per cell, a few bytes).
         let need = kind.memory_estimate(
             mesh.dim(),
             problem.dof_map().n_free(),
             mesh.n_nodes() as u64,
             mesh.n_cells() as u64,
+            &processes,
         ) + crate::assembly::global::Workspace::buffer_bytes(
             rayon::current_num_threads(),
             mesh.n_cells(),
         );
-        // An MPI launch: what all its processes on this machine need together.
-        let processes = crate::parallel::Processes::current();
         let need = if processes.size() > 1 {
             crate::resources::estimate_machine(
                 need,

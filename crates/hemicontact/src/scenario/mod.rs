@@ -398,6 +398,15 @@ impl Scenario {
         Ok(Some(factors))
     }
 
+    /// This scenario solved on `processes` (those of the program's launch,
+    /// [`crate::parallel::Processes::launch`]): its settings
+    /// ([`SolverSettings::processes`]) and the memory check of its problem count them.
+    /// Without, a scenario is solved on this process alone.
+    pub fn on(mut self, processes: crate::parallel::Processes) -> Scenario {
+        self.file.solver.processes = processes;
+        self
+    }
+
     /// The solver settings of `[solver]`, checked ([`SolverSettings::validate`]).
     ///
     /// # Errors

@@ -248,19 +248,19 @@ impl ConvexEnergy for ConvexProblem<'_> {
         }
         // The bodies with a contact point whose node's residual is above its floor.
         let d = mesh.dim();
-        let mut busy = vec![0.0; bodies.count];
+        let mut busy = vec![false; bodies.count];
         for &v in &system.contact.node[..system.contact.owned()] {
             let v = v as usize;
             if (0..d).any(|k| self.counted(d * v + k) != 0.0 && !system.dofs.is_fixed(d * v + k)) {
                 if let Some(b) = busy.get_mut(bodies.of_node[v] as usize) {
-                    *b = 1.0;
+                    *b = true;
                 }
             }
         }
-        share.max(&mut busy);
+        share.any_each(&mut busy);
         for (dof, &eq) in system.dofs.equations().iter().enumerate() {
             let b = bodies.of_node[dof / d] as usize;
-            if eq != FIXED && self.body_residual.get(b) == Some(&0.0) && busy[b] == 0.0 {
+            if eq != FIXED && self.body_residual.get(b) == Some(&0.0) && !busy[b] {
                 self.gradient[eq as usize] = 0.0;
             }
         }

@@ -201,7 +201,7 @@ fn solve_scaled(
     if let Some(p) = drop {
         system.place(p.u);
     }
-    let mut report = SolveReport::new(system);
+    let mut report = SolveReport::new(system, &settings.processes);
     report.rigid_drop = drop_words;
     let mut eval = system::Evaluation::new(system);
     let outcome = outer::run(

@@ -102,8 +102,9 @@ impl SolveReport {
         self.round_off_floor = self.round_off_floor.max(record.round_off_floor);
     }
 
-    /// An empty report for `system`, with its sizes and set-up timings filled in.
-    pub fn new(system: &System) -> Self {
+    /// An empty report for `system`, solved on `processes`, with its sizes and set-up
+    /// timings filled in.
+    pub fn new(system: &System, processes: &crate::parallel::Processes) -> Self {
         SolveReport {
             converged: false,
             message: "not started".into(),
@@ -112,7 +113,7 @@ impl SolveReport {
             n_equations: system.whole.equations,
             nnz_matrix: system.nnz,
             linear_solver: system.linear_solver.describe(),
-            processes: crate::parallel::Processes::current().size(),
+            processes: processes.size(),
             nnz_factor: system.linear_solver.nnz_factor(),
             multigrid_levels: system.linear_solver.level_sizes(),
             outer: Vec::new(),

@@ -5,6 +5,7 @@
 use super::constraints::ConstraintSettings;
 use crate::error::Result;
 use crate::linalg::{LinearSolver, Ordering, PetscSettings};
+use crate::parallel::Processes;
 use serde::{Deserialize, Serialize};
 
 /// Solver settings.
@@ -45,6 +46,13 @@ pub struct SolverSettings {
     /// must be at most this for a solve to count as converged. Default 1e-6; see
     /// [`super::certificate`].
     pub certificate_tolerance: f64,
+    /// The processes the solve runs on: not a setting of the file, but those of the
+    /// program's launch ([`Processes::launch`]), which the caller passes here
+    /// ([`crate::scenario::Scenario::on`]); on several, `auto` resolves to PETSc and the
+    /// problem is split among them ([`LinearSolver::splits_the_problem`]). Default: this
+    /// process alone.
+    #[serde(skip)]
+    pub processes: Processes,
 }
 
 impl Default for SolverSettings {
@@ -59,6 +67,7 @@ impl Default for SolverSettings {
             outer: OuterSettings::default(),
             constraints: ConstraintSettings::default(),
             certificate_tolerance: 1e-6,
+            processes: Processes::alone(),
         }
     }
 }
@@ -73,7 +82,8 @@ impl SolverSettings {
     /// # Errors
     /// [`crate::Error::Invalid`] naming the setting by its path from here (e.g.
     /// `newton.armijo`): `certificate_tolerance` in [1e-14, 1), thread counts up to
-    /// [`MAX_THREADS`], `linear_solver` available in this build ([`LinearSolver::validate`]),
+    /// [`MAX_THREADS`], `linear_solver` available in this build and on [`Self::processes`]
+    /// ([`LinearSolver::validate`]),
     /// [`PetscSettings::validate`], and the ranges of [`NewtonSettings::validate`],
     /// [`OuterSettings::validate`] and [`ConstraintSettings::validate`].
     pub fn validate(&self) -> Result<()> {
@@ -96,7 +106,7 @@ impl SolverSettings {
                 &format!("a thread count from 0 (all cores) to {MAX_THREADS}"),
             )?;
         }
-        self.linear_solver.validate()?;
+        self.linear_solver.validate(&self.processes)?;
         self.petsc.validate().map_err(|e| e.within("petsc"))?;
         self.newton.validate().map_err(|e| e.within("newton"))?;
         self.outer.validate().map_err(|e| e.within("outer"))?;

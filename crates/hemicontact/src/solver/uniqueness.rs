@@ -324,9 +324,11 @@ pub fn evaluate(problem: &Problem, settings: &super::SolverSettings) -> Uniquene
     if !u.applies {
         return u;
     }
-    let iterative = !settings
-        .linear_solver
-        .cholesky_affordable(problem.mesh.dim(), problem.dof_map().n_free());
+    let iterative = !settings.linear_solver.cholesky_affordable(
+        problem.mesh.dim(),
+        problem.dof_map().n_free(),
+        &settings.processes,
+    );
     if iterative && u.factor > 0.0 {
         return not_evaluated(
             "not evaluated: the trace constant ‖γ‖ needs a Cholesky factorization of the ε–ε \

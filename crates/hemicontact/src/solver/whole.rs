@@ -80,12 +80,9 @@ impl ContactResult {
 }
 
 /// The contact results of the whole problem from every process's `results` of its own
-/// points ([`Share::to_whole`]), with the whole mesh's node numbers; `results` itself on
-/// one process.
+/// points ([`Share::to_whole`]), with the whole mesh's node numbers; on one process
+/// `results` themselves (each read back bit for bit from its row).
 pub fn whole_results(share: &Share, results: Vec<ContactResult>) -> Vec<ContactResult> {
-    if !share.is_split() {
-        return results;
-    }
     let rows: Vec<f64> = results
         .into_iter()
         .flat_map(|mut r| {

@@ -369,7 +369,7 @@ fn each_entry_is_counted_by_one_process() {
                     own.clone(),
                     own.len(),
                     sizes,
-                    Processes::current(),
+                    Processes::alone(),
                 );
                 assert!(share.is_split());
                 for (l, &w) in ids.iter().enumerate() {

@@ -5,6 +5,7 @@
 //! number of free equations below.
 
 use hemicontact::linalg::LinearSolver;
+use hemicontact::parallel::Processes;
 use hemicontact::resources::{estimate_box, estimate_box_iterative};
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::{SolverSettings, System};
@@ -76,24 +77,41 @@ fn memory_estimate_and_prepared_solver_agree_near_the_threshold() {
 #[test]
 fn auto_resolves_by_free_equations() {
     let t = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
-    assert_eq!(LinearSolver::Auto.resolve(3, t), LinearSolver::Iterative);
-    assert_eq!(LinearSolver::Auto.resolve(3, t - 1), LinearSolver::Direct);
-    assert_eq!(LinearSolver::Auto.resolve(2, 10 * t), LinearSolver::Direct);
     assert_eq!(
-        LinearSolver::Iterative.resolve(3, 1),
+        LinearSolver::Auto.resolve(3, t, &Processes::alone()),
+        LinearSolver::Iterative
+    );
+    assert_eq!(
+        LinearSolver::Auto.resolve(3, t - 1, &Processes::alone()),
+        LinearSolver::Direct
+    );
+    assert_eq!(
+        LinearSolver::Auto.resolve(2, 10 * t, &Processes::alone()),
+        LinearSolver::Direct
+    );
+    assert_eq!(
+        LinearSolver::Iterative.resolve(3, 1, &Processes::alone()),
         LinearSolver::Iterative
     );
     // The memory estimate follows the same rule; the bound used before the free equations
     // are known is below the estimate for every count up to its maximum.
     let (nodes, cells) = (21 * 21 * 23, 6 * 20 * 20 * 22);
-    let auto = |free| LinearSolver::Auto.memory_estimate(3, free, nodes, cells);
-    let direct = LinearSolver::Direct.memory_estimate(3, 0, nodes, cells);
-    let iterative = LinearSolver::Iterative.memory_estimate(3, 0, nodes, cells);
+    let auto =
+        |free| LinearSolver::Auto.memory_estimate(3, free, nodes, cells, &Processes::alone());
+    let direct = LinearSolver::Direct.memory_estimate(3, 0, nodes, cells, &Processes::alone());
+    let iterative =
+        LinearSolver::Iterative.memory_estimate(3, 0, nodes, cells, &Processes::alone());
     assert_eq!(auto(t - 1), direct);
     assert_eq!(auto(t), iterative);
     assert_eq!(direct, estimate_box(20, 20, 22));
     assert_eq!(iterative, estimate_box_iterative(20, 20, 22));
-    let bound = LinearSolver::Auto.memory_lower_bound(3, 3 * nodes as usize, nodes, cells);
+    let bound = LinearSolver::Auto.memory_lower_bound(
+        3,
+        3 * nodes as usize,
+        nodes,
+        cells,
+        &Processes::alone(),
+    );
     assert!(bound <= auto(t - 1) && bound <= auto(t));
 }
 

@@ -6,6 +6,7 @@
 //! they stop paying or stop converging.
 
 use hemicontact::linalg::{Cholesky, Multigrid};
+use hemicontact::parallel::Processes;
 use hemicontact::problem::Problem;
 use hemicontact::scenario::Scenario;
 use hemicontact::solver::{SolverSettings, System};
@@ -209,14 +210,20 @@ fn linear_solver_setting() {
     assert_eq!(solver.kind(), LinearSolver::Direct);
     assert!(solver.nnz_factor() > 0 && solver.level_sizes().is_empty());
     let big = LinearSolver::AUTO_ITERATIVE_EQUATIONS;
-    assert_eq!(LinearSolver::Auto.resolve(3, big), LinearSolver::Iterative);
-    assert_eq!(LinearSolver::Auto.resolve(3, big - 1), LinearSolver::Direct);
     assert_eq!(
-        LinearSolver::Auto.resolve(2, 10 * big),
+        LinearSolver::Auto.resolve(3, big, &Processes::alone()),
+        LinearSolver::Iterative
+    );
+    assert_eq!(
+        LinearSolver::Auto.resolve(3, big - 1, &Processes::alone()),
         LinearSolver::Direct
     );
     assert_eq!(
-        LinearSolver::Direct.resolve(3, 10 * big),
+        LinearSolver::Auto.resolve(2, 10 * big, &Processes::alone()),
+        LinearSolver::Direct
+    );
+    assert_eq!(
+        LinearSolver::Direct.resolve(3, 10 * big, &Processes::alone()),
         LinearSolver::Direct
     );
     let bad = format!(

@@ -308,12 +308,13 @@ fn summary(
 ) -> Certificate {
     // Over the processes: whether any point has an exact law, the exact friction's
     // largest slip at a sticking point and its count.
-    let mut worst = [f64::from(u8::from(exact_any)), kkt.stick_slip];
-    share.max(&mut worst);
-    kkt.stick_slip = worst[1];
+    let exact_any = share.any(exact_any);
+    let mut slip = [kkt.stick_slip];
+    share.max(&mut slip);
+    kkt.stick_slip = slip[0];
     kkt.n_constraints.2 = share.count(kkt.n_constraints.2);
     let mut cert = Certificate {
-        kkt: (worst[0] > 0.0).then_some(kkt),
+        kkt: exact_any.then_some(kkt),
         tolerance,
         equilibrium,
         ..Certificate::default()
@@ -347,15 +348,15 @@ fn summary(
         cert.n_stick += usize::from(r.friction_state == FrictionState::Stick);
         cert.n_slip += usize::from(r.friction_state == FrictionState::Slip);
     }
-    if share.is_split() {
-        (cert.worst_normal, cert.normal_law) =
-            super::whole::worst_of_all(share, cert.worst_normal, cert.normal_law);
-        (cert.worst_friction, cert.friction_law) =
-            super::whole::worst_of_all(share, cert.worst_friction, cert.friction_law);
-        cert.n_contact = share.count(cert.n_contact);
-        cert.n_stick = share.count(cert.n_stick);
-        cert.n_slip = share.count(cert.n_slip);
-    }
+    // Over the processes; on one, the worst points and counts themselves (a worst point's
+    // residual is the law's value, and no worst point leaves it 0).
+    (cert.worst_normal, cert.normal_law) =
+        super::whole::worst_of_all(share, cert.worst_normal, cert.normal_law);
+    (cert.worst_friction, cert.friction_law) =
+        super::whole::worst_of_all(share, cert.worst_friction, cert.friction_law);
+    cert.n_contact = share.count(cert.n_contact);
+    cert.n_stick = share.count(cert.n_stick);
+    cert.n_slip = share.count(cert.n_slip);
     cert
 }
 

@@ -83,11 +83,8 @@ impl Frozen {
 
     /// The entries of [`Frozen::flatten`]'s vector for `n` contact points and `n_cells`
     /// locking multipliers that `share` counts: those of its own contact points (not its
-    /// ghost points) and of its owned cells (empty when it counts everything).
+    /// ghost points) and of its owned cells (every entry on one process).
     pub fn counted(share: &Share, n: usize, n_cells: usize) -> Vec<bool> {
-        if !share.is_split() {
-            return Vec::new();
-        }
         // The layout of `flatten`: F (1 per point), b (2), λ (1), τ (2).
         let mut counts = Vec::with_capacity(6 * n + n_cells);
         for width in [1, 2, 1, 2] {

@@ -97,20 +97,17 @@ pub fn rigid_drop(system: &System, problem: &Problem, u: &[f64]) -> Result<Optio
             rows.push(row);
             gaps.push(contact.gap[i] - u_nu);
         }
-        if share.is_split() {
-            // Every process's points, rank after rank: k coefficients and a gap each.
-            let mine: Vec<f64> = rows
-                .iter()
-                .zip(&gaps)
-                .flat_map(|(r, &h)| r.iter().copied().chain([h]))
-                .collect();
-            let all = share.gather_varying(&mine);
-            rows = all.chunks_exact(k + 1).map(|p| p[..k].to_vec()).collect();
-            gaps = all.chunks_exact(k + 1).map(|p| p[k]).collect();
-            let mut any = [f64::from(u8::from(tresca))];
-            share.max(&mut any);
-            tresca = any[0] > 0.0;
-        }
+        // Every process's points, rank after rank (this process's own on one): k
+        // coefficients and a gap each.
+        let mine: Vec<f64> = rows
+            .iter()
+            .zip(&gaps)
+            .flat_map(|(r, &h)| r.iter().copied().chain([h]))
+            .collect();
+        let all = share.gather_varying(&mine);
+        rows = all.chunks_exact(k + 1).map(|p| p[..k].to_vec()).collect();
+        gaps = all.chunks_exact(k + 1).map(|p| p[k]).collect();
+        tresca = share.any(tresca);
         // A group already pressed into its contact has nothing to drop.
         if gaps.iter().any(|&h| h < 0.0) {
             continue;

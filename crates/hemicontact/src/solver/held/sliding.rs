@@ -465,16 +465,18 @@ fn limit(
         hi = hi.max(mu[i]);
         flat &= (t - 1.0).abs() <= 1e-9;
     }
-    if share.is_split() {
-        let mut sums = [normal_force, area];
-        share.sum(&mut sums);
-        [normal_force, area] = sums;
-        let flag = |b: bool| f64::from(u8::from(b));
-        let mut most = [-lo, hi, flag(coulomb), flag(tresca), flag(!flat)];
-        share.max(&mut most);
-        (lo, hi) = (-most[0], most[1]);
-        (coulomb, tresca, flat) = (most[2] > 0.0, most[3] > 0.0, most[4] == 0.0);
-    }
+    // Over the processes (nothing to complete on one).
+    let mut sums = [normal_force, area];
+    share.sum(&mut sums);
+    [normal_force, area] = sums;
+    let (mut lows, mut highs) = ([lo], [hi]);
+    share.min(&mut lows);
+    share.max(&mut highs);
+    (lo, hi) = (lows[0], highs[0]);
+    let mut kinds = [coulomb, tresca];
+    share.any_each(&mut kinds);
+    [coulomb, tresca] = kinds;
+    flat = share.all(flat);
     Limit {
         value: capacity(system, s, bounds),
         normal_force,

@@ -159,9 +159,11 @@ impl System {
         // cells around its own nodes (only that solver can take partial matrices), their
         // nodes, its contact points and every array of the solve on that part alone.
         // Otherwise every process holds the whole system.
-        let processes = Processes::current();
-        let distributed =
-            split && processes.size() > 1 && kind.resolve(d, dofs.n_free()) == LinearSolver::Petsc;
+        let processes = settings.processes;
+        let distributed = split
+            && kind
+                .resolve(d, dofs.n_free(), &processes)
+                .splits_the_problem(&processes);
         let (whole, whole_counts) = SetUp::of_whole(problem, settings, dofs)?;
         // On several processes, this process's part of all that ([`SetUp::restricted`]).
         let (set_up, part) = if distributed {
@@ -316,6 +318,7 @@ fn prepare_linear_solver(
             partition,
             nodes: part.as_ref().map(|p| p.nodes.as_slice()),
         },
+        processes: settings.processes,
     };
     kind.prepare(mesh, dofs.equations(), pattern, &options)
 }

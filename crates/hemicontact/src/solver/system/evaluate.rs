@@ -66,14 +66,8 @@ impl System {
             None
         };
         let work = subtract_external(&mut out.grad_bulk, &self.f_ext, u, |k| share.counts_dof(k));
-        if share.is_split() {
-            // A ghost node's bulk gradient is partial here: unknown.
-            for (k, g) in out.grad_bulk.iter_mut().enumerate() {
-                if !share.counts_dof(k) {
-                    *g = f64::NAN;
-                }
-            }
-        }
+        // A ghost node's bulk gradient is partial here: unknown (none on one process).
+        share.unknown_where_uncounted(&mut out.grad_bulk);
         out.grad.copy_from_slice(&out.grad_bulk);
         let e_contact = contact.assemble(u, &frozen.contact(), &mut out.grad, hc);
         let mut e = [e_bulk, e_contact, work];

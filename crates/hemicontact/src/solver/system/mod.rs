@@ -123,10 +123,15 @@ pub struct UserUnits {
     pub traction: f64,
 }
 
-/// The linear solver that `kind` resolves to for `problem` ([`super::LinearSolver::resolve`]
-/// with the number of free equations): the one [`System::with_linear_solver`] prepares.
-pub fn resolved_linear_solver(problem: &Problem, kind: LinearSolver) -> LinearSolver {
-    kind.resolve(problem.mesh.dim(), problem.dof_map().n_free())
+/// The linear solver that `kind` resolves to for `problem` on `processes`
+/// ([`super::LinearSolver::resolve`] with the number of free equations): the one
+/// [`System::with_linear_solver`] prepares.
+pub fn resolved_linear_solver(
+    problem: &Problem,
+    kind: LinearSolver,
+    processes: &Processes,
+) -> LinearSolver {
+    kind.resolve(problem.mesh.dim(), problem.dof_map().n_free(), processes)
 }
 
 pub use crate::linalg::ITERATIVE_MAX_ITERATIONS;
