@@ -54,7 +54,7 @@ impl Frozen {
 
     /// The relative fixed-point residual between these quantities `z` and their image
     /// `g = G(z)`, each contact point on its own scale `scale[i]` (N, see
-    /// [`super::local_scales`]): the larger of the largest change of a point's friction data
+    /// [`crate::solver::local_scales`]): the larger of the largest change of a point's friction data
     /// as a force, `w_i ‖(F, b)_g − (F, b)_z‖_i / scale_i`, and the multiplier change as a
     /// primal residual ([`Multipliers::change`]); over every process.
     pub fn residual(

@@ -12,7 +12,7 @@ use crate::problem::Problem;
 impl System {
     /// The local scales of every contact point counted here ([`crate::contact::ContactNodes::owned`]) at `u`
     /// for the frozen quantities `frozen`
-    /// (see [`super::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
+    /// (see [`crate::solver::local_scales`]): its force `w_i max(F_i, p_i)` (N; the frozen bound, the
     /// pressure at `u`, with the responses `responses` of user-defined compliance laws at
     /// `u`) into `force`, and the floor of its force scale `max(η L_i, η_b F_b)` (N; F_b the
     /// force scale of its body, from `body_scale`) into `floor`.
